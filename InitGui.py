@@ -1,0 +1,32 @@
+# Contacts workbench: GUI registration. FreeCAD execs this file, so the class
+# is self-contained and imports lazily in Initialize().
+import FreeCADGui
+
+
+class ContactsWorkbench(FreeCADGui.Workbench):
+    """Functional contacts between the parts of an assembly."""
+
+    MenuText = "Contacts"
+    ToolTip = "Find the functional contacts between parts and the joints they allow"
+
+    def __init__(self):
+        import contactwb
+        self.__class__.Icon = contactwb.icon_path("ContactsWorkbench")
+
+    def Initialize(self):
+        from contactwb.gui import commands
+        names = commands.register()
+        self.appendToolbar("Contacts", names)
+        self.appendMenu("&Contacts", names)
+
+    def Activated(self):
+        pass
+
+    def Deactivated(self):
+        pass
+
+    def GetClassName(self):
+        return "Gui::PythonWorkbench"
+
+
+FreeCADGui.addWorkbench(ContactsWorkbench())

@@ -1,0 +1,72 @@
+# The two commands of the README:
+#   make run   set up a fresh Debian 12 machine, build, install the workbench,
+#              then find the contacts of the bundled motor
+#   make test  build if needed, then every test: GoogleTest, pytest, GUI (Xvfb)
+SHELL := /bin/bash
+.DEFAULT_GOAL := run
+
+BUILD_DIR    ?= build
+PYTHON       := /usr/bin/python3
+JOBS         ?= $(shell nproc)
+SUDO         := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
+# FreeCAD 0.20 loads user workbenches from $HOME/.local/share/FreeCAD/Mod/<name>/.
+FREECAD_MOD  ?= $(HOME)/.local/share/FreeCAD/Mod
+INSTALL_DIR  := $(FREECAD_MOD)/Contacts
+BIN_DIR      ?= $(HOME)/.local/bin
+SAMPLE       ?= Resources/samples/motor.step
+
+DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
+  libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
+  libocct-visualization-dev libcoin-dev libhidapi-dev pybind11-dev python3-pybind11 \
+  python3-dev python3-pytest cmake make g++ googletest libgtest-dev libbenchmark-dev \
+  python3-pil xvfb xauth
+
+.PHONY: run test deps build install uninstall samples bench test-cpp test-python test-gui clean
+
+# Installs only the packages that are missing (dpkg says "install ok installed").
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages:" $$missing; \
+	  $(SUDO) apt-get update -q && \
+	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
+	else echo "All Debian packages present."; fi
+
+$(BUILD_DIR)/CMakeCache.txt:
+	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON)
+
+build: $(BUILD_DIR)/CMakeCache.txt
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# Copies the workbench (and the built extension) where FreeCAD reads it, and
+# a `contacts` command-line wrapper into $(BIN_DIR).
+install: build
+	$(PYTHON) tools/install_workbench.py --build-dir $(BUILD_DIR) --mod-dir $(INSTALL_DIR) --bin-dir $(BIN_DIR)
+
+uninstall:
+	rm -rf $(INSTALL_DIR) $(BIN_DIR)/contacts
+
+run: deps build install
+	$(BIN_DIR)/contacts $(SAMPLE)
+
+samples:
+	$(PYTHON) tools/make_samples.py --out Resources/samples
+
+bench: build
+	$(PYTHON) bench/run_benchmarks.py --build-dir $(BUILD_DIR)
+
+test: deps build
+	@bash tests/run_all.sh $(BUILD_DIR)
+
+test-cpp: build
+	cd $(BUILD_DIR) && ctest --output-on-failure
+
+test-python: build
+	CONTACTS_PYTHON_DIR=$(abspath $(BUILD_DIR))/python $(PYTHON) -m pytest -q tests --ignore=tests/gui
+
+test-gui: build
+	CONTACTS_BUILD_DIR=$(abspath $(BUILD_DIR)) $(PYTHON) -m pytest -q tests/gui
+
+clean:
+	rm -rf $(BUILD_DIR)

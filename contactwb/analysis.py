@@ -1,0 +1,179 @@
+"""Contact identification, headless: from a STEP file, a FreeCAD document or
+named shapes to typed contacts between named bodies (the paper's list).
+
+    from contactwb import analysis
+    result = analysis.find_contacts_in_step("motor.step")
+    print(result.table())
+"""
+import os
+from collections import Counter, defaultdict
+from dataclasses import dataclass, field
+from math import degrees
+from typing import Dict, List, Optional, Tuple
+
+from contactwb import core
+
+TYPE_TITLES = {
+    "PLF": "Planar fits",
+    "CLJ": "Cylindrical joints",
+    "CJU": "Cylindrical joints, unidirectional (cones)",
+    "SPF": "Spherical fits",
+    "LAF": "Linear annular fits (ball in bore)",
+    "SPT": "Balls in torus grooves",
+    "TRF": "Torus fits",
+}
+TYPE_ORDER = list(TYPE_TITLES)
+
+
+@dataclass
+class BodyInfo:
+    name: str
+    path: str
+    volume: float                       # mm^3
+    center: Tuple[float, float, float]  # mm
+
+
+@dataclass
+class ContactRecord:
+    type: str
+    a: str                   # body names, in assembly order
+    b: str
+    faces_a: List[str]       # "FaceN" of a's document object (or solid, for STEP)
+    faces_b: List[str]
+    area: float              # mm^2; 0 for circle contacts (LAF, SPT)
+    partial: bool
+    span: float              # common angular span, degrees (revolution contacts)
+    radius: float
+    half_angle: float        # degrees (CJU)
+    point: Tuple[float, float, float]
+    direction: Tuple[float, float, float]
+    body_a: int = 0
+    body_b: int = 0
+
+    def __str__(self):
+        extra = f", partial {self.span:.0f} deg" if self.partial else ""
+        return f"{self.type} {self.a} <-> {self.b} (area {self.area:.3f} mm2{extra})"
+
+
+@dataclass
+class Analysis:
+    source: str
+    units: str
+    linear_tolerance: float
+    angular_tolerance: float
+    bodies: List[BodyInfo]
+    contacts: List[ContactRecord]
+    messages: List[str] = field(default_factory=list)
+    body_pairs: int = 0
+    candidates: int = 0
+    times: Dict[str, float] = field(default_factory=dict)
+    raw: Optional[object] = None  # the contactcore.ContactsResult
+
+    def counts(self):
+        """Counter of contact types."""
+        return Counter(c.type for c in self.contacts)
+
+    def by_pair(self):
+        """{(a, b): Counter of types} in assembly order."""
+        pairs = defaultdict(Counter)
+        for c in self.contacts:
+            pairs[(c.a, c.b)][c.type] += 1
+        return dict(pairs)
+
+    def to_json(self):
+        """A JSON-ready dict (the CLI's --json)."""
+        return {
+            "source": self.source,
+            "units": self.units,
+            "tolerances": {"linear": self.linear_tolerance, "angular": self.angular_tolerance},
+            "bodies": [{"name": b.name, "path": b.path, "volume": b.volume, "center": list(b.center)}
+                       for b in self.bodies],
+            "contacts": [{"type": c.type, "a": c.a, "b": c.b, "faces_a": c.faces_a, "faces_b": c.faces_b,
+                          "area": c.area, "partial": c.partial, "span": c.span, "radius": c.radius,
+                          "half_angle": c.half_angle, "point": list(c.point),
+                          "direction": list(c.direction)} for c in self.contacts],
+            "totals": dict(self.counts()),
+            "messages": self.messages,
+            "times": self.times,
+        }
+
+    def table(self):
+        """The paper's table: per type, the body pairs and their counts, then totals."""
+        lines = [f"Contacts of {self.source}: {len(self.bodies)} bodies (file units {self.units}), "
+                 f"tolerances {self.linear_tolerance:.3g} mm, {self.angular_tolerance:.3g} rad"]
+        for message in self.messages:
+            lines.append(f"  note: {message}")
+        width = max((len(b.name) for b in self.bodies), default=4)
+        counts = self.counts()
+        for kind in TYPE_ORDER:
+            if not counts[kind]:
+                continue
+            lines.append("")
+            lines.append(f"{TYPE_TITLES[kind]} ({kind}): {counts[kind]}")
+            pairs = Counter((c.a, c.b) for c in self.contacts if c.type == kind)
+            partial = Counter((c.a, c.b) for c in self.contacts if c.type == kind and c.partial)
+            for (a, b), n in pairs.items():
+                note = f"  ({partial[(a, b)]} partial)" if partial[(a, b)] else ""
+                lines.append(f"  {a:<{width}}  <->  {b:<{width}}  {n}{note}")
+        lines.append("")
+        summary = ", ".join(f"{counts[k]} {k}" for k in TYPE_ORDER if counts[k])
+        lines.append(f"Total: {len(self.contacts)} contacts ({summary or 'none'}) "
+                     f"between {len(self.by_pair())} body pairs")
+        return "\n".join(lines)
+
+
+def _analysis(source, assembly, result, face_name=None):
+    names = [b.name for b in assembly.bodies]
+    face_name = face_name or (lambda body, index: f"Face{index}")
+    contacts = []
+    for c in result.contacts:
+        contacts.append(ContactRecord(
+            type=c.type_name, a=names[c.body_a], b=names[c.body_b],
+            faces_a=[face_name(c.body_a, f) for f in c.faces_a],
+            faces_b=[face_name(c.body_b, f) for f in c.faces_b],
+            area=c.area, partial=c.partial, span=degrees(c.span), radius=c.radius,
+            half_angle=degrees(c.half_angle), point=c.point, direction=c.direction,
+            body_a=c.body_a, body_b=c.body_b))
+    times = {"partitions": result.times.partitions, "broad_phase": result.times.broad_phase,
+             "candidates": result.times.candidates, "area": result.times.area}
+    return Analysis(
+        source=source, units=assembly.units,
+        linear_tolerance=result.tolerances.linear, angular_tolerance=result.tolerances.angular,
+        bodies=[BodyInfo(b.name, b.path, b.volume, b.center) for b in assembly.bodies],
+        contacts=contacts, messages=list(assembly.messages), body_pairs=len(result.body_pairs),
+        candidates=result.candidates, times=times, raw=result)
+
+
+def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None,
+                              face_name=None):
+    """Contacts of a contactcore.Assembly. `progress(stage, fraction)` may
+    return False to cancel (raises contactwb.core.Cancelled)."""
+    result = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress)
+    return _analysis(source, assembly, result, face_name)
+
+
+def find_contacts_in_step(path, linear=None, angular=None, progress=None):
+    """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
+    if not os.path.isfile(path):
+        raise core.ContactsError(f"no such file: '{path}'")
+    assembly = core.contactcore.read_step(os.path.abspath(path))
+    return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress)
+
+
+def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None):
+    """Contacts between (name, Part.Shape) pairs placed globally."""
+    assembly = core.assembly_from_shapes(named_shapes)
+    return find_contacts_in_assembly(assembly, source, linear, angular, progress)
+
+
+def find_contacts_in_document(doc, objects=None, linear=None, angular=None, progress=None):
+    """Contacts of a FreeCAD document's visible solids (or of a selection).
+    Returns (Analysis, [DocumentBody]); face names are the objects' FaceN."""
+    from contactwb import bodies as document_bodies
+    messages = []
+    assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
+    result = find_contacts_in_assembly(
+        assembly, doc.Label, linear, angular, progress,
+        face_name=lambda body, index: bodies[body].object_face_name(index))
+    result.messages.extend(messages)
+    return result, bodies

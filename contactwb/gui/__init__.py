@@ -1,0 +1,1 @@
+"""GUI of the workbench: commands, view providers, task panels (FreeCAD.GuiUp only)."""

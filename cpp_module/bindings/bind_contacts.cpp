@@ -1,0 +1,155 @@
+// Contacts: the whole stage on an assembly, with progress and cancellation.
+#include "common.h"
+
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include <BRepBndLib.hxx>
+
+#include "contactcore/contacts.h"
+
+namespace contactcore::bindings {
+
+namespace {
+
+// Calls a Python callable(stage, fraction) -> bool from the core's worker
+// (which runs without the GIL). A raised exception cancels the work.
+class PythonProgress : public Progress {
+ public:
+  explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
+  bool report(const char* stage, double fraction) override {
+    py::gil_scoped_acquire gil;
+    try {
+      py::object answer = callback_(stage, fraction);
+      return answer.is_none() || answer.cast<bool>();
+    } catch (py::error_already_set& error) {
+      error.discard_as_unraisable(__func__);
+      return false;
+    }
+  }
+
+ private:
+  py::object callback_;
+};
+
+std::vector<std::string> face_names(const std::vector<int>& faces) {
+  std::vector<std::string> names;
+  names.reserve(faces.size());
+  for (int f : faces) names.push_back("Face" + std::to_string(f));
+  return names;
+}
+
+}  // namespace
+
+void bind_contacts(py::module_& m) {
+  py::enum_<ContactType>(m, "ContactType")
+      .value("PLF", ContactType::PLF)
+      .value("CLJ", ContactType::CLJ)
+      .value("CJU", ContactType::CJU)
+      .value("SPF", ContactType::SPF)
+      .value("LAF", ContactType::LAF)
+      .value("SPT", ContactType::SPT)
+      .value("TRF", ContactType::TRF);
+
+  py::class_<Contact>(m, "Contact", "A functional contact between two bodies.")
+      .def_readonly("type", &Contact::type)
+      .def_property_readonly("type_name", [](const Contact& c) { return std::string(to_string(c.type)); })
+      .def_readonly("body_a", &Contact::body_a)
+      .def_readonly("body_b", &Contact::body_b)
+      .def_readonly("partition_a", &Contact::partition_a)
+      .def_readonly("partition_b", &Contact::partition_b)
+      .def_readonly("faces_a", &Contact::faces_a)
+      .def_readonly("faces_b", &Contact::faces_b)
+      .def_property_readonly("face_names_a", [](const Contact& c) { return face_names(c.faces_a); })
+      .def_property_readonly("face_names_b", [](const Contact& c) { return face_names(c.faces_b); })
+      .def_property_readonly("point", [](const Contact& c) { return to_tuple(c.point); })
+      .def_property_readonly("direction", [](const Contact& c) { return to_tuple(c.direction); })
+      .def_readonly("radius", &Contact::radius)
+      .def_readonly("half_angle", &Contact::half_angle)
+      .def_readonly("area", &Contact::area)
+      .def_readonly("partial", &Contact::partial)
+      .def_readonly("span", &Contact::span)
+      .def_readonly("tolerances", &Contact::tolerances)
+      .def("__repr__", [](const Contact& c) {
+        std::ostringstream out;
+        out << "<Contact " << to_string(c.type) << " bodies " << c.body_a << "-" << c.body_b
+            << " area=" << c.area;
+        if (c.radius > 0) out << " r=" << c.radius;
+        if (c.partial) out << " partial span=" << c.span * 180.0 / M_PI << "deg";
+        out << ">";
+        return out.str();
+      });
+
+  py::class_<StageTimes>(m, "StageTimes", "Seconds spent in each stage.")
+      .def_readonly("partitions", &StageTimes::partitions)
+      .def_readonly("broad_phase", &StageTimes::broad_phase)
+      .def_readonly("candidates", &StageTimes::candidates)
+      .def_readonly("area", &StageTimes::area)
+      .def("__repr__", [](const StageTimes& t) {
+        std::ostringstream out;
+        out << "<StageTimes partitions=" << t.partitions << " broad_phase=" << t.broad_phase
+            << " candidates=" << t.candidates << " area=" << t.area << ">";
+        return out.str();
+      });
+
+  py::class_<ContactsResult>(m, "ContactsResult", "Contacts of an assembly and what led to them.")
+      .def_readonly("tolerances", &ContactsResult::tolerances)
+      .def_readonly("partitions", &ContactsResult::partitions)
+      .def_readonly("body_pairs", &ContactsResult::body_pairs)
+      .def_readonly("candidates", &ContactsResult::candidates)
+      .def_readonly("contacts", &ContactsResult::contacts)
+      .def_readonly("times", &ContactsResult::times)
+      .def("__repr__", [](const ContactsResult& r) {
+        return "<ContactsResult " + std::to_string(r.contacts.size()) + " contacts, " +
+               std::to_string(r.body_pairs.size()) + " body pairs, " + std::to_string(r.candidates) +
+               " candidates>";
+      });
+
+  m.def(
+      "find_contacts",
+      [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
+         py::object progress) {
+        ContactOptions options;
+        if (linear || angular) {
+          options.use_default_tolerances = false;
+          Bnd_Box box;
+          for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box, false);
+          options.tolerances = default_tolerances(box);
+          if (linear) options.tolerances.linear = *linear;
+          if (angular) options.tolerances.angular = *angular;
+        }
+        std::unique_ptr<PythonProgress> reporter;
+        if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
+        ContactsResult result;
+        raise_if_failed(guarded([&] {
+          result = find_contacts(assembly, options, reporter.get());
+          return result.status;
+        }));
+        return result;
+      },
+      py::arg("assembly"), py::arg("linear") = py::none(), py::arg("angular") = py::none(),
+      py::arg("progress") = py::none(),
+      "Partitions every body, then finds contacts. `progress(stage, fraction)` returning False "
+      "cancels (raises contactcore.Cancelled). Tolerances default to the model's scale.");
+
+  m.def(
+      "common_area",
+      [](const std::vector<std::vector<std::pair<double, double>>>& a,
+         const std::vector<std::vector<std::pair<double, double>>>& b, double tol) {
+        const auto convert = [](const auto& loops) {
+          std::vector<Polygon2> out;
+          for (const auto& loop : loops) {
+            Polygon2 poly;
+            for (const auto& [x, y] : loop) poly.push_back({x, y});
+            out.push_back(std::move(poly));
+          }
+          return out;
+        };
+        return common_area(convert(a), convert(b), tol);
+      },
+      py::arg("a"), py::arg("b"), py::arg("tol") = 1e-9,
+      "Area common to two sets of 2D loops (outer counter-clockwise, holes clockwise).");
+}
+
+}  // namespace contactcore::bindings

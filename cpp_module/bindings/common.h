@@ -1,0 +1,42 @@
+// Shared helpers of the binding files: conversions of OCCT values to Python
+// tuples and the single place where a failed Status becomes an exception.
+#pragma once
+
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <exception>
+#include <string>
+
+#include <Standard_Failure.hxx>
+#include <gp_Dir.hxx>
+#include <gp_Pnt.hxx>
+
+#include "contactcore/errors.h"
+
+namespace contactcore::bindings {
+
+namespace py = pybind11;
+
+inline py::tuple to_tuple(const gp_Pnt& p) { return py::make_tuple(p.X(), p.Y(), p.Z()); }
+inline py::tuple to_tuple(const gp_Dir& d) { return py::make_tuple(d.X(), d.Y(), d.Z()); }
+
+// Raises contactcore.ContactsError (a RuntimeError) with Status::describe().
+void raise_if_failed(const Status& status);
+
+// Runs `work` (returning a Status) with the GIL released and any OCCT or C++
+// exception turned into a Status, so nothing escapes into FreeCAD as a crash.
+template <class Work>
+Status guarded(Work&& work) {
+  py::gil_scoped_release release;
+  try {
+    return work();
+  } catch (const Standard_Failure& failure) {
+    return Status::failure(StatusCode::GeometryError,
+                           std::string("OCCT: ") + failure.GetMessageString());
+  } catch (const std::exception& error) {
+    return Status::failure(StatusCode::GeometryError, error.what());
+  }
+}
+
+}  // namespace contactcore::bindings

@@ -1,0 +1,21 @@
+// The `contactcore` Python extension: thin bindings of the C++ core, one file
+// per pipeline area. FreeCAD shapes cross as BRep text (exportBrepToString).
+#include <pybind11/pybind11.h>
+
+namespace py = pybind11;
+
+namespace contactcore::bindings {
+void bind_errors(py::module_& m);
+void bind_bodies(py::module_& m);
+void bind_partitions(py::module_& m);
+void bind_contacts(py::module_& m);
+}  // namespace contactcore::bindings
+
+PYBIND11_MODULE(contactcore, m) {
+  m.doc() = "Contacts workbench core: bodies, partitions, contacts (OCCT 7.6)";
+  using namespace contactcore::bindings;
+  bind_errors(m);
+  bind_bodies(m);
+  bind_partitions(m);
+  bind_contacts(m);
+}

@@ -1,0 +1,74 @@
+// Stage 3: contacts. Broad phase on body boxes (the paper's LBiB), candidate
+// partition pairs with the same surface parameters and opposite material
+// sides (LpC) found by sorting, then a real common-area test per candidate.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "contactcore/bodies.h"
+#include "contactcore/partitions.h"
+
+namespace contactcore {
+
+enum class ContactType {
+  PLF,  // planar fit: coplanar planes, opposite normals
+  CLJ,  // cylindrical joint: shaft in a bore of the same radius and axis
+  CJU,  // cylindrical joint unidirectional: cone in a cone (same apex, axis, angle)
+  SPF,  // spherical fit: ball in a spherical cup
+  LAF,  // linear annular fit: ball in a bore of its radius, centre on the axis
+  SPT,  // sphere in a torus groove of its radius (a ball in its raceway)
+  TRF,  // torus on torus: same axis, centre and radii, opposite sides
+};
+const char* to_string(ContactType type);
+
+struct Contact {
+  ContactType type = ContactType::PLF;
+  int body_a = 0, body_b = 0;            // indices into Assembly::bodies, body_a < body_b
+  int partition_a = 0, partition_b = 0;  // partition ids within each body
+  std::vector<int> faces_a, faces_b;     // 1-based FaceN indices of the faces in contact
+  gp_Pnt point;     // PLF: a point of the common area; revolution: on the axis; sphere: centre
+  gp_Dir direction; // PLF: outward normal of body_a; revolution: axis
+  double radius = 0;        // CLJ, SPF, LAF, SPT (ball radius), TRF (minor radius)
+  double half_angle = 0;    // CJU
+  double area = 0;          // common area, mm^2 (LAF, SPT: 0, they touch along a circle)
+  bool partial = false;     // revolution contact spanning less than 180 degrees
+  double span = 0;          // common angular span, radians (revolution contacts)
+  Tolerances tolerances;    // tolerances used
+};
+
+struct ContactOptions {
+  Tolerances tolerances;          // used when use_default_tolerances is false
+  bool use_default_tolerances = true;
+  double min_area_ratio = 1e-6;   // common area below ratio * smaller partition area: no contact
+};
+
+// Timings of each stage in seconds, for benchmarks and the CLI.
+struct StageTimes {
+  double partitions = 0, broad_phase = 0, candidates = 0, area = 0;
+};
+
+struct ContactsResult {
+  Status status;
+  Tolerances tolerances;
+  std::vector<BodyPartitions> partitions;  // one per body
+  std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
+  std::size_t candidates = 0;                   // partition pairs tested for area
+  std::vector<Contact> contacts;
+  StageTimes times;
+};
+
+// Body pairs whose boxes meet within `gap`, by sort and sweep on x.
+std::vector<std::pair<int, int>> broad_phase(const std::vector<Bnd_Box>& boxes, double gap);
+
+// Area of the intersection of two polygon sets (outer loops counter-clockwise,
+// holes clockwise) in the same 2D frame.
+double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol);
+
+// The whole stage on an assembly. Partitions each body (progress "partitions"),
+// then broad phase, candidates and area ("contacts").
+ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& options,
+                             Progress* progress = nullptr);
+
+}  // namespace contactcore

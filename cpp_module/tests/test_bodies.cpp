@@ -1,0 +1,103 @@
+#include <gtest/gtest.h>
+
+#include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <GProp_GProps.hxx>
+#include <TopExp_Explorer.hxx>
+#include <set>
+#include <gp_Trsf.hxx>
+
+#include "contactcore/bodies.h"
+#include "test_helpers.h"
+
+using namespace contactcore;
+using contactcore::testing::shared_step;
+
+namespace {
+int count_faces(const TopoDS_Shape& shape) {
+  int n = 0;
+  for (TopExp_Explorer it(shape, TopAbs_FACE); it.More(); it.Next()) ++n;
+  return n;
+}
+}  // namespace
+
+TEST(Bodies, BrepRoundTripKeepsVolumeAndPlacement) {
+  gp_Trsf move;
+  move.SetTranslation(gp_Vec(10, 20, 30));
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(1, 2, 3).Shape().Moved(TopLoc_Location(move));
+  TopoDS_Shape back;
+  ASSERT_TRUE(shape_from_brep(shape_to_brep(box), back).ok());
+  const MassProperties props = mass_properties(back);
+  EXPECT_NEAR(props.volume, 6.0, 1e-9);
+  EXPECT_NEAR(props.centre.X(), 10.5, 1e-9);
+  EXPECT_NEAR(props.centre.Z(), 31.5, 1e-9);
+}
+
+TEST(Bodies, BadBrepIsAnErrorNotACrash) {
+  TopoDS_Shape shape;
+  const Status status = shape_from_brep("this is not a BRep", shape);
+  EXPECT_EQ(status.code, StatusCode::InvalidInput);
+}
+
+TEST(Bodies, CompoundChildrenBecomeNamedBodies) {
+  Assembly source;
+  source.bodies.push_back({"a", "a", BRepPrimAPI_MakeBox(1, 1, 1).Shape()});
+  source.bodies.push_back({"b", "b", BRepPrimAPI_MakeBox(2, 2, 2).Shape()});
+  const AssemblyResult result = bodies_from_brep(shape_to_brep(assembly_compound(source)), {"first", "first"});
+  ASSERT_TRUE(result.status.ok());
+  ASSERT_EQ(result.assembly.bodies.size(), 2u);
+  EXPECT_EQ(result.assembly.bodies[0].name, "first");
+  EXPECT_EQ(result.assembly.bodies[1].name, "first.2");
+  EXPECT_NEAR(mass_properties(result.assembly.bodies[1].shape).volume, 8.0, 1e-9);
+}
+
+TEST(Bodies, NamesMadeUniqueWithoutClashes) {
+  std::vector<Body> bodies{{"A", "", {}}, {"A", "", {}}, {"A.2", "", {}}};
+  make_names_unique(bodies);
+  EXPECT_EQ(bodies[0].name, "A");
+  EXPECT_EQ(bodies[1].name, "A.2");
+  EXPECT_EQ(bodies[2].name, "A.2.2");
+}
+
+TEST(Bodies, MissingStepFileIsAReadError) {
+  const AssemblyResult result = read_step("/nonexistent/file.step");
+  EXPECT_EQ(result.status.code, StatusCode::ReadError);
+  EXPECT_NE(result.status.describe().find("/nonexistent/file.step"), std::string::npos);
+}
+
+// R09 places its second body through a legacy MAPPED_ITEM; a plain reader
+// returns both roots twice. The XDE walk must give the 2 real bodies, in mm.
+TEST(Bodies, ChronoAssemblyHasTwoBodiesWithoutDuplicates) {
+  const std::string path = shared_step("R09_chrono_assembly.stp");
+  CONTACTS_REQUIRE_FILE(path);
+  const AssemblyResult result = read_step(path);
+  ASSERT_TRUE(result.status.ok()) << result.status.describe();
+  EXPECT_EQ(result.assembly.bodies.size(), 2u);
+  EXPECT_EQ(result.assembly.units, "m");
+  EXPECT_DOUBLE_EQ(result.assembly.source_unit_in_mm, 1000.0);
+  for (const Body& body : result.assembly.bodies) EXPECT_GT(mass_properties(body.shape).volume, 0);
+}
+
+TEST(Bodies, As1HasItsEighteenSolids) {
+  const std::string path = shared_step("R01_as1-oc-214.stp");
+  CONTACTS_REQUIRE_FILE(path);
+  const AssemblyResult result = read_step(path);
+  ASSERT_TRUE(result.status.ok()) << result.status.describe();
+  EXPECT_EQ(result.assembly.bodies.size(), 18u);
+  std::set<std::string> names;
+  for (const Body& body : result.assembly.bodies) names.insert(body.name);
+  EXPECT_EQ(names.size(), result.assembly.bodies.size()) << "names must be unique";
+}
+
+// R08's thread cosmetics are open shells: skipped, with a message.
+TEST(Bodies, PressSkipsOpenShellsWithAMessage) {
+  const std::string path = shared_step("R08_presse_asm.step");
+  CONTACTS_REQUIRE_FILE(path);
+  const AssemblyResult result = read_step(path);
+  ASSERT_TRUE(result.status.ok()) << result.status.describe();
+  EXPECT_FALSE(result.assembly.messages.empty());
+  for (const Body& body : result.assembly.bodies) {
+    EXPECT_GT(count_faces(body.shape), 0);
+    EXPECT_GT(mass_properties(body.shape).volume, 0) << body.name;
+  }
+}

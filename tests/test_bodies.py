@@ -1,0 +1,94 @@
+"""Bodies: shapes cross into C++ as BRep and come back unchanged; STEP files
+read in C++ with names; FreeCAD documents walked through parts and links."""
+import glob
+import os
+
+import pytest
+
+import FreeCAD
+import Part
+from contactwb import bodies, core, freecad_setup
+
+from conftest import SHARED_DATA
+
+STEP_FILES = sorted(glob.glob(os.path.join(SHARED_DATA, "step", "*.st*p")))
+
+
+@pytest.mark.skipif(not STEP_FILES, reason=f"shared data absent: {SHARED_DATA}")
+@pytest.mark.parametrize("path", STEP_FILES, ids=os.path.basename)
+def test_round_trip_through_cpp_keeps_every_solid(path):
+    solids = Part.read(path).Solids
+    assert solids, path
+    assembly = core.assembly_from_shapes((f"s{i}", s) for i, s in enumerate(solids))
+    assert len(assembly.bodies) == len(solids)
+    back = core.shape_from_brep(assembly.to_brep()).Solids
+    assert len(back) == len(solids)
+    for original, returned, body in zip(solids, back, assembly.bodies):
+        assert returned.Volume == pytest.approx(original.Volume, rel=1e-9)
+        assert returned.Area == pytest.approx(original.Area, rel=1e-9)
+        assert len(returned.Faces) == len(original.Faces)
+        assert returned.BoundBox.Center.isEqual(original.BoundBox.Center, 1e-9)
+        assert body.volume == pytest.approx(original.Volume, rel=1e-6)
+
+
+def test_placement_travels_with_the_shape():
+    box = Part.makeBox(1, 2, 3)
+    box.Placement = FreeCAD.Placement(FreeCAD.Vector(10, 0, 0), FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), 90))
+    (body,) = core.assembly_from_shapes([("box", box)]).bodies
+    assert body.center == pytest.approx(tuple(box.CenterOfMass), abs=1e-9)
+
+
+def test_bad_brep_raises_a_clear_error():
+    with pytest.raises(core.ContactsError, match="BRep"):
+        core.contactcore.bodies_from_brep("garbage", ["x"])
+
+
+def test_read_step_names_bodies_and_skips_no_duplicates(shared_step):
+    assembly = core.contactcore.read_step(shared_step("R09_chrono_assembly.stp"))
+    assert len(assembly.bodies) == 2  # Part.read returns 4 here
+    assert assembly.units == "m"
+    assert len({b.name for b in assembly.bodies}) == 2
+
+
+def test_missing_step_names_the_file():
+    with pytest.raises(core.ContactsError, match="nowhere.step"):
+        core.contactcore.read_step("/nowhere.step")
+
+
+def test_document_bodies_through_parts_and_links(shared_fcstd):
+    doc = freecad_setup.open_document(shared_fcstd("Asm4_Tutorial2/asm_tuto2.FCStd"))
+    try:
+        found = bodies.document_bodies(doc)
+        assert sorted(b.name for b in found) == ["arm001", "base001", "disk001"]
+        for body in found:
+            assert body.subname.endswith(body.obj.Name + ".")
+            # The link placement is applied: the global shape differs from the body's own.
+            assert body.shape.Volume == pytest.approx(body.obj.Shape.Volume, rel=1e-9)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_multi_solid_feature_gives_one_body_per_solid_with_face_map():
+    doc = FreeCAD.newDocument("multi")
+    try:
+        compound = Part.makeCompound([Part.makeBox(1, 1, 1), Part.makeBox(1, 1, 1, FreeCAD.Vector(1, 0, 0))])
+        feature = doc.addObject("Part::Feature", "Pair")
+        feature.Shape = compound
+        found = bodies.document_bodies(doc)
+        assert [b.name for b in found] == ["Pair", "Pair.2"]
+        assert found[1].face_map == list(range(7, 13))
+        assert found[1].object_face_name(1) == "Face7"
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_hidden_objects_are_not_bodies():
+    doc = FreeCAD.newDocument("hidden")
+    try:
+        doc.addObject("Part::Box", "Shown")
+        hidden = doc.addObject("Part::Box", "Hidden")
+        hidden.Visibility = False
+        doc.recompute()
+        assert [b.name for b in bodies.document_bodies(doc)] == ["Shown"]
+    finally:
+        FreeCAD.closeDocument(doc.Name)
