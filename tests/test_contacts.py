@@ -43,7 +43,7 @@ def test_motor_gives_exactly_the_papers_contacts(sample):
         expected[(frozenset((a, b)), kind)] += n
     assert unordered_pairs(result) == expected
     assert result.counts() == Counter({"CLJ": 21, "PLF": 14})
-    assert len(result.bodies) == 19
+    assert len(result.bodies) == 18  # the paper lists 18 parts (the issue says 19 but lists 18)
 
 
 def test_motor_in_inch_gives_the_same_contacts(sample):
@@ -134,7 +134,7 @@ def test_cli_json_schema(sample):
     assert out.returncode == 0, out.stderr
     data = json.loads(out.stdout)
     assert data["units"] == "mm"
-    assert len(data["bodies"]) == 19
+    assert len(data["bodies"]) == 18
     assert {"name", "volume", "center"} <= set(data["bodies"][0])
     assert len(data["contacts"]) == 35
     assert {"type", "a", "b", "area", "partial"} <= set(data["contacts"][0])

@@ -52,24 +52,6 @@ double distance_to_segment(const Point2& p, const Point2& a, const Point2& b, do
   return std::sqrt(dx * dx + dy * dy);
 }
 
-// Winding number of the polygon set around p (outer loops count +1, holes -1).
-int winding(const std::vector<Polygon2>& loops, const Point2& p) {
-  int wind = 0;
-  for (const Polygon2& loop : loops) {
-    const size_t n = loop.size();
-    for (size_t i = 0; i < n; ++i) {
-      const Point2& a = loop[i];
-      const Point2& b = loop[(i + 1) % n];
-      if (a.y <= p.y) {
-        if (b.y > p.y && cross(sub(b, a), sub(p, a)) > 0) ++wind;
-      } else if (b.y <= p.y && cross(sub(b, a), sub(p, a)) < 0) {
-        --wind;
-      }
-    }
-  }
-  return wind;
-}
-
 struct Box2 {
   double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
   void add(const Point2& p) {
@@ -88,52 +70,127 @@ Box2 box_of(const std::vector<Polygon2>& loops) {
   return box;
 }
 
+// The edges of a polygon set in a uniform grid, so that the edges near a
+// point or a segment are found without scanning them all.
+class EdgeGrid {
+ public:
+  struct Edge {
+    Point2 a, b;
+  };
+
+  EdgeGrid(const std::vector<Polygon2>& loops, double tol) : tol_(tol) {
+    for (const Polygon2& loop : loops)
+      for (size_t i = 0; i < loop.size(); ++i) edges_.push_back({loop[i], loop[(i + 1) % loop.size()]});
+    for (const Edge& e : edges_) box_.add(e.a), box_.add(e.b);
+    const double cells = std::max(1.0, std::sqrt(static_cast<double>(edges_.size())));
+    nx_ = ny_ = static_cast<int>(std::ceil(cells));
+    cell_w_ = std::max((box_.xmax - box_.xmin) / nx_, 1e-300);
+    cell_h_ = std::max((box_.ymax - box_.ymin) / ny_, 1e-300);
+    cells_.assign(static_cast<size_t>(nx_) * ny_, {});
+    for (size_t k = 0; k < edges_.size(); ++k) {
+      const Edge& e = edges_[k];
+      const auto [i0, i1] = columns(std::min(e.a.x, e.b.x) - tol, std::max(e.a.x, e.b.x) + tol);
+      const auto [j0, j1] = rows(std::min(e.a.y, e.b.y) - tol, std::max(e.a.y, e.b.y) + tol);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) cells_[static_cast<size_t>(j) * nx_ + i].push_back(static_cast<int>(k));
+    }
+    stamp_.assign(edges_.size(), 0);
+  }
+
+  const Box2& box() const { return box_; }
+  const Edge& edge(int k) const { return edges_[k]; }
+
+  // Edges whose cells meet the box [x0, x1] x [y0, y1], each once.
+  template <class Visit>
+  void near(double x0, double y0, double x1, double y1, Visit&& visit) const {
+    if (x1 < box_.xmin - tol_ || x0 > box_.xmax + tol_ || y1 < box_.ymin - tol_ || y0 > box_.ymax + tol_) return;
+    ++epoch_;
+    const auto [i0, i1] = columns(x0, x1);
+    const auto [j0, j1] = rows(y0, y1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+        for (int k : cells_[static_cast<size_t>(j) * nx_ + i]) {
+          if (stamp_[k] == epoch_) continue;
+          stamp_[k] = epoch_;
+          visit(k);
+        }
+  }
+
+  // Winding number around p: only edges crossing the horizontal line through
+  // p on its right can count (Sunday's algorithm), so scan that half-row.
+  int winding(const Point2& p) const {
+    int wind = 0;
+    near(p.x, p.y, box_.xmax + tol_, p.y, [&](int k) {
+      const Point2& a = edges_[k].a;
+      const Point2& b = edges_[k].b;
+      if (a.y <= p.y) {
+        if (b.y > p.y && cross(sub(b, a), sub(p, a)) > 0) ++wind;
+      } else if (b.y <= p.y && cross(sub(b, a), sub(p, a)) < 0) {
+        --wind;
+      }
+    });
+    return wind;
+  }
+
+ private:
+  std::pair<int, int> columns(double x0, double x1) const {
+    return {std::clamp(static_cast<int>(std::floor((x0 - box_.xmin) / cell_w_)), 0, nx_ - 1),
+            std::clamp(static_cast<int>(std::floor((x1 - box_.xmin) / cell_w_)), 0, nx_ - 1)};
+  }
+  std::pair<int, int> rows(double y0, double y1) const {
+    return {std::clamp(static_cast<int>(std::floor((y0 - box_.ymin) / cell_h_)), 0, ny_ - 1),
+            std::clamp(static_cast<int>(std::floor((y1 - box_.ymin) / cell_h_)), 0, ny_ - 1)};
+  }
+
+  double tol_;
+  std::vector<Edge> edges_;
+  Box2 box_;
+  int nx_ = 1, ny_ = 1;
+  double cell_w_ = 1, cell_h_ = 1;
+  std::vector<std::vector<int>> cells_;
+  mutable std::vector<unsigned> stamp_;
+  mutable unsigned epoch_ = 0;
+};
+
 // Which part of `edges`' boundary lies inside `other`: by Green's theorem the
 // common area is the sum of x dy - y dx over the boundary of the intersection,
 // made of the pieces of each boundary inside the other region. A piece running
 // along the other boundary counts once (from the first set) when both run the
 // same way, i.e. both regions lie on the same side of it.
-double boundary_inside(const std::vector<Polygon2>& edges, const std::vector<Polygon2>& other,
-                       bool count_shared, double tol) {
+double boundary_inside(const std::vector<Polygon2>& edges, const EdgeGrid& other, bool count_shared, double tol) {
   double twice_area = 0;
-  const Box2 other_box = box_of(other);
   std::vector<double> cuts;
   for (const Polygon2& loop : edges) {
     const size_t n = loop.size();
     for (size_t i = 0; i < n; ++i) {
       const Point2 p = loop[i];
       const Point2 q = loop[(i + 1) % n];
-      Box2 edge_box;
-      edge_box.add(p), edge_box.add(q);
-      if (!edge_box.meets(other_box, tol)) continue;  // outside the other region entirely
       const Point2 r = sub(q, p);
       const double r_len2 = r.x * r.x + r.y * r.y;
       if (r_len2 <= 0) continue;
+      const double x0 = std::min(p.x, q.x) - tol, x1 = std::max(p.x, q.x) + tol;
+      const double y0 = std::min(p.y, q.y) - tol, y1 = std::max(p.y, q.y) + tol;
+      const Box2& obox = other.box();
+      if (x1 < obox.xmin || x0 > obox.xmax || y1 < obox.ymin || y0 > obox.ymax) continue;  // outside entirely
       cuts.assign({0.0, 1.0});
-      for (const Polygon2& oloop : other) {
-        const size_t m = oloop.size();
-        for (size_t j = 0; j < m; ++j) {
-          const Point2& a = oloop[j];
-          const Point2& b = oloop[(j + 1) % m];
-          Box2 obox;
-          obox.add(a), obox.add(b);
-          if (!obox.meets(edge_box, tol)) continue;
-          const Point2 s = sub(b, a);
-          const double denom = cross(r, s);
-          const Point2 pa = sub(a, p);
-          if (std::abs(denom) > 1e-12 * std::sqrt(r_len2 * (s.x * s.x + s.y * s.y))) {
-            const double t = cross(pa, s) / denom;
-            const double u = cross(pa, r) / denom;
-            if (t > 0 && t < 1 && u >= -1e-12 && u <= 1 + 1e-12) cuts.push_back(t);
-          } else {
-            // Parallel: the other edge's ends cut this one where they lie on it.
-            for (const Point2& e : {a, b}) {
-              double t = 0;
-              if (distance_to_segment(e, p, q, &t) <= tol && t > 0 && t < 1) cuts.push_back(t);
-            }
+      other.near(x0, y0, x1, y1, [&](int k) {
+        const Point2& a = other.edge(k).a;
+        const Point2& b = other.edge(k).b;
+        const Point2 s = sub(b, a);
+        const double denom = cross(r, s);
+        const Point2 pa = sub(a, p);
+        if (std::abs(denom) > 1e-12 * std::sqrt(r_len2 * (s.x * s.x + s.y * s.y))) {
+          const double t = cross(pa, s) / denom;
+          const double u = cross(pa, r) / denom;
+          if (t > 0 && t < 1 && u >= -1e-12 && u <= 1 + 1e-12) cuts.push_back(t);
+        } else {
+          // Parallel: the other edge's ends cut this one where they lie on it.
+          for (const Point2& e : {a, b}) {
+            double t = 0;
+            if (distance_to_segment(e, p, q, &t) <= tol && t > 0 && t < 1) cuts.push_back(t);
           }
         }
-      }
+      });
       std::sort(cuts.begin(), cuts.end());
       for (size_t k = 0; k + 1 < cuts.size(); ++k) {
         const double t0 = cuts[k], t1 = cuts[k + 1];
@@ -143,26 +200,16 @@ double boundary_inside(const std::vector<Polygon2>& edges, const std::vector<Pol
         const Point2 mid{(s0.x + s1.x) / 2, (s0.y + s1.y) / 2};
         // Is the piece on the other boundary? Then keep it only if it runs the same way.
         int shared = 0;  // +1 same direction, -1 opposite
-        for (const Polygon2& oloop : other) {
-          const size_t m = oloop.size();
-          for (size_t j = 0; j < m && !shared; ++j) {
-            const Point2& a = oloop[j];
-            const Point2& b = oloop[(j + 1) % m];
-            if (distance_to_segment(mid, a, b) <= tol) {
-              const Point2 s = sub(b, a);
-              const double dot = s.x * r.x + s.y * r.y;
-              const double sin_angle = std::abs(cross(s, r)) / std::sqrt((s.x * s.x + s.y * s.y) * r_len2);
-              if (sin_angle < 1e-3) shared = dot > 0 ? 1 : -1;
-            }
-          }
-          if (shared) break;
-        }
-        bool inside;
-        if (shared) {
-          inside = count_shared && shared > 0;
-        } else {
-          inside = winding(other, mid) > 0;
-        }
+        other.near(mid.x - tol, mid.y - tol, mid.x + tol, mid.y + tol, [&](int j) {
+          if (shared) return;
+          const Point2& a = other.edge(j).a;
+          const Point2& b = other.edge(j).b;
+          if (distance_to_segment(mid, a, b) > tol) return;
+          const Point2 s = sub(b, a);
+          const double sin_angle = std::abs(cross(s, r)) / std::sqrt((s.x * s.x + s.y * s.y) * r_len2);
+          if (sin_angle < 1e-3) shared = (s.x * r.x + s.y * r.y) > 0 ? 1 : -1;
+        });
+        const bool inside = shared ? (count_shared && shared > 0) : other.winding(mid) > 0;
         if (inside) twice_area += cross(s0, s1);
       }
     }
@@ -542,7 +589,8 @@ void test_candidate(int ia, const Partition& a, int ib, const Partition& b, cons
 double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
   if (a.empty() || b.empty()) return 0.0;
   if (!box_of(a).meets(box_of(b), tol)) return 0.0;
-  const double twice = boundary_inside(a, b, true, tol) + boundary_inside(b, a, false, tol);
+  const EdgeGrid grid_a(a, tol), grid_b(b, tol);
+  const double twice = boundary_inside(a, grid_b, true, tol) + boundary_inside(b, grid_a, false, tol);
   return std::max(0.0, twice / 2.0);
 }
 
