@@ -85,9 +85,13 @@ class StepTreeWalker {
   StepTreeWalker(Handle(XCAFDoc_ShapeTool) tool, Assembly& out, Progress* progress)
       : tool_(std::move(tool)), out_(out), progress_(progress) {}
 
-  bool walk(const TDF_Label& label, const TopLoc_Location& location, const std::string& parent_path) {
+  // `instance_name`: the name of the occurrence placing this shape (STEP's
+  // NEXT_ASSEMBLY_USAGE_OCCURRENCE), which tells apart the instances of one
+  // product; the product's own name otherwise.
+  bool walk(const TDF_Label& label, const TopLoc_Location& location, const std::string& parent_path,
+            const std::string& instance_name = {}) {
     if (progress_ && !progress_->report("read", 0.5)) return false;
-    std::string name = label_name(label);
+    std::string name = instance_name.empty() ? label_name(label) : instance_name;
     if (name.empty()) name = "Body";
     const std::string path = parent_path.empty() ? name : parent_path + "/" + name;
     if (XCAFDoc_ShapeTool::IsAssembly(label)) {
@@ -98,7 +102,10 @@ class StepTreeWalker {
         TDF_Label referred;
         if (!XCAFDoc_ShapeTool::GetReferredShape(component, referred)) continue;
         const TopLoc_Location placed = location * XCAFDoc_ShapeTool::GetLocation(component);
-        if (!walk(referred, placed, path)) return false;
+        std::string instance = label_name(component);
+        // OCCT names an unnamed occurrence after its reference ("=>[0:1:1:3]").
+        if (instance.rfind("=>", 0) == 0) instance.clear();
+        if (!walk(referred, placed, path, instance)) return false;
       }
       return true;
     }
