@@ -59,6 +59,7 @@ def run():
     FreeCADGui.updateGui()
     window_png = os.path.join(out_dir, "gui_main_window.png")
     main.grab().save(window_png)
+    report["window_width"] = main.width()  # the grab may be scaled by the device pixel ratio
     view_png = os.path.join(out_dir, "gui_3d_view.png")
     FreeCADGui.activeDocument().activeView().saveImage(view_png, 800, 600, "White")
     report["screenshots"] = [window_png, view_png]

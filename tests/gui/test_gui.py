@@ -62,7 +62,8 @@ def test_screenshot_shows_the_toolbar(gui_report):
     from PIL import Image
     window_png, view_png = gui_report["screenshots"]
     image = Image.open(window_png).convert("RGB")
-    x, y, w, h = gui_report["first_button_rect"]
+    scale = image.width / gui_report["window_width"]
+    x, y, w, h = (round(v * scale) for v in gui_report["first_button_rect"])
     button = image.crop((x, y, x + w, y + h))
     orange = sum(1 for p in button.getdata() if all(abs(a - b) < 40 for a, b in zip(p, ORANGE)))
     assert orange >= 10, f"the Find contacts icon is not visible at {x},{y} in {window_png}"
