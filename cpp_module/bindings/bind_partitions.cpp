@@ -21,6 +21,7 @@ namespace {
 constexpr double kDegreesPerRadian = 57.29577951308232;
 
 std::string number(double value) {
+  if (value == 0) value = 0;  // no "-0"
   char text[32];
   std::snprintf(text, sizeof text, "%.4g", value);
   return text;

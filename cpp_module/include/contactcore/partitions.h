@@ -133,7 +133,9 @@ double overlap(const std::vector<AngularInterval>& a, const std::vector<AngularI
                std::vector<AngularInterval>* common = nullptr);
 
 // True when the two surfaces are the same within tolerance (same kind and
-// parameters; for planes and revolution axes, direction sign included).
+// parameters; plane normals and cone axes must point the same way, cylinder
+// and torus axes are compared as lines, sphere axes are ignored). Other never
+// matches.
 bool same_surface(const SurfaceParams& a, const SurfaceParams& b, const Tolerances& tol);
 
 }  // namespace contactcore
