@@ -6,7 +6,9 @@ import FreeCADGui
 import contactwb
 
 
-class ViewProviderContactAnalysis:
+class _ViewProvider:
+    """What both view providers share: the icon and nothing to save."""
+
     def __init__(self, vobj):
         vobj.Proxy = self
 
@@ -16,35 +18,22 @@ class ViewProviderContactAnalysis:
     def getIcon(self):
         return contactwb.icon_path("Contacts_FindContacts")
 
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        return None
+
+
+class ViewProviderContactAnalysis(_ViewProvider):
     def claimChildren(self):
         return self.Object.Group
 
-    def dumps(self):
-        return None
 
-    def loads(self, state):
-        return None
-
-
-class ViewProviderContact:
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
-    def attach(self, vobj):
-        self.Object = vobj.Object
-
-    def getIcon(self):
-        return contactwb.icon_path("Contacts_FindContacts")
-
+class ViewProviderContact(_ViewProvider):
     def doubleClicked(self, vobj):
         select_contact_faces(vobj.Object)
         return True
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
 
 
 def select_contact_faces(contact):

@@ -33,13 +33,6 @@ class PythonProgress : public Progress {
   py::object callback_;
 };
 
-std::vector<std::string> face_names(const std::vector<int>& faces) {
-  std::vector<std::string> names;
-  names.reserve(faces.size());
-  for (int f : faces) names.push_back("Face" + std::to_string(f));
-  return names;
-}
-
 }  // namespace
 
 void bind_contacts(py::module_& m) {
@@ -115,9 +108,7 @@ void bind_contacts(py::module_& m) {
           options.use_default_tolerances = false;
           Bnd_Box box;
           for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box, false);
-          options.tolerances = default_tolerances(box);
-          if (linear) options.tolerances.linear = *linear;
-          if (angular) options.tolerances.angular = *angular;
+          options.tolerances = resolve_tolerances(box, linear, angular);
         }
         std::unique_ptr<PythonProgress> reporter;
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);

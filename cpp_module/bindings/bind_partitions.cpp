@@ -7,11 +7,10 @@
 #include <vector>
 
 #include <BRepBndLib.hxx>
-#include <BRepTools.hxx>
-#include <BRep_Builder.hxx>
 #include <TopoDS_Shape.hxx>
 
 #include "common.h"
+#include "contactcore/bodies.h"
 #include "contactcore/partitions.h"
 
 namespace contactcore::bindings {
@@ -151,12 +150,7 @@ void bind_partitions(py::module_& m) {
   py::class_<Partition>(m, "Partition", "A maximal set of adjacent faces on the same surface")
       .def_readonly("id", &Partition::id)
       .def_readonly("faces", &Partition::faces)
-      .def_property_readonly("face_names",
-                             [](const Partition& p) {
-                               std::vector<std::string> names;
-                               for (int index : p.faces) names.push_back(face_name(index));
-                               return names;
-                             })
+      .def_property_readonly("face_names", [](const Partition& p) { return face_names(p.faces); })
       .def_readonly("params", &Partition::params)
       .def_readonly("side", &Partition::side)
       .def_readonly("area", &Partition::area)
@@ -196,16 +190,11 @@ void bind_partitions(py::module_& m) {
         BodyPartitions result;
         const Status status = guarded([&]() {
           TopoDS_Shape shape;
-          std::istringstream stream(brep);
-          BRepTools::Read(shape, stream, BRep_Builder());
-          if (shape.IsNull())
-            return Status::failure(StatusCode::InvalidInput, "the BRep string holds no shape");
+          const Status read = shape_from_brep(brep, shape);
+          if (!read.ok()) return read;
           Bnd_Box box;
           BRepBndLib::Add(shape, box);
-          Tolerances tol = default_tolerances(box);
-          if (linear) tol.linear = *linear;
-          if (angular) tol.angular = *angular;
-          result = partition_shape(shape, tol);
+          result = partition_shape(shape, resolve_tolerances(box, linear, angular));
           return Status::success();
         });
         raise_if_failed(status);

@@ -6,13 +6,18 @@
 #include <pybind11/stl.h>
 
 #include <exception>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include <Bnd_Box.hxx>
 
 #include <Standard_Failure.hxx>
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
 
 #include "contactcore/errors.h"
+#include "contactcore/partitions.h"
 
 namespace contactcore::bindings {
 
@@ -20,6 +25,23 @@ namespace py = pybind11;
 
 inline py::tuple to_tuple(const gp_Pnt& p) { return py::make_tuple(p.X(), p.Y(), p.Z()); }
 inline py::tuple to_tuple(const gp_Dir& d) { return py::make_tuple(d.X(), d.Y(), d.Z()); }
+
+// FreeCAD's sub-element names of 1-based face indices: "Face3".
+inline std::vector<std::string> face_names(const std::vector<int>& faces) {
+  std::vector<std::string> names;
+  names.reserve(faces.size());
+  for (int f : faces) names.push_back("Face" + std::to_string(f));
+  return names;
+}
+
+// The model-scaled defaults, with whichever value the caller gave instead.
+inline Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> linear,
+                                     std::optional<double> angular) {
+  Tolerances tol = default_tolerances(model_box);
+  if (linear) tol.linear = *linear;
+  if (angular) tol.angular = *angular;
+  return tol;
+}
 
 // Raises contactcore.ContactsError (a RuntimeError) with Status::describe().
 void raise_if_failed(const Status& status);
