@@ -156,8 +156,13 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None):
     """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
     if not os.path.isfile(path):
         raise core.ContactsError(f"no such file: '{path}'")
-    assembly = core.contactcore.read_step(os.path.abspath(path))
-    return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress)
+    assembly = core.contactcore.read_step(os.path.abspath(path))  # its errors name the file
+    try:
+        return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress)
+    except core.Cancelled:
+        raise
+    except core.ContactsError as error:
+        raise core.ContactsError(f"{error} in file '{path}'") from error
 
 
 def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None):

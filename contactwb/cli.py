@@ -62,7 +62,7 @@ def main(argv=None):
         t = result.times
         print(f"Time: {elapsed * 1000:.1f} ms in all (partitions {t['partitions'] * 1000:.1f} ms, "
               f"broad phase {t['broad_phase'] * 1000:.2f} ms, candidates {t['candidates'] * 1000:.2f} ms, "
-              f"common areas {t['area'] * 1000:.1f} ms); {result.body_pairs} body pairs, "
+              f"common areas {t['area'] * 1000:.1f} ms); {result.body_pairs} body pairs with meeting boxes, "
               f"{result.candidates} candidate partition pairs")
     return 0
 

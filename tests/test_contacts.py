@@ -156,3 +156,25 @@ def test_cli_bad_file_is_a_clear_error(tmp_path):
     out = run_cli(str(bad))
     assert out.returncode == 1
     assert "broken.step" in out.stderr
+
+
+def test_cli_reads_freecad_documents(shared_fcstd):
+    out = run_cli(shared_fcstd("Asm4_Tutorial2/asm_tuto2.FCStd"), "--json")
+    assert out.returncode == 0, out.stderr
+    data = json.loads(out.stdout)
+    assert Counter(c["type"] for c in data["contacts"]) == Counter({"PLF": 3, "CLJ": 1})
+    assert sorted(b["name"] for b in data["bodies"]) == ["arm001", "base001", "disk001"]
+
+
+def test_surface_models_in_documents_are_skipped_with_a_message():
+    doc = FreeCAD.newDocument("surfaces")
+    try:
+        solid = doc.addObject("Part::Feature", "Block")
+        solid.Shape = Part.makeBox(10, 10, 10)
+        sheet = doc.addObject("Part::Feature", "Sheet")
+        sheet.Shape = Part.makePlane(4, 4, FreeCAD.Vector(2, 2, 10))  # a surface, lying on the block
+        result, found = analysis.find_contacts_in_document(doc)
+        assert [b.name for b in found] == ["Block"]
+        assert any("Sheet" in message and "no solid" in message for message in result.messages)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
