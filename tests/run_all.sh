@@ -1,26 +1,48 @@
 #!/usr/bin/env bash
 # Runs every test suite (GoogleTest via ctest, pytest headless, pytest GUI
-# under Xvfb), keeps going after a failure, and ends with one summary line.
+# under Xvfb), keeps going after a failure, and ends with one summary line
+# and the totals ("N passed, N failed, N skipped").
 set -u
 build_dir=$(realpath "${1:-build}")
 cd "$(dirname "$0")/.."
 export CONTACTS_BUILD_DIR="$build_dir"
 export CONTACTS_PYTHON_DIR="$build_dir/python"
+logs=$(mktemp -d)
+trap 'rm -rf "$logs"' EXIT
 status=0
 declare -A result
 
+run_suite() {  # name, command...
+  local name=$1
+  shift
+  if "$@" 2>&1 | tee "$logs/$name.log"; [ "${PIPESTATUS[0]}" -eq 0 ]; then
+    result[$name]=ok
+  else
+    result[$name]=FAILED
+    status=1
+  fi
+}
+
 echo "== GoogleTest (ctest)"
-if (cd "$build_dir" && ctest --output-on-failure); then result[cpp]=ok; else result[cpp]=FAILED; status=1; fi
-
+run_suite cpp bash -c "cd '$build_dir' && ctest --output-on-failure"
 echo "== pytest (headless, FreeCAD as a library)"
-/usr/bin/python3 -m pytest -q -p no:cacheprovider tests --ignore=tests/gui
-rc=$?
-if [ $rc -eq 0 ]; then result[python]=ok; else result[python]=FAILED; status=1; fi
-
+run_suite python /usr/bin/python3 -m pytest -q -p no:cacheprovider tests --ignore=tests/gui
 echo "== pytest (FreeCAD GUI under Xvfb)"
-/usr/bin/python3 -m pytest -q -p no:cacheprovider tests/gui
-rc=$?
-if [ $rc -eq 0 ]; then result[gui]=ok; else result[gui]=FAILED; status=1; fi
+run_suite gui /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/gui
+
+# Totals: ctest prints "N tests failed out of M"; pytest "N passed, N failed, N skipped".
+count() {  # pattern file
+  grep -oE "$1" "$2" | tail -1 | grep -oE '^[0-9]+' || echo 0
+}
+ctest_total=$(grep -oE 'tests failed out of [0-9]+' "$logs/cpp.log" | grep -oE '[0-9]+$' || echo 0)
+ctest_failed=$(count '[0-9]+ tests failed' "$logs/cpp.log")
+passed=$((ctest_total - ctest_failed)) failed=$ctest_failed skipped=0
+for suite in python gui; do
+  passed=$((passed + $(count '[0-9]+ passed' "$logs/$suite.log")))
+  failed=$((failed + $(count '[0-9]+ failed' "$logs/$suite.log") + $(count '[0-9]+ error' "$logs/$suite.log")))
+  skipped=$((skipped + $(count '[0-9]+ skipped' "$logs/$suite.log")))
+done
 
 echo "Summary: C++ ${result[cpp]}, Python ${result[python]}, GUI ${result[gui]}"
+echo "$passed passed, $failed failed, $skipped skipped"
 exit $status
