@@ -64,14 +64,26 @@ def _split_solids(name, obj, root, subname, shape, containers):
     return bodies
 
 
+def _is_analysis_object(obj):
+    """The workbench's own results (they link to bodies but hold no solid)."""
+    return type(getattr(obj, "Proxy", None)).__name__ in ("ContactAnalysis", "Contact")
+
+
+def _roots(doc):
+    """Visible top-level objects. A body linked only by a contact analysis is
+    still top-level: the analysis refers to it, it does not contain it."""
+    return [o for o in doc.Objects
+            if not _is_analysis_object(o) and getattr(o, "Visibility", True)
+            and all(_is_analysis_object(parent) for parent in o.InList)]
+
+
 def document_bodies(doc, objects=None, messages=None):
     """Bodies of `doc` (or of the given objects and what they contain).
 
     Only visible objects count (hidden ones are construction inputs, or the
     originals of linked parts). Objects whose shape has no solid are reported
     in `messages` (a list, if given) and skipped."""
-    roots = list(objects) if objects is not None else [o for o in doc.RootObjects
-                                                       if getattr(o, "Visibility", True)]
+    roots = list(objects) if objects is not None else _roots(doc)
     bodies = []
 
     def visit(root, obj, subname, containers):

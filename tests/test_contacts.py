@@ -123,6 +123,18 @@ def test_make_contact_analysis_records_contacts_in_the_tree(shared_fcstd):
         FreeCAD.closeDocument(doc.Name)
 
 
+def test_find_contacts_again_after_an_analysis(shared_fcstd):
+    """Contacts link to the bodies; the bodies must still be found next time."""
+    from contactwb.make import make_contact_analysis
+    doc = freecad_setup.open_document(shared_fcstd("Asm4_Tutorial2/asm_tuto2.FCStd"))
+    try:
+        first = make_contact_analysis(doc)
+        second = make_contact_analysis(doc)
+        assert len(second.Group) == len(first.Group) == 4
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
 def run_cli(*args):
     env = dict(os.environ, PYTHONPATH=REPO)
     return subprocess.run([sys.executable, "-m", "contactwb.cli", *args], capture_output=True, text=True,

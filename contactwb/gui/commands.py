@@ -54,9 +54,7 @@ class Contacts_FindContacts:
             return
         except (core.ContactsError, ValueError) as error:
             doc.abortTransaction()
-            FreeCAD.Console.PrintError(f"Contacts: {error}\n")
-            from PySide2 import QtWidgets
-            QtWidgets.QMessageBox.warning(FreeCADGui.getMainWindow(), "Contacts", str(error))
+            _show_error(str(error))
             return
         finally:
             progress.close()
@@ -67,8 +65,73 @@ class Contacts_FindContacts:
             f"({', '.join(group.Summary) or 'none'})\n")
 
 
+def _show_error(message):
+    """An error in the Console and in a message box."""
+    from PySide2 import QtWidgets
+    FreeCAD.Console.PrintError(f"Contacts: {message}\n")
+    QtWidgets.QMessageBox.warning(FreeCADGui.getMainWindow(), "Contacts", message)
+
+
+def _analysis_to_export(doc):
+    """The selected ContactAnalysis (or the one holding a selected contact),
+    else the document's only one; None when that is ambiguous."""
+    from contactwb import export
+    chosen = []
+    for obj in FreeCADGui.Selection.getSelection(doc.Name):
+        for candidate in [obj] + list(obj.InList):
+            if export.is_analysis(candidate) and candidate not in chosen:
+                chosen.append(candidate)
+    if not chosen:
+        chosen = export.analyses(doc)
+    return chosen[0] if len(chosen) == 1 else None
+
+
+class Contacts_ExportContacts:
+    """Writes a contact analysis to a JSON or CSV file."""
+
+    FILTERS = {"JSON (*.json)": ".json", "CSV (*.csv)": ".csv"}
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_ExportContacts"),
+            "MenuText": "Export contacts...",
+            "ToolTip": "Write the contacts of the selected analysis (or of the only one) to a "
+                       "JSON or CSV file",
+        }
+
+    def IsActive(self):
+        from contactwb import export
+        return bool(export.analyses(FreeCAD.ActiveDocument))
+
+    def Activated(self):
+        import os
+        from PySide2 import QtWidgets
+        from contactwb import export
+        doc = FreeCAD.ActiveDocument
+        group = _analysis_to_export(doc)
+        if group is None:
+            _show_error("Select the contact analysis to export (the document holds several).")
+            return
+        folder = os.path.dirname(doc.FileName) if doc.FileName else os.path.expanduser("~")
+        suggestion = os.path.join(folder, f"{doc.Label}_{group.Label}.json")
+        path, chosen_filter = QtWidgets.QFileDialog.getSaveFileName(
+            FreeCADGui.getMainWindow(), "Export contacts", suggestion, ";;".join(self.FILTERS))
+        if not path:
+            return
+        if os.path.splitext(path)[1].lower() not in export.FORMATS:
+            path += self.FILTERS.get(chosen_filter, ".json")
+        try:
+            count = export.export_contacts(group, path)
+        except (OSError, ValueError) as error:
+            _show_error(f"cannot export '{group.Label}': {error}")
+            return
+        noun = "contact" if count == 1 else "contacts"
+        FreeCAD.Console.PrintMessage(f"Contacts: {count} {noun} of '{group.Label}' written to {path}\n")
+
+
 COMMANDS = {
     "Contacts_FindContacts": Contacts_FindContacts,
+    "Contacts_ExportContacts": Contacts_ExportContacts,
 }
 
 

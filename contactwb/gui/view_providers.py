@@ -1,13 +1,449 @@
-"""View providers of the contact objects: icons, and double-click selects the
-contact's faces in the 3D view. (They draw nothing of their own: the faces
-are shown by selecting them on the bodies.)"""
+"""View providers of the contact objects.
+
+The ContactAnalysis group draws its contacts over the bodies: both sides'
+faces, tessellated as the bodies are, pushed out of their body by the
+tessellation's deflection and pulled towards the viewer by a polygon offset
+so they show on the coincident body faces, coloured by contact type
+(TYPE_COLOURS); partial contacts are lighter and striped, and ball contacts
+(LAF, SPT) get their contact circle (their faces are drawn see-through). The drawing follows the group's
+Visibility, and each side of a contact its body's. Each contact has its own
+switch: hiding a Contact child hides its faces, and a contact is drawn in the
+selection colour while it (or all of its faces) is selected. Double-clicking a
+contact selects its faces on the bodies. The drawing is rebuilt from the
+document when the view provider attaches (also on re-opening a file), when
+contacts are added or deleted and when a body moves.
+
+Saved files name these classes: ViewProviderContactAnalysis and
+ViewProviderContact are permanent names."""
+import math
+import os
+import weakref
+
+import FreeCAD
 import FreeCADGui
+import numpy
+from pivy import coin
 
 import contactwb
 
+# The legend: one colour per contact type (also the tree icons' colour).
+TYPE_COLOURS = {
+    "PLF": "#ff8c1a",  # orange
+    "CLJ": "#1f5fff",  # blue
+    "CJU": "#9b30ff",  # purple
+    "SPF": "#1fbf3a",  # green
+    "LAF": "#00d2e6",  # cyan
+    "SPT": "#ff2fd2",  # magenta
+    "TRF": "#ffe01a",  # yellow
+}
+UNKNOWN_COLOUR = "#808080"
+CIRCLE_TYPES = ("LAF", "SPT")  # contact along a circle: area 0
+PARTIAL_LIGHTEN = 0.45         # partial contacts: this far towards white
+CIRCLE_FACE_TRANSPARENCY = 0.6  # the ball and its seat, behind the circle
+CIRCLE_SEGMENTS = 96
+CIRCLE_WIDTH = 4  # pixels
+
+
+def rgb(colour):
+    """(r, g, b) in 0..1 of a "#rrggbb" colour."""
+    return tuple(int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
+
+
+def type_colour(kind, partial=False):
+    r, g, b = rgb(TYPE_COLOURS.get(kind, UNKNOWN_COLOUR))
+    if partial:
+        r, g, b = (c + (1 - c) * PARTIAL_LIGHTEN for c in (r, g, b))
+    return r, g, b
+
+
+def contact_icon_path(kind):
+    path = contactwb.icon_path(f"Contacts_{kind}")
+    return path if os.path.isfile(path) else contactwb.icon_path("Contacts_FindContacts")
+
+
+def selection_colour():
+    """FreeCAD's selection colour (preferences), as (r, g, b) in 0..1."""
+    packed = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/View").GetUnsigned(
+        "SelectionColor", 0x1CAD1C00)
+    return tuple(((packed >> shift) & 0xFF) / 255 for shift in (24, 16, 8))
+
+
+def _material(colour, transparency=0.0):
+    # Mostly emissive: the type colour reads the same on every side of a
+    # cylinder, while the diffuse part keeps a hint of the shape.
+    material = coin.SoMaterial()
+    material.diffuseColor.setValue(*(0.5 * c for c in colour))
+    material.emissiveColor.setValue(*(0.6 * c for c in colour))
+    material.ambientColor.setValue(0, 0, 0)
+    material.specularColor.setValue(0, 0, 0)
+    material.transparency.setValue(transparency)
+    return material
+
+
+def _line_material(colour):
+    """Opaque flat colour (lines drawn with the BASE_COLOR light model)."""
+    material = coin.SoMaterial()
+    material.diffuseColor.setValue(*colour)
+    material.transparency.setValue(0.0)
+    return material
+
+
+def _polygon_offset(factor, units):
+    offset = coin.SoPolygonOffset()
+    offset.factor.setValue(factor)
+    offset.units.setValue(units)
+    return offset
+
+
+def _stripes():
+    """Nodes striping what follows: a two-texel texture repeated along a
+    fixed world direction (independent of the tessellation); the last one
+    sets the period (_set_stripe_period)."""
+    complexity = coin.SoComplexity()
+    complexity.textureQuality.setValue(0.1)  # nearest texel: sharp stripes
+    texture = coin.SoTexture2()
+    texture.image.setValue(coin.SbVec2s(2, 1), 1, bytes([255, 150]))
+    texture.model.setValue(coin.SoTexture2.MODULATE)
+    texture.wrapS.setValue(coin.SoTexture2.REPEAT)
+    texture.wrapT.setValue(coin.SoTexture2.REPEAT)
+    coordinates = coin.SoTextureCoordinatePlane()
+    coordinates.directionT.setValue(0, 0, 0)
+    _set_stripe_period(coordinates, 1.0)
+    return [complexity, texture, coordinates]
+
+
+def _set_stripe_period(coordinates, period):
+    """One light and one dark stripe every `period` mm along (1, 1, 1)."""
+    step = 1.0 / (period * math.sqrt(3.0))
+    coordinates.directionS.setValue(step, step, step)
+
+
+def _circle_points(centre, axis, radius, segments=CIRCLE_SEGMENTS):
+    axis = FreeCAD.Vector(axis)
+    if axis.Length < 1e-12:
+        return []
+    axis.normalize()
+    helper = FreeCAD.Vector(1, 0, 0) if abs(axis.x) < 0.9 else FreeCAD.Vector(0, 1, 0)
+    u = axis.cross(helper).normalize()
+    v = axis.cross(u)
+    points = []
+    for k in range(segments + 1):
+        angle = 2 * math.pi * k / segments
+        p = centre + u * (radius * math.cos(angle)) + v * (radius * math.sin(angle))
+        points.append((p.x, p.y, p.z))
+    return points
+
+
+class FaceSource:
+    """Placed faces of a contact's XLinkSub links, each tessellated once.
+
+    A face is taken from its object's placed shape (one Part.getShape per
+    object path, sharing the body's geometry) and tessellated asking for the
+    deflection the body's view provider uses, so that OCCT mostly reuses the
+    body's own triangulation. Where the triangulations still differ (a body
+    meshed later, or by other rules), the body's triangles may lie up to one
+    deflection outside ours: the vertices are pushed out of the body's
+    material by that much (along the outward normals of OCCT's triangles),
+    and the polygon offset takes care of the rest."""
+
+    def __init__(self):
+        self._shapes = {}
+        self._meshes = {}
+        self.failures = []
+
+    def _object_shape(self, root, prefix):
+        key = (root.Document.Name, root.Name, prefix)
+        if key not in self._shapes:
+            import Part
+            shape = Part.getShape(root, prefix, transform=True)
+            leaf = root.getSubObject(prefix, retType=1) if prefix else root
+            leaf = leaf.getLinkedObject(True) if leaf is not None else None
+            deviation = getattr(getattr(leaf, "ViewObject", None), "Deviation", 0.5)
+            box = shape.BoundBox if not shape.isNull() else None
+            # ViewProviderPartExt's deflection: box size sum / 300 * Deviation (%).
+            size = (box.XLength + box.YLength + box.ZLength) if box and box.isValid() else 1.0
+            self._shapes[key] = (shape, max(size / 300.0 * deviation, 1e-4))
+        return self._shapes[key]
+
+    def mesh(self, root, subname):
+        """(points (n, 3) array, triangles (m, 3) int array, BoundBox) of the
+        face, or None when it cannot be had."""
+        key = (root.Document.Name, root.Name, subname)
+        if key in self._meshes:
+            return self._meshes[key]
+        mesh = None
+        try:
+            prefix, _, element = subname.rpartition(".")
+            prefix = prefix + "." if prefix else ""
+            shape, deflection = self._object_shape(root, prefix)
+            face = shape.getElement(element)
+            points, triangles = face.tessellate(deflection)
+            if triangles:
+                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
+                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
+                mesh = (_pushed_out(points, triangles, deflection), triangles, face.BoundBox)
+        except Exception as error:  # a deleted or broken body: draw the rest
+            self.failures.append(f"{root.Label}.{subname}: {error}")
+        self._meshes[key] = mesh
+        return mesh
+
+
+def _pushed_out(points, triangles, distance):
+    """Points moved by `distance` along their vertex normals (the area-weighted
+    mean of the normals of their triangles, which OCCT winds outwards)."""
+    corners = points[triangles]
+    normals = numpy.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    vertex_normals = numpy.zeros_like(points)
+    for k in range(3):
+        for axis in range(3):
+            vertex_normals[:, axis] += numpy.bincount(triangles[:, k], weights=normals[:, axis],
+                                                      minlength=len(points))
+    lengths = numpy.linalg.norm(vertex_normals, axis=1)
+    lengths[lengths == 0] = 1.0
+    return points + vertex_normals * (distance / lengths)[:, None]
+
+
+class _TypeLayer:
+    """The faces of one (type, partial) kind: one material and one coordinate
+    node shared by the face sets of all contacts of that kind."""
+
+    def __init__(self, kind, partial):
+        self.kind, self.partial = kind, partial
+        self.node = coin.SoSeparator()
+        self.node.setName(f"Contacts_{kind}{'_partial' if partial else ''}")
+        transparency = CIRCLE_FACE_TRANSPARENCY if kind in CIRCLE_TYPES else 0.0
+        self.node.addChild(_material(type_colour(kind, partial), transparency))
+        self.stripe_nodes = _stripes() if partial else []
+        for node in self.stripe_nodes:
+            self.node.addChild(node)
+        self.coordinates = coin.SoCoordinate3()
+        self.node.addChild(self.coordinates)
+        self.circle_material = _line_material(type_colour(kind, partial))
+        self.points = []   # point arrays, in coordinate order
+        self.count = 0     # points so far
+        self.face_rows = {}  # face key -> its triangles' rows of coordIndex (m, 4)
+        self.box = FreeCAD.BoundBox()
+
+    def add_face(self, key, mesh):
+        """coordIndex rows (i, j, k, -1) of the face's triangles."""
+        if key not in self.face_rows:
+            points, triangles, box = mesh
+            rows = numpy.full((len(triangles), 4), -1, dtype=numpy.int32)
+            rows[:, :3] = triangles + self.count
+            self.face_rows[key] = rows
+            self.points.append(points)
+            self.count += len(points)
+            self.box.add(box)
+        return self.face_rows[key]
+
+    def finish(self):
+        if self.points:
+            points = numpy.vstack(self.points)  # pivy takes numpy arrays as they are
+            self.coordinates.point.setValues(0, len(points), points)
+        if self.stripe_nodes and self.box.isValid():
+            # about 30 stripes across the partial contacts
+            _set_stripe_period(self.stripe_nodes[-1], max(self.box.DiagonalLength / 30.0, 1e-3))
+
+
+def path_visible(root, prefix):
+    """Whether the object at `prefix` ("Part.Link." style, "" for root
+    itself) under `root` is shown: every object on the path must be."""
+    if not root.Visibility:
+        return False
+    parent = root
+    for name in prefix.split(".")[:-1]:
+        child = parent.getSubObject(name + ".", retType=1)
+        if child is None:
+            return False
+        # Links and groups may show a child their own way (link element visibility).
+        visible = parent.isElementVisible(name) if hasattr(parent, "isElementVisible") else -1
+        if not (child.Visibility if visible < 0 else visible):
+            return False
+        parent = child
+    return True
+
+
+class ContactOverlay:
+    """The Coin drawing of a ContactAnalysis group's contacts.
+
+    Per contact, a switch (hidden / shown / highlighted) over its two sides;
+    each side's faces show while their body is shown, so hiding a body lets
+    one see its partners' contact faces."""
+
+    def __init__(self, doc_name):
+        self.doc_name = doc_name
+        self.root = coin.SoSeparator()
+        self.root.setName("ContactOverlay")
+        self.switches = {}     # Contact name -> SoSwitch (0 shown, 1 highlighted)
+        self.sides = {}        # Contact name -> [(SoSwitch, {body path key})] faces A, B, circle
+        self.face_keys = {}    # Contact name -> {(root name, subname)}
+        self.visible = {}      # Contact name -> bool (the Contact's Visibility)
+        self.highlighted = set()
+        self.bodies = {}       # body path key (doc, root name, prefix) -> (root, prefix)
+        self.path_names = set()  # names of the objects on the body paths
+        self.names = ()        # the contacts drawn, in order
+        self.on_body_changed = None  # WeakMethod: a body moved or changed shape
+        self.triangles = 0
+        self.faces = 0
+        self.circles = 0
+        self.failures = []
+
+    def build(self, contacts):
+        """(Re)builds the drawing of `contacts` (Contact document objects)."""
+        self.root.removeAllChildren()
+        self.switches, self.sides, self.face_keys, self.visible = {}, {}, {}, {}
+        self.highlighted, self.bodies, self.path_names = set(), {}, set()
+        self.triangles = self.faces = self.circles = 0
+        pick = coin.SoPickStyle()
+        pick.style.setValue(coin.SoPickStyle.UNPICKABLE)  # clicks reach the body faces below
+        hints = coin.SoShapeHints()
+        # Known ordering with an unknown shape type turns on two-sided lighting:
+        # the two sides of a contact have opposite normals and must look alike.
+        hints.vertexOrdering.setValue(coin.SoShapeHints.COUNTERCLOCKWISE)
+        hints.shapeType.setValue(coin.SoShapeHints.UNKNOWN_SHAPE_TYPE)
+        hints.creaseAngle.setValue(0.6)
+        # FreeCAD pushes the bodies' faces back (polygon offset 1, 1, so that
+        # their edges show); ours, already out of their body, need a pull of
+        # one unit only: more would bring hidden faces through thin walls.
+        for node in (pick, hints, _polygon_offset(0.0, -1.0)):
+            self.root.addChild(node)
+        highlight_material = _material(selection_colour())
+        highlight_offset = _polygon_offset(0.0, -3.0)  # over the same face drawn unselected
+        highlight_circle = _line_material(selection_colour())
+        source = FaceSource()
+        layers = {}
+        for contact in contacts:
+            kind = contact.ContactType
+            key = (kind, bool(contact.Partial))
+            if key not in layers:
+                layers[key] = _TypeLayer(*key)
+            layer = layers[key]
+            sides, face_keys = [], set()
+            for links in (contact.FacesA, contact.FacesB):
+                side, bodies = coin.SoSwitch(), set()
+                rows = []
+                for root, subnames in links:
+                    for subname in subnames:
+                        bodies.add(self._body(root, subname))
+                        mesh = source.mesh(root, subname)
+                        if mesh is None:
+                            continue
+                        face_key = (root.Document.Name, root.Name, subname)
+                        face_keys.add(face_key[1:])
+                        if face_key not in layer.face_rows:
+                            self.faces += 1
+                        rows.append(layer.add_face(face_key, mesh))
+                if rows:
+                    indices = numpy.vstack(rows).ravel()
+                    face_set = coin.SoIndexedFaceSet()
+                    face_set.coordIndex.setValues(0, len(indices), indices)
+                    side.addChild(face_set)
+                    self.triangles += len(indices) // 4
+                sides.append((side, bodies))
+            circle = self._circle(contact) if kind in CIRCLE_TYPES else None
+            if circle is not None:
+                circle_side = coin.SoSwitch()  # shown with either side
+                circle_side.addChild(circle)
+                sides.append((circle_side, sides[0][1] | sides[1][1]))
+                self.circles += 1
+            # Branch 0 draws the contact in its layer's colour, branch 1 in the
+            # selection colour; both share the side nodes (Coin graphs are DAGs).
+            switch = coin.SoSwitch()
+            switch.setName(contact.Name)
+            normal, highlight = coin.SoSeparator(), coin.SoSeparator()
+            highlight.addChild(highlight_material)
+            highlight.addChild(highlight_offset)
+            for branch, circle_material in ((normal, layer.circle_material), (highlight, highlight_circle)):
+                branch.addChild(sides[0][0])
+                branch.addChild(sides[1][0])
+                if circle is not None:
+                    circle_node = coin.SoSeparator()
+                    circle_node.addChild(circle_material)
+                    circle_node.addChild(sides[2][0])
+                    branch.addChild(circle_node)
+            switch.addChild(normal)
+            switch.addChild(highlight)
+            layer.node.addChild(switch)
+            self.switches[contact.Name] = switch
+            self.sides[contact.Name] = sides
+            self.face_keys[contact.Name] = face_keys
+            self.visible[contact.Name] = bool(contact.Visibility)
+            self._update_switch(contact.Name)
+        for key in sorted(layers):
+            layers[key].finish()
+            self.root.addChild(layers[key].node)
+        self.names = tuple(c.Name for c in contacts)
+        self.failures = source.failures
+        self.update_bodies()
+
+    def _body(self, root, subname):
+        """Key of the body path holding a face; remembers the path."""
+        prefix = subname.rpartition(".")[0]
+        prefix = prefix + "." if prefix else ""
+        key = (root.Document.Name, root.Name, prefix)
+        if key not in self.bodies:
+            self.bodies[key] = (root, prefix)
+            self.path_names.add(root.Name)
+            self.path_names.update(prefix.split(".")[:-1])
+        return key
+
+    @staticmethod
+    def _circle(contact):
+        points = _circle_points(contact.Point, contact.Direction, float(contact.Radius.Value))
+        if not points:
+            return None
+        node = coin.SoGroup()  # under a separator with its material
+        style = coin.SoDrawStyle()
+        style.lineWidth.setValue(CIRCLE_WIDTH)
+        light = coin.SoLightModel()
+        light.model.setValue(coin.SoLightModel.BASE_COLOR)
+        coordinates = coin.SoCoordinate3()
+        coordinates.point.setValues(0, len(points), points)
+        lines = coin.SoLineSet()
+        lines.numVertices.setValue(len(points))
+        for child in (style, light, coordinates, lines):
+            node.addChild(child)
+        return node
+
+    def update_bodies(self):
+        """Shows each side whose body is shown (after a Visibility change)."""
+        shown = {}
+        for key, (root, prefix) in self.bodies.items():
+            try:
+                shown[key] = path_visible(root, prefix)
+            except Exception:  # a deleted body
+                shown[key] = False
+        for sides in self.sides.values():
+            for switch, bodies in sides:
+                visible = any(shown[key] for key in bodies)
+                switch.whichChild.setValue(coin.SO_SWITCH_ALL if visible else coin.SO_SWITCH_NONE)
+
+    def _update_switch(self, name):
+        switch = self.switches.get(name)
+        if switch is None:
+            return
+        if not self.visible.get(name, True):
+            switch.whichChild.setValue(coin.SO_SWITCH_NONE)
+        else:
+            switch.whichChild.setValue(1 if name in self.highlighted else 0)
+
+    def set_visible(self, name, visible):
+        self.visible[name] = bool(visible)
+        self._update_switch(name)
+
+    def highlight(self, selected_objects, selected_faces):
+        """Highlights the contacts selected themselves or by all their faces
+        (what double-clicking a contact selects)."""
+        highlighted = {name for name, keys in self.face_keys.items()
+                       if name in selected_objects or (keys and keys <= selected_faces)}
+        changed = highlighted ^ self.highlighted
+        self.highlighted = highlighted
+        for name in changed:
+            self._update_switch(name)
+
 
 class _ViewProvider:
-    """What both view providers share: the icon and nothing to save."""
+    """What both view providers share: nothing to save."""
 
     def __init__(self, vobj):
         vobj.Proxy = self
@@ -18,6 +454,14 @@ class _ViewProvider:
     def getIcon(self):
         return contactwb.icon_path("Contacts_FindContacts")
 
+    # Nothing to save (the drawing is rebuilt from the document). FreeCAD 0.20
+    # under Python 3.11 asks __getstate__ before dumps: both must say so.
+    def __getstate__(self):
+        return None
+
+    def __setstate__(self, state):
+        return None
+
     def dumps(self):
         return None
 
@@ -26,14 +470,185 @@ class _ViewProvider:
 
 
 class ViewProviderContactAnalysis(_ViewProvider):
+    """Draws the group's contacts (ContactOverlay) under a switch of its own
+    that follows the group's Visibility. (Not as a display mode: a group with
+    display modes shows again any child one hides.)"""
+
+    def attach(self, vobj):
+        super().attach(vobj)
+        self._stale, self._scheduled = False, False
+        self.overlay = ContactOverlay(vobj.Object.Document.Name)
+        # weak: the overlay must not keep a closed document's view provider alive
+        self.overlay.on_body_changed = weakref.WeakMethod(self.schedule_rebuild)
+        self.switch = coin.SoSwitch()
+        self.switch.setName("ContactsSwitch")
+        self.switch.addChild(self.overlay.root)
+        vobj.RootNode.addChild(self.switch)
+        self.onChanged(vobj, "Visibility")
+        _Watcher.register(self.overlay)
+        # Drawn once the document is loaded (on restore the bodies are meshed
+        # by then, and their triangulation is reused); a new analysis is drawn
+        # at once by attach() below.
+        self.schedule_rebuild()
+
+    def onChanged(self, vobj, prop):
+        if prop == "Visibility" and getattr(self, "switch", None) is not None:
+            self.switch.whichChild.setValue(coin.SO_SWITCH_ALL if vobj.Visibility else coin.SO_SWITCH_NONE)
+
+    def updateData(self, obj, prop):
+        # Contacts deleted or added: redraw (only then: Group is also announced
+        # after every attach).
+        overlay = getattr(self, "overlay", None)
+        if prop == "Group" and overlay is not None and \
+                tuple(c.Name for c in obj.Group) != overlay.names:
+            self.schedule_rebuild()
+
+    def schedule_rebuild(self):
+        """Rebuilds once the current operation (loading, a recompute, a move
+        of many bodies) is over."""
+        self._stale = True
+        if not self._scheduled:
+            from PySide2 import QtCore
+            self._scheduled = True
+            QtCore.QTimer.singleShot(0, self._deferred_rebuild)
+
+    def _deferred_rebuild(self):
+        self._scheduled = False
+        if not self._stale:
+            return
+        try:
+            self.Object.Document  # raises once the group is deleted
+        except Exception:
+            return
+        self.rebuild()
+
+    def rebuild(self):
+        """Draws the group's contacts now."""
+        self._stale = False
+        contacts = [c for c in self.Object.Group if getattr(c, "ContactType", None)]
+        try:
+            self.overlay.build(contacts)
+        except Exception as error:  # a drawing problem must not break the document
+            FreeCAD.Console.PrintError(f"Contacts: cannot draw '{self.Object.Label}': {error}\n")
+            return
+        if self.overlay.failures:
+            FreeCAD.Console.PrintWarning(
+                f"Contacts: {len(self.overlay.failures)} faces of '{self.Object.Label}' not drawn, "
+                f"first: {self.overlay.failures[0]}\n")
+        _Watcher.refresh_highlight(self.Object.Document.Name)
+
     def claimChildren(self):
         return self.Object.Group
 
 
 class ViewProviderContact(_ViewProvider):
+    """A contact: drawn by its group's overlay; its Visibility switches its
+    part of that drawing."""
+
+    def attach(self, vobj):
+        super().attach(vobj)
+        # An empty display mode: without one the tree greys the contact out
+        # as if it were hidden.
+        vobj.addDisplayMode(coin.SoGroup(), "Overlay")
+
+    def getDisplayModes(self, vobj):
+        return ["Overlay"]
+
+    def getDefaultDisplayMode(self):
+        return "Overlay"
+
+    def setDisplayMode(self, mode):
+        return mode
+
+    def getIcon(self):
+        return contact_icon_path(getattr(getattr(self, "Object", None), "ContactType", ""))
+
     def doubleClicked(self, vobj):
         select_contact_faces(vobj.Object)
         return True
+
+    def onChanged(self, vobj, prop):
+        if prop != "Visibility":
+            return
+        for overlay in _overlays_of(vobj.Object):
+            overlay.set_visible(vobj.Object.Name, vobj.Visibility)
+
+
+def _overlays_of(contact):
+    """The overlays drawing a Contact (its groups')."""
+    for parent in contact.InList:
+        proxy = getattr(getattr(parent, "ViewObject", None), "Proxy", None)
+        overlay = getattr(proxy, "overlay", None)
+        if overlay is not None:
+            yield overlay
+
+
+class _Watcher:
+    """The session's one selection and document observer: highlights the
+    selected contacts and follows the bodies' Visibility, for every overlay
+    alive (a weak set: closed documents drop out)."""
+
+    overlays = weakref.WeakSet()
+    _installed = None
+
+    @classmethod
+    def register(cls, overlay):
+        cls.overlays.add(overlay)
+        if cls._installed is None:
+            cls._installed = cls()
+            FreeCADGui.Selection.addObserver(cls._installed)
+            FreeCAD.addDocumentObserver(cls._installed)
+
+    @classmethod
+    def refresh_highlight(cls, doc_name):
+        overlays = [o for o in list(cls.overlays) if o.doc_name == doc_name]
+        if not overlays:
+            return
+        objects, faces = set(), set()
+        for selected in FreeCADGui.Selection.getSelectionEx(doc_name, 0):
+            if not selected.SubElementNames:
+                objects.add(selected.ObjectName)
+            for subname in selected.SubElementNames:
+                faces.add((selected.ObjectName, subname))
+        for overlay in overlays:
+            overlay.highlight(objects, faces)
+
+    def _selection_changed(self, doc_name):
+        try:
+            self.refresh_highlight(doc_name)
+        except Exception as error:  # an observer must never break the selection
+            FreeCAD.Console.PrintWarning(f"Contacts: highlight failed: {error}\n")
+
+    def addSelection(self, doc, obj, sub, pnt):
+        self._selection_changed(doc)
+
+    def removeSelection(self, doc, obj, sub):
+        self._selection_changed(doc)
+
+    def setSelection(self, doc):
+        self._selection_changed(doc)
+
+    def clearSelection(self, doc):
+        for name in [doc] if doc else FreeCAD.listDocuments():
+            self._selection_changed(name)
+
+    def slotChangedObject(self, obj, prop):
+        if prop not in ("Visibility", "Placement", "Shape") or not self.overlays:
+            return
+        try:
+            doc_name = obj.Document.Name
+            for overlay in list(self.overlays):
+                if overlay.doc_name != doc_name or obj.Name not in overlay.path_names:
+                    continue
+                if prop == "Visibility":
+                    overlay.update_bodies()
+                else:  # a body moved or changed: redraw its faces
+                    method = overlay.on_body_changed
+                    rebuild = method() if method is not None else None
+                    if rebuild is not None:
+                        rebuild()
+        except Exception as error:
+            FreeCAD.Console.PrintWarning(f"Contacts: cannot follow the bodies: {error}\n")
 
 
 def select_contact_faces(contact):
@@ -46,7 +661,9 @@ def select_contact_faces(contact):
 
 
 def attach(group):
-    """Gives a ContactAnalysis group and its contacts their view providers."""
-    ViewProviderContactAnalysis(group.ViewObject)
+    """Gives a ContactAnalysis group and its contacts their view providers,
+    and draws the contacts."""
+    provider = ViewProviderContactAnalysis(group.ViewObject)
     for child in group.Group:
         ViewProviderContact(child.ViewObject)
+    provider.rebuild()

@@ -1,0 +1,115 @@
+"""Export of a ContactAnalysis group's contacts (headless).
+
+    from contactwb import export
+    export.export_contacts(group, "motor_contacts.json")   # or .csv
+
+JSON: {"source", "units", "tolerances": {"linear", "angular"}, "contacts": [...],
+"totals", "messages"}, each contact with the keys of the CLI's `--json`
+contacts (CONTACT_KEYS; faces are the bodies' "FaceN" names, span in degrees,
+lengths in mm, angular tolerance in radians). CSV: a header, then one row per
+contact (faces separated by spaces, point and direction as x, y, z columns)."""
+import csv
+import json
+import os
+from collections import Counter
+from math import radians
+
+CONTACT_KEYS = ["type", "a", "b", "faces_a", "faces_b", "area", "partial", "span", "radius",
+                "point", "direction"]
+CSV_COLUMNS = ["type", "a", "b", "faces_a", "faces_b", "area", "partial", "span", "radius",
+               "point_x", "point_y", "point_z", "direction_x", "direction_y", "direction_z"]
+FORMATS = (".json", ".csv")
+
+
+def is_analysis(obj):
+    """Whether a document object is a ContactAnalysis group."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == "ContactAnalysis"
+
+
+def analyses(doc):
+    """The ContactAnalysis groups of a document. (Cheap enough for a
+    command's IsActive on large documents: the type is checked first.)"""
+    if doc is None:
+        return []
+    return [obj for obj in doc.Objects
+            if obj.TypeId == "App::DocumentObjectGroupPython" and is_analysis(obj)]
+
+
+def _face_names(links):
+    # Stored subnames run from the top-level object ("Part.Link.Face3"); the
+    # CLI names a face on its body's object ("Face3").
+    return [subname.rpartition(".")[2] for _, subnames in links for subname in subnames]
+
+
+def contact_records(group):
+    """The group's contacts as dicts with CONTACT_KEYS (the CLI's values)."""
+    if not is_analysis(group):
+        raise ValueError(f"'{getattr(group, 'Label', group)}' is not a contact analysis")
+    records = []
+    for contact in group.Group:
+        if not hasattr(contact, "ContactType"):
+            continue
+        records.append({
+            "type": contact.ContactType,
+            "a": contact.BodyA,
+            "b": contact.BodyB,
+            "faces_a": _face_names(contact.FacesA),
+            "faces_b": _face_names(contact.FacesB),
+            "area": contact.Area.Value,
+            "partial": bool(contact.Partial),
+            "span": contact.Span.Value,
+            "radius": contact.Radius.Value,
+            "point": [contact.Point.x, contact.Point.y, contact.Point.z],
+            "direction": [contact.Direction.x, contact.Direction.y, contact.Direction.z],
+        })
+    return records
+
+
+def to_json(group):
+    """The JSON document of a group (a dict)."""
+    records = contact_records(group)
+    return {
+        "source": group.Document.Label,
+        "units": "mm",
+        "tolerances": {"linear": group.LinearTolerance.Value,
+                       "angular": radians(group.AngularTolerance.Value)},
+        "contacts": records,
+        "totals": dict(Counter(r["type"] for r in records)),
+        "messages": list(group.Messages),
+    }
+
+
+def _csv_row(record):
+    row = dict(record)
+    row["faces_a"] = " ".join(record["faces_a"])
+    row["faces_b"] = " ".join(record["faces_b"])
+    row["partial"] = "true" if record["partial"] else "false"
+    for key in ("point", "direction"):
+        for axis, value in zip("xyz", row.pop(key)):
+            row[f"{key}_{axis}"] = repr(value)
+    for key in ("area", "span", "radius"):
+        row[key] = repr(record[key])
+    return row
+
+
+def export_contacts(group, path):
+    """Writes the contacts of a ContactAnalysis group to `path`, as JSON or
+    CSV after its extension; returns the number of contacts written.
+    Raises ValueError for another extension or a group that is not an
+    analysis, OSError when the file cannot be written."""
+    extension = os.path.splitext(path)[1].lower()
+    if extension not in FORMATS:
+        raise ValueError(f"cannot export contacts to '{path}': use a .json or .csv file")
+    if extension == ".json":
+        document = to_json(group)
+        with open(path, "w", encoding="utf-8") as stream:
+            json.dump(document, stream, indent=2)
+            stream.write("\n")
+        return len(document["contacts"])
+    records = contact_records(group)
+    with open(path, "w", encoding="utf-8", newline="") as stream:
+        writer = csv.DictWriter(stream, fieldnames=CSV_COLUMNS)
+        writer.writeheader()
+        for record in records:
+            writer.writerow(_csv_row(record))
+    return len(records)
