@@ -46,16 +46,6 @@ def test_motor_gives_exactly_the_papers_contacts(sample):
     assert len(result.bodies) == 18  # the paper lists 18 parts (the issue says 19 but lists 18)
 
 
-def test_motor_in_inch_gives_the_same_contacts(sample):
-    path = os.path.join(os.path.dirname(sample("motor.step")), "cases", "motor_inch.step")
-    if not os.path.isfile(path):
-        pytest.skip("no inch copy of the motor among the cases")
-    mm = analysis.find_contacts_in_step(sample("motor.step"))
-    inch = analysis.find_contacts_in_step(path)
-    assert inch.units == "in"
-    assert unordered_pairs(inch) == unordered_pairs(mm)
-
-
 @pytest.mark.parametrize("name, expected", [
     ("R01_as1-oc-214.stp", {"PLF": 16, "CLJ": 22}),
     ("D03_asm4_tuto2_disk_arm.step", {"PLF": 3, "CLJ": 1}),
