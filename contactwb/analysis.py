@@ -134,13 +134,18 @@ def _analysis(source, assembly, result, face_name=None):
             area=c.area, partial=c.partial, span=degrees(c.span), radius=c.radius,
             half_angle=degrees(c.half_angle), point=c.point, direction=c.direction,
             body_a=c.body_a, body_b=c.body_b))
+    messages = list(assembly.messages)
+    # Faces OCCT could not evaluate were typed Other and skipped: say which.
+    for name, body in zip(names, result.partitions):
+        if body.status != "ok":
+            messages.append(f"body '{name}': {body.status}")
     times = {"partitions": result.times.partitions, "broad_phase": result.times.broad_phase,
              "candidates": result.times.candidates, "area": result.times.area}
     return Analysis(
         source=source, units=assembly.units,
         linear_tolerance=result.tolerances.linear, angular_tolerance=result.tolerances.angular,
         bodies=[BodyInfo(b.name, b.path, b.volume, b.center) for b in assembly.bodies],
-        contacts=contacts, messages=list(assembly.messages), body_pairs=len(result.body_pairs),
+        contacts=contacts, messages=messages, body_pairs=len(result.body_pairs),
         candidates=result.candidates, times=times, raw=result)
 
 

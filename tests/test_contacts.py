@@ -180,3 +180,18 @@ def test_surface_models_in_documents_are_skipped_with_a_message():
         assert any("Sheet" in message and "no solid" in message for message in result.messages)
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_faces_that_failed_typing_are_reported():
+    """A body whose partitions carry a failure note (a face OCCT could not
+    evaluate) is named in the analysis messages, with the face."""
+    from types import SimpleNamespace
+    shapes = [("a", Part.makeBox(1, 1, 1)), ("b", Part.makeBox(1, 1, 1, FreeCAD.Vector(1, 0, 0)))]
+    assembly = core.assembly_from_shapes(shapes)
+    real = core.contactcore.find_contacts(assembly)
+    failed = SimpleNamespace(status="surface cannot be evaluated (Face3)")
+    fake = SimpleNamespace(contacts=real.contacts, times=real.times, tolerances=real.tolerances,
+                           body_pairs=real.body_pairs, candidates=real.candidates,
+                           partitions=[real.partitions[0], failed])
+    result = analysis._analysis("test", assembly, fake)
+    assert result.messages == ["body 'b': surface cannot be evaluated (Face3)"]
