@@ -66,7 +66,8 @@ def _split_solids(name, obj, root, subname, shape, containers):
 
 def _is_analysis_object(obj):
     """The workbench's own results (they link to bodies but hold no solid)."""
-    return type(getattr(obj, "Proxy", None)).__name__ in ("ContactAnalysis", "Contact")
+    from contactwb.objects.contact_objects import is_contact, is_contact_analysis
+    return is_contact_analysis(obj) or is_contact(obj)
 
 
 def _roots(doc):

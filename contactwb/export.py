@@ -14,16 +14,13 @@ import os
 from collections import Counter
 from math import radians
 
+from contactwb.objects.contact_objects import is_contact, is_contact_analysis
+
 CONTACT_KEYS = ["type", "a", "b", "faces_a", "faces_b", "area", "partial", "span", "radius",
                 "point", "direction"]
 CSV_COLUMNS = ["type", "a", "b", "faces_a", "faces_b", "area", "partial", "span", "radius",
                "point_x", "point_y", "point_z", "direction_x", "direction_y", "direction_z"]
 FORMATS = (".json", ".csv")
-
-
-def is_analysis(obj):
-    """Whether a document object is a ContactAnalysis group."""
-    return getattr(getattr(obj, "Proxy", None), "Type", None) == "ContactAnalysis"
 
 
 def analyses(doc):
@@ -32,7 +29,7 @@ def analyses(doc):
     if doc is None:
         return []
     return [obj for obj in doc.Objects
-            if obj.TypeId == "App::DocumentObjectGroupPython" and is_analysis(obj)]
+            if obj.TypeId == "App::DocumentObjectGroupPython" and is_contact_analysis(obj)]
 
 
 def _face_names(links):
@@ -43,11 +40,11 @@ def _face_names(links):
 
 def contact_records(group):
     """The group's contacts as dicts with CONTACT_KEYS (the CLI's values)."""
-    if not is_analysis(group):
+    if not is_contact_analysis(group):
         raise ValueError(f"'{getattr(group, 'Label', group)}' is not a contact analysis")
     records = []
     for contact in group.Group:
-        if not hasattr(contact, "ContactType"):
+        if not is_contact(contact):
             continue
         records.append({
             "type": contact.ContactType,

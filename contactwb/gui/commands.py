@@ -76,10 +76,11 @@ def _analysis_to_export(doc):
     """The selected ContactAnalysis (or the one holding a selected contact),
     else the document's only one; None when that is ambiguous."""
     from contactwb import export
+    from contactwb.objects.contact_objects import is_contact_analysis
     chosen = []
     for obj in FreeCADGui.Selection.getSelection(doc.Name):
         for candidate in [obj] + list(obj.InList):
-            if export.is_analysis(candidate) and candidate not in chosen:
+            if is_contact_analysis(candidate) and candidate not in chosen:
                 chosen.append(candidate)
     if not chosen:
         chosen = export.analyses(doc)

@@ -25,6 +25,7 @@ import numpy
 from pivy import coin
 
 import contactwb
+from contactwb.objects.contact_objects import is_contact
 
 # The legend: one colour per contact type (also the tree icons' colour).
 TYPE_COLOURS = {
@@ -525,7 +526,7 @@ class ViewProviderContactAnalysis(_ViewProvider):
     def rebuild(self):
         """Draws the group's contacts now."""
         self._stale = False
-        contacts = [c for c in self.Object.Group if getattr(c, "ContactType", None)]
+        contacts = [c for c in self.Object.Group if is_contact(c)]
         try:
             self.overlay.build(contacts)
         except Exception as error:  # a drawing problem must not break the document

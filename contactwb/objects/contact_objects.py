@@ -4,6 +4,16 @@ Saved files refer to `contactwb.objects.contact_objects.ContactAnalysis` and
 `...Contact`: these names are permanent."""
 
 
+def is_contact_analysis(obj):
+    """Whether a document object is a ContactAnalysis group (also once re-opened)."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == "ContactAnalysis"
+
+
+def is_contact(obj):
+    """Whether a document object is one Contact of an analysis."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == "Contact"
+
+
 class ContactAnalysis:
     """A group holding the contacts found among some objects (a snapshot:
     run Contacts_FindContacts again after moving parts)."""

@@ -14,6 +14,7 @@ import FreeCAD
 import FreeCADGui
 from PySide2 import QtWidgets
 from pivy import coin
+from contactwb.objects.contact_objects import is_contact_analysis
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
@@ -217,7 +218,7 @@ def run():
     report["export_active_before"] = commands.Contacts_ExportContacts().IsActive()
     FreeCADGui.runCommand("Contacts_FindContacts")
     FreeCADGui.updateGui()
-    groups = [o for o in doc.Objects if getattr(o, "Proxy", None).__class__.__name__ == "ContactAnalysis"]
+    groups = [o for o in doc.Objects if is_contact_analysis(o)]
     report["analyses"] = len(groups)
     if groups:
         report["contacts"] = len(groups[0].Group)
