@@ -24,6 +24,7 @@ import sys
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(REPO, "tests"))  # the brute-force checker
 SHARED = os.path.join(os.path.dirname(REPO), "shared", "data", "step")
 GRID_SIZES = [10, 100, 1000, 10000]
 
@@ -74,7 +75,6 @@ def run_scripted_baseline(path):
 
 def run_brute_force(path):
     """Seconds of the brute-force search from shapes in memory, and its contact count."""
-    sys.path.insert(0, os.path.join(REPO, "tests"))
     import bruteforce_contacts as brute
     import Part
     # Names do not matter to the timing: solids in file order, numbered.

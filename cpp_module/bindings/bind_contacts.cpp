@@ -5,8 +5,6 @@
 #include <optional>
 #include <sstream>
 
-#include <BRepBndLib.hxx>
-
 #include "contactcore/contacts.h"
 
 namespace contactcore::bindings {
@@ -104,12 +102,8 @@ void bind_contacts(py::module_& m) {
       [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
          py::object progress) {
         ContactOptions options;
-        if (linear || angular) {
-          options.use_default_tolerances = false;
-          Bnd_Box box;
-          for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box, false);
-          options.tolerances = resolve_tolerances(box, linear, angular);
-        }
+        options.linear = linear;
+        options.angular = angular;
         std::unique_ptr<PythonProgress> reporter;
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         ContactsResult result;

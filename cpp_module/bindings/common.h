@@ -6,18 +6,14 @@
 #include <pybind11/stl.h>
 
 #include <exception>
-#include <optional>
 #include <string>
 #include <vector>
-
-#include <Bnd_Box.hxx>
 
 #include <Standard_Failure.hxx>
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
 
 #include "contactcore/errors.h"
-#include "contactcore/partitions.h"
 
 namespace contactcore::bindings {
 
@@ -32,15 +28,6 @@ inline std::vector<std::string> face_names(const std::vector<int>& faces) {
   names.reserve(faces.size());
   for (int f : faces) names.push_back("Face" + std::to_string(f));
   return names;
-}
-
-// The model-scaled defaults, with whichever value the caller gave instead.
-inline Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> linear,
-                                     std::optional<double> angular) {
-  Tolerances tol = default_tolerances(model_box);
-  if (linear) tol.linear = *linear;
-  if (angular) tol.angular = *angular;
-  return tol;
 }
 
 // Raises contactcore.ContactsError (a RuntimeError) with Status::describe().

@@ -282,7 +282,6 @@ std::vector<AngularInterval> circle_on_faces(const gp_Pnt& centre, const gp_Dir&
 // -------------------------------------------------------------- contacts
 
 struct PairContext {
-  const Assembly& assembly;
   const std::vector<BodyPartitions>& parts;
   const Tolerances& tol;
   double min_area_ratio;
@@ -316,14 +315,18 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
   c.type = ContactType::PLF;
   c.direction = pa.axis;
   double sx = 0, sy = 0, weight = 0;
+  // b's outlines in a's frame, each mapped the first time a face of a meets it.
+  std::vector<std::vector<Polygon2>> outlines_b(b.faces.size());
   for (int fa : a.faces) {
     const FaceInfo& face_a = face_of(ctx.parts[ia], fa);
     std::vector<Polygon2> loops_a;
-    for (int fb : b.faces) {
+    for (size_t kb = 0; kb < b.faces.size(); ++kb) {
+      const int fb = b.faces[kb];
       const FaceInfo& face_b = face_of(ctx.parts[ib], fb);
       if (!boxes_meet(face_a.box, face_b.box, ctx.tol.linear)) continue;
       if (loops_a.empty()) loops_a = outline_in(face_a, pa.location, x, y);
-      const std::vector<Polygon2> loops_b = outline_in(face_b, pa.location, x, y);
+      std::vector<Polygon2>& loops_b = outlines_b[kb];
+      if (loops_b.empty()) loops_b = outline_in(face_b, pa.location, x, y);
       const double area = common_area(loops_a, loops_b, ctx.tol.linear);
       if (area <= ctx.tol.linear * ctx.tol.linear) continue;
       c.area += area;
@@ -630,7 +633,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   try {
     Bnd_Box model_box;
     for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, model_box, false);
-    result.tolerances = options.use_default_tolerances ? default_tolerances(model_box) : options.tolerances;
+    result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
 
     result.partitions.reserve(n);
     for (size_t i = 0; i < n; ++i) {
@@ -680,7 +683,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     result.times.candidates = seconds_since(start);
 
     start = Clock::now();
-    const PairContext ctx{assembly, result.partitions, result.tolerances, options.min_area_ratio};
+    const PairContext ctx{result.partitions, result.tolerances, options.min_area_ratio};
     for (size_t k = 0; k < candidates.size(); ++k) {
       if (progress && k % 64 == 0 &&
           !progress->report("contacts", static_cast<double>(k) / static_cast<double>(candidates.size())))

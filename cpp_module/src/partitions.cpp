@@ -1466,6 +1466,14 @@ Tolerances default_tolerances(const Bnd_Box& model_box) {
   return tol;
 }
 
+Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> linear,
+                              std::optional<double> angular) {
+  Tolerances tol = default_tolerances(model_box);
+  if (linear) tol.linear = *linear;
+  if (angular) tol.angular = *angular;
+  return tol;
+}
+
 std::vector<AngularInterval> unite(std::vector<AngularInterval> intervals) {
   struct Range {
     double start, end;

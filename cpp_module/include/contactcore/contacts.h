@@ -3,6 +3,7 @@
 // sides (LpC) found by sorting, then a real common-area test per candidate.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,8 +40,8 @@ struct Contact {
 };
 
 struct ContactOptions {
-  Tolerances tolerances;          // used when use_default_tolerances is false
-  bool use_default_tolerances = true;
+  std::optional<double> linear;   // mm; unset: scaled to the model (default_tolerances)
+  std::optional<double> angular;  // radians; unset: the default
   double min_area_ratio = 1e-6;   // common area below ratio * smaller partition area: no contact
 };
 

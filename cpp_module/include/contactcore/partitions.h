@@ -4,6 +4,7 @@
 // merged into maximal partitions (the paper's list of merged partitions).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,10 @@ struct Tolerances {
 // clamped to [1e-6, 1e-2] mm; angular 1e-4 rad. Shapes are in mm, so the same
 // assembly in inch and in mm gets the same tolerances.
 Tolerances default_tolerances(const Bnd_Box& model_box);
+
+// Those defaults, with whichever value the caller gives instead.
+Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> linear,
+                              std::optional<double> angular);
 
 struct BodyPartitions {
   Status status;
