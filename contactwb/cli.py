@@ -24,7 +24,15 @@ def _progress_printer(stream):
     return report
 
 
+# `contacts NAME ...` runs another tool: NAME -> module with main(argv) -> exit code.
+SUBCOMMANDS = {}
+
+
 def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    if argv and argv[0] in SUBCOMMANDS:
+        import importlib
+        return importlib.import_module(SUBCOMMANDS[argv[0]]).main(argv[1:])
     parser = argparse.ArgumentParser(prog="contacts", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file", help="a STEP (.step/.stp) or FreeCAD (.FCStd) assembly")

@@ -43,6 +43,29 @@ struct ContactOptions {
   std::optional<double> linear;   // mm; unset: scaled to the model (default_tolerances)
   std::optional<double> angular;  // radians; unset: the default
   double min_area_ratio = 1e-6;   // common area below ratio * smaller partition area: no contact
+  double clearance_gap = 0;       // mm; > 0: also report clearance fits with radii this close
+};
+
+// Found beside contacts, never counted as contacts.
+// Bodies whose material overlaps (a press fit, a duplicate placed in place).
+struct Interference {
+  int body_a = 0, body_b = 0;  // body_a < body_b
+  double volume = 0;           // mm^3 of the common solid
+};
+// Same surface type and axis, radii differing by less than the clearance gap
+// (a nut on its bolt): a fit with play, not a contact.
+struct Clearance {
+  int body_a = 0, body_b = 0;
+  int partition_a = 0, partition_b = 0;
+  SurfaceKind kind = SurfaceKind::Cylinder;
+  double gap = 0;  // mm, radial (cylinders, spheres) or normal (planes)
+};
+// A candidate pair whose test raised an OCCT exception: skipped, the rest kept.
+struct SkippedPair {
+  int body_a = 0, body_b = 0;
+  int partition_a = 0, partition_b = 0;
+  std::vector<int> faces_a, faces_b;  // 1-based FaceN of the two partitions
+  std::string message;
 };
 
 // Timings of each stage in seconds, for benchmarks and the CLI.
@@ -57,6 +80,10 @@ struct ContactsResult {
   std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
   std::size_t candidates = 0;                   // partition pairs tested for area
   std::vector<Contact> contacts;
+  std::vector<Interference> interferences;
+  std::vector<Clearance> clearances;
+  std::vector<SkippedPair> skipped;
+  std::vector<std::string> messages;  // what was skipped or doubtful, for the user
   StageTimes times;
 };
 
