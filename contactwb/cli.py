@@ -40,6 +40,9 @@ def main(argv=None):
     parser.add_argument("--linear", type=float, help="linear tolerance, mm (default: scales with the model)")
     parser.add_argument("--angular", type=float, help="angular tolerance, radians (default 1e-4)")
     parser.add_argument("--progress", action="store_true", help="show progress on stderr")
+    parser.add_argument("--max-pairs", type=int, default=None, metavar="N",
+                        help="stop when more than N body pairs have meeting boxes (default 2000000): "
+                             "heavily overlapping input")
     args = parser.parse_args(argv)
 
     from contactwb import analysis, core
@@ -52,9 +55,10 @@ def main(argv=None):
                 raise core.ContactsError(f"no such file: '{args.file}'")
             doc = freecad_setup.open_document(os.path.abspath(args.file))
             result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
-                                                           progress=progress)
+                                                           progress=progress, max_pairs=args.max_pairs)
         else:
-            result = analysis.find_contacts_in_step(args.file, args.linear, args.angular, progress)
+            result = analysis.find_contacts_in_step(args.file, args.linear, args.angular, progress,
+                                                    max_pairs=args.max_pairs)
     except core.Cancelled:
         print("contacts: cancelled", file=sys.stderr)
         return 130

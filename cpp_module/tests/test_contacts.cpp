@@ -90,7 +90,7 @@ TEST(BroadPhase, OnlyMeetingBoxes) {
   boxes[0].Update(0, 0, 0, 1, 1, 1);
   boxes[1].Update(1, 0, 0, 2, 1, 1);      // touches 0
   boxes[2].Update(5, 5, 5, 6, 6, 6);      // alone
-  const auto pairs = broad_phase(boxes, 1e-6);
+  const auto pairs = broad_phase(boxes, 1e-6).pairs;
   ASSERT_EQ(pairs.size(), 1u);
   EXPECT_EQ(pairs[0], std::make_pair(0, 1));
 }
