@@ -90,6 +90,7 @@ void bind_contacts(py::module_& m) {
       .def_readonly("body_pairs", &ContactsResult::body_pairs)
       .def_readonly("candidates", &ContactsResult::candidates)
       .def_readonly("contacts", &ContactsResult::contacts)
+      .def_readonly("clearances", &ContactsResult::clearances)
       .def_readonly("times", &ContactsResult::times)
       .def("__repr__", [](const ContactsResult& r) {
         return "<ContactsResult " + std::to_string(r.contacts.size()) + " contacts, " +
@@ -100,8 +101,9 @@ void bind_contacts(py::module_& m) {
   m.def(
       "find_contacts",
       [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
-         py::object progress) {
+         py::object progress, double clearance_gap) {
         ContactOptions options;
+        options.clearance_gap = clearance_gap;
         options.linear = linear;
         options.angular = angular;
         std::unique_ptr<PythonProgress> reporter;
@@ -114,7 +116,7 @@ void bind_contacts(py::module_& m) {
         return result;
       },
       py::arg("assembly"), py::arg("linear") = py::none(), py::arg("angular") = py::none(),
-      py::arg("progress") = py::none(),
+      py::arg("progress") = py::none(), py::arg("clearance_gap") = 0.0,
       "Partitions every body, then finds contacts. `progress(stage, fraction)` returning False "
       "cancels (raises contactcore.Cancelled). Tolerances default to the model's scale.");
 

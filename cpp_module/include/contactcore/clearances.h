@@ -10,13 +10,12 @@
 
 namespace contactcore {
 
-// Partition pairs of the given body pairs: a convex and a concave cylinder
-// (or sphere, or cone with the same apex and angle... not cones: a cone with
-// play is a different seat) on the same axis (centre), the concave radius
-// larger by a gap in (linear tolerance, max_gap). Pairs that are already in
-// contact through that fit are not repeated. Sorted by (body_a, body_b).
-std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions,
-                                       const std::vector<std::pair<int, int>>& body_pairs,
-                                       double max_gap, const Tolerances& tol);
+// Partition pairs of bodies whose boxes come within `max_gap`: a convex and
+// a concave cylinder on the same axis (overlapping along it) or sphere on the
+// same centre, or two facing planes with overlapping outlines, whose gap
+// (radial or normal) is in (linear tolerance, max_gap). Sorted by bodies,
+// then partitions.
+std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap,
+                                       const Tolerances& tol);
 
 }  // namespace contactcore

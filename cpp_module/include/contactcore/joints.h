@@ -69,6 +69,10 @@ struct PairJoint {
   // bilateral constraints). Empty: b cannot translate away from a at all. A
   // whole line or plane of free directions appears as both signs of its basis.
   std::vector<gp_Dir> free_directions;
+  // The frame the null space was taken in (centre of the contacts, size in
+  // mm): invariant under a rigid motion of the assembly.
+  gp_Pnt frame_centre;
+  double frame_length = 1;
 };
 
 struct JointOptions {
