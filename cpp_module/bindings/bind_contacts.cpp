@@ -106,6 +106,7 @@ void bind_contacts(py::module_& m) {
       .def_readonly("contacts", &ContactsResult::contacts)
       .def_readonly("skipped", &ContactsResult::skipped)
       .def_readonly("messages", &ContactsResult::messages)
+      .def_readonly("clearances", &ContactsResult::clearances)
       .def_readonly("times", &ContactsResult::times)
       .def("__repr__", [](const ContactsResult& r) {
         return "<ContactsResult " + std::to_string(r.contacts.size()) + " contacts, " +
@@ -116,8 +117,10 @@ void bind_contacts(py::module_& m) {
   m.def(
       "find_contacts",
       [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
-         py::object progress, int threads, std::optional<std::size_t> max_pairs, bool reuse_instances) {
+         py::object progress, int threads, std::optional<std::size_t> max_pairs, bool reuse_instances,
+         double clearance_gap) {
         ContactOptions options;
+        options.clearance_gap = clearance_gap;
         options.linear = linear;
         options.angular = angular;
         options.threads = threads;
@@ -134,12 +137,12 @@ void bind_contacts(py::module_& m) {
       },
       py::arg("assembly"), py::arg("linear") = py::none(), py::arg("angular") = py::none(),
       py::arg("progress") = py::none(), py::arg("threads") = 0, py::arg("max_pairs") = py::none(),
-      py::arg("reuse_instances") = true,
+      py::arg("reuse_instances") = true, py::arg("clearance_gap") = 0.0,
       "Partitions every body, then finds contacts, on `threads` threads (0: all cores; the result "
       "is the same for any number). `progress(stage, fraction)` returning False cancels (raises "
       "contactcore.Cancelled); it is called from the calling thread. Tolerances default to the "
       "model's scale. More than `max_pairs` body pairs with meeting boxes (default 2,000,000) "
-      "stops with ContactsError saying how many.");
+      "stops with ContactsError saying how many. `clearance_gap` > 0 also reports clearance fits.");
 
   m.def(
       "common_area",

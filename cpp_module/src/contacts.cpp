@@ -1,4 +1,5 @@
 #include "contactcore/contacts.h"
+#include "contactcore/clearances.h"
 
 #include "contactcore/common_area.h"
 #include "contactcore/instances.h"
@@ -330,6 +331,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
   }
+  if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap, result.tolerances);
   if (progress) progress->report("contacts", 1.0);
   return result;
 }
