@@ -10,6 +10,7 @@
 #include <cmath>
 #include <exception>
 #include <sstream>
+#include <tuple>
 
 #include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
@@ -153,7 +154,7 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
   }
   std::sort(spans.begin(), spans.end(), [axis](const Span& l, const Span& r) { return l.lo[axis] < r.lo[axis]; });
   using Clock = std::chrono::steady_clock;
-  auto last = Clock::now();
+  auto last = Clock::now() - std::chrono::seconds(1);  // report at the start too
   for (std::size_t i = 0; i < spans.size(); ++i) {
     if (progress && (i & 255) == 0 && Clock::now() - last > std::chrono::milliseconds(50)) {
       if (!progress->report("broad phase", static_cast<double>(i) / static_cast<double>(spans.size()))) {
@@ -163,9 +164,9 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
       last = Clock::now();
     }
     for (std::size_t j = i + 1; j < spans.size() && spans[j].lo[axis] <= spans[i].hi[axis]; ++j) {
-      const int a = spans[i].body, b = spans[j].body;
-      if (!boxes_meet(boxes[a], boxes[b], gap)) continue;
-      out.pairs.emplace_back(std::min(a, b), std::max(a, b));
+      const int a = std::min(spans[i].body, spans[j].body), b = std::max(spans[i].body, spans[j].body);
+      if (!boxes_meet(boxes[a], boxes[b], gap)) continue;  // in index order: boxes' own gaps differ
+      out.pairs.emplace_back(a, b);
       if (out.pairs.size() > max_pairs) {
         std::ostringstream message;
         message << "more than " << max_pairs << " body pairs have meeting boxes (up to " << work
@@ -326,6 +327,12 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
         result.skipped.push_back(std::move(skipped));
       }
     }
+    // Pairs in order, then partitions: the order does not hang on rounding
+    // (partitions with nearly equal keys meet in either order).
+    std::stable_sort(result.contacts.begin(), result.contacts.end(), [](const Contact& l, const Contact& r) {
+      return std::tie(l.body_a, l.body_b, l.partition_a, l.partition_b) <
+             std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
+    });
     result.times.area = seconds_since(start);
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
