@@ -175,10 +175,15 @@ void expect_identical(const ContactsResult& serial, const ContactsResult& parall
 }
 
 // Many parallel runs (more threads than cores, to vary the interleavings),
-// each equal to the serial run.
+// each equal to the serial run; with instances reused, and without (then
+// bodies sharing TShapes are partitioned concurrently).
 void expect_parallel_equals_serial(const Assembly& assembly, const std::string& what, int runs) {
-  const ContactsResult serial = run(assembly, 1);
-  for (int r = 0; r < runs; ++r) expect_identical(serial, run(assembly, 2 + r % 7), what + " run " + std::to_string(r));
+  for (const bool reuse : {true, false}) {
+    const ContactsResult serial = run(assembly, 1, reuse);
+    for (int r = 0; r < runs; ++r)
+      expect_identical(serial, run(assembly, 2 + r % 7, reuse),
+                       what + (reuse ? "" : " (no reuse)") + " run " + std::to_string(r));
+  }
 }
 
 TEST(Driver, ParallelEqualsSerialOnTheMotor) {
@@ -189,6 +194,13 @@ TEST(Driver, ParallelEqualsSerialOnTheMotor) {
 
 TEST(Driver, ParallelEqualsSerialOnRotatedInstances) {
   expect_parallel_equals_serial(rotated_instances(), "rotated instances", 30);
+}
+
+// 100 bodies of two shapes: many concurrent readers of each TShape.
+TEST(Driver, ParallelEqualsSerialOnABoltedGrid) {
+  const AssemblyResult read = read_step(sample("families/bolted_grid_100.step"));
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  expect_parallel_equals_serial(read.assembly, "bolted grid 100", 10);
 }
 
 TEST(Driver, ParallelEqualsSerialOnTheSharedFiles) {
