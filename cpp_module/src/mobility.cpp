@@ -373,26 +373,26 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
       component_dof += static_cast<int>(nulls.cols());
       for (int g : members)
         s.motion[g] = column.count(g) ? range_space(nulls.middleRows(column[g], 6), 1e-6) : Eigen::MatrixXd(6, 0);
-      // Groups that the loops hold together (relative motion made of their spins only).
-      for (int g : members)
-        for (const auto& [h, between] : neighbours[g]) {
-          const int rg = s.groups.find(g), rh = s.groups.find(h);
-          if (rg == rh) continue;
-          Eigen::MatrixXd relative(6, nulls.cols());
-          for (Eigen::Index k = 0; k < nulls.cols(); ++k) {
-            const Vec6 tg = column.count(g) ? Vec6(nulls.col(k).segment<6>(column[g])) : Vec6::Zero();
-            const Vec6 th = column.count(h) ? Vec6(nulls.col(k).segment<6>(column[h])) : Vec6::Zero();
-            relative.col(k) = move_twists(s.centre[h], s.centre[g], s.length) * th - tg;
+      // Groups that the loops hold together (relative motion made of their
+      // spins only), to a fixed point. A merged group moves as the root it keeps.
+      const auto twist_of = [&](int root, Eigen::Index k) {
+        return column.count(root) ? Vec6(nulls.col(k).segment<6>(column[root])) : Vec6(Vec6::Zero());
+      };
+      for (bool changed = true; changed;) {
+        changed = false;
+        for (int g : members)
+          for (const auto& [h, between] : neighbours[g]) {
+            const int rg = s.groups.find(g), rh = s.groups.find(h);
+            if (rg == rh) continue;
+            const bool keep_g = rg == ground_group || (rh != ground_group && rg < rh);
+            const int keep = keep_g ? rg : rh, drop = keep_g ? rh : rg;
+            Eigen::MatrixXd relative(6, nulls.cols());
+            for (Eigen::Index k = 0; k < nulls.cols(); ++k)
+              relative.col(k) = move_twists(s.centre[drop], s.centre[keep], s.length) * twist_of(drop, k) -
+                                twist_of(keep, k);
+            if (s.try_merge(keep, drop, range_space(relative, 1e-6))) changed = true;
           }
-          // Both still the roots they were when solved (their columns); keep the
-          // ground's group (or the lower index) and its motion.
-          if (rg != g || rh != h) continue;
-          const bool keep_g = rg == ground_group || (rh != ground_group && rg < rh);
-          const int keep = keep_g ? rg : rh, drop = keep_g ? rh : rg;
-          const Eigen::MatrixXd rel_keep = keep_g ? range_space(relative, 1e-6)
-                                                  : s.moved(range_space(relative, 1e-6), rg, rh);
-          s.try_merge(keep, drop, rel_keep);
-        }
+      }
     }
   }
 
