@@ -6,13 +6,15 @@
 // component has no loop, by a dense SVD of that component only otherwise.
 #include <algorithm>
 #include <cmath>
-#include <memory>
+#include <optional>
 #include <numeric>
 #include <unordered_map>
 
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
+#include <TopLoc_Location.hxx>
 #include <gp_Mat.hxx>
+#include <gp_Trsf.hxx>
 
 #include "contactcore/joints.h"
 #include "twist_math.h"
@@ -62,39 +64,68 @@ struct UnionFind {
   }
 };
 
-// Whether a body is balanced about a line: its centre of mass on the line
-// and the line an axis of symmetry of its inertia (the two moments across it
-// equal). Such a body spinning about the line moves no mass around.
-class Balance {
+// Mass, centre and inertia (about the centre) of a body's solids. Placed
+// copies of one part share their TShape: computed once per TShape at the
+// identity placement, then moved (centre) and rotated (inertia).
+struct MassData {
+  double mass = 0;
+  Vec3 centre = Vec3::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+
+class MassCache {
  public:
-  explicit Balance(const TopoDS_Shape& shape) {
-    GProp_GProps props;
-    BRepGProp::VolumeProperties(shape, props);
-    mass_ = props.Mass();
-    centre_ = vec(props.CentreOfMass());
-    const gp_Mat m = props.MatrixOfInertia();
+  MassData of(const TopoDS_Shape& shape) {
+    const gp_Trsf trsf = shape.Location().Transformation();
+    if (std::abs(trsf.ScaleFactor() - 1.0) > 1e-12) return compute(shape);
+    const void* key = shape.TShape().get();
+    auto it = cache_.find(key);
+    if (it == cache_.end()) it = cache_.emplace(key, compute(shape.Located(TopLoc_Location()))).first;
+    const MassData& local = it->second;
+    MassData out;
+    out.mass = local.mass;
+    gp_Pnt centre(local.centre.x(), local.centre.y(), local.centre.z());
+    out.centre = vec(centre.Transformed(trsf));
+    Eigen::Matrix3d rotation;
+    const gp_Mat r = trsf.VectorialPart();
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) inertia_(i, j) = m.Value(i + 1, j + 1);
-  }
-  bool about(const Vec3& point, const Vec3& direction) const {
-    if (mass_ <= 0) return false;
-    const Vec3 d = direction.normalized();
-    const double scale = inertia_.trace();
-    const double radius = std::sqrt(scale / mass_);  // radius of gyration, for the distance test
-    const Vec3 off = (centre_ - point) - d * d.dot(centre_ - point);
-    if (off.norm() > 1e-4 * radius) return false;
-    Vec3 u, v;
-    perpendiculars(d, u, v);
-    const double tol = 1e-4 * scale;
-    return std::abs(u.dot(inertia_ * u) - v.dot(inertia_ * v)) <= tol && std::abs(u.dot(inertia_ * v)) <= tol &&
-           std::abs(u.dot(inertia_ * d)) <= tol && std::abs(v.dot(inertia_ * d)) <= tol;
+      for (int j = 0; j < 3; ++j) rotation(i, j) = r.Value(i + 1, j + 1);
+    out.inertia = rotation * local.inertia * rotation.transpose();
+    return out;
   }
 
  private:
-  double mass_ = 0;
-  Vec3 centre_;
-  Eigen::Matrix3d inertia_;
+  static MassData compute(const TopoDS_Shape& shape) {
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(shape, props);
+    MassData out;
+    out.mass = props.Mass();
+    out.centre = vec(props.CentreOfMass());
+    const gp_Mat m = props.MatrixOfInertia();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) out.inertia(i, j) = m.Value(i + 1, j + 1);
+    return out;
+  }
+  std::unordered_map<const void*, MassData> cache_;
 };
+
+// Whether a body is balanced about a line: its centre of mass on the line
+// and the line an axis of symmetry of its inertia (the two moments across it
+// equal). Such a body spinning about the line moves no mass around.
+bool balanced_about(const MassData& m, const Vec3& point, const Vec3& direction) {
+  if (m.mass <= 0) return false;
+  const Vec3 d = direction.normalized();
+  const double scale = m.inertia.trace();
+  const double radius = std::sqrt(scale / m.mass);  // radius of gyration, for the distance test
+  const Vec3 off = (m.centre - point) - d * d.dot(m.centre - point);
+  if (off.norm() > 1e-4 * radius) return false;
+  Vec3 u, v;
+  perpendiculars(d, u, v);
+  const double tol = 1e-4 * scale;
+  const Eigen::Matrix3d& j = m.inertia;
+  return std::abs(u.dot(j * u) - v.dot(j * v)) <= tol && std::abs(u.dot(j * v)) <= tol &&
+         std::abs(u.dot(j * d)) <= tol && std::abs(v.dot(j * d)) <= tol;
+}
 
 struct Edge {  // one body pair, constraints on t_b - t_a, rows in the frame at `centre`
   int a = 0, b = 0;
@@ -116,6 +147,7 @@ struct Solver {
   std::vector<Eigen::MatrixXd> ambiguity;  // per group root: spins shared by all its bodies
   std::vector<Eigen::MatrixXd> motion;     // per group root: twists relative to the ground
   UnionFind groups{0};
+  MassCache masses;
 
   Solver(const JointsResult& j, const ContactsResult& c, double t) : joints(j), contacts(c), tol(t) {}
 
@@ -180,7 +212,7 @@ struct Solver {
         }
       }
       Eigen::MatrixXd basis(6, 0);
-      std::unique_ptr<Balance> balance;
+      std::optional<MassData> mass;
       for (const FreeRotation& axis : candidates) {
         const Vec3 d = vec(axis.direction), p = vec(axis.point);
         Vec6 spin;  // rotation about the line, in the body frame
@@ -191,8 +223,8 @@ struct Solver {
           if (residual.norm() > 1e-6 * std::max(1.0, spin.norm())) free = false;
         }
         if (!free) continue;
-        if (!balance) balance = std::make_unique<Balance>(assembly.bodies[body].shape);
-        if (!balance->about(p, d)) continue;
+        if (!mass) mass = masses.of(assembly.bodies[body].shape);
+        if (!balanced_about(*mass, p, d)) continue;
         const Eigen::MatrixXd grown = concat(basis, spin);
         if (rank_of(grown, 1e-6) > basis.cols()) {
           basis = range_space(grown, 1e-6);
@@ -269,10 +301,11 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
                                  "ground body index " + std::to_string(ground) + " out of range");
     return out;
   }
+  Solver s(joints, contacts, options.rank_tolerance);
   if (ground < 0) {
     double best = -1;
     for (int i = 0; i < n; ++i) {
-      const double volume = mass_properties(assembly.bodies[i].shape).volume;
+      const double volume = s.masses.of(assembly.bodies[i].shape).mass;
       if (volume > best) best = volume, ground = i;
     }
   }
@@ -282,7 +315,6 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
     return out;
   }
 
-  Solver s(joints, contacts, options.rank_tolerance);
   s.n = n;
   s.groups = UnionFind(n);
   s.build_edges();
