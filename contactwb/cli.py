@@ -40,6 +40,9 @@ def main(argv=None):
     parser.add_argument("--linear", type=float, help="linear tolerance, mm (default: scales with the model)")
     parser.add_argument("--angular", type=float, help="angular tolerance, radians (default 1e-4)")
     parser.add_argument("--progress", action="store_true", help="show progress on stderr")
+    parser.add_argument("--max-pairs", type=int, default=None, metavar="N",
+                        help="stop when more than N body pairs have meeting boxes (default 2000000): "
+                             "heavily overlapping input")
     parser.add_argument("--joints", action="store_true", help="also print joints, mobility and rigid groups")
     parser.add_argument("--graph", metavar="FILE", help="write the liaison graph (.svg, .png or .dot)")
     parser.add_argument("--ground", metavar="NAME", help="body held still (default: the largest by volume)")
@@ -62,15 +65,17 @@ def main(argv=None):
             if wants_joints:
                 result, found, _ = joints_api.joints_in_document(
                     doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
-                    clearance_gap=args.clearance_gap)
+                    clearance_gap=args.clearance_gap, max_pairs=args.max_pairs)
             else:
                 result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
-                                                               progress=progress)
+                                                               progress=progress, max_pairs=args.max_pairs)
         elif wants_joints:
             result, found = joints_api.joints_in_step(args.file, args.linear, args.angular, progress,
-                                                      ground=args.ground, clearance_gap=args.clearance_gap)
+                                                      ground=args.ground, clearance_gap=args.clearance_gap,
+                                                      max_pairs=args.max_pairs)
         else:
-            result = analysis.find_contacts_in_step(args.file, args.linear, args.angular, progress)
+            result = analysis.find_contacts_in_step(args.file, args.linear, args.angular, progress,
+                                                    max_pairs=args.max_pairs)
         if args.graph:
             found.write_graph(args.graph)
     except core.Cancelled:

@@ -184,12 +184,19 @@ def interferences_of(raw, names):
             for i in getattr(raw, "interferences", None) or []]
 
 
-def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, clearance_gap=0.0):
+def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, clearance_gap=0.0,
+                   max_pairs=None):
     """(analysis.Analysis, Joints) of a STEP file, read in C++."""
     if not os.path.isfile(path):
         raise core.ContactsError(f"no such file: '{path}'")
     assembly = core.contactcore.read_step(os.path.abspath(path))
-    result = analysis.find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress)
+    try:
+        result = analysis.find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
+                                                    max_pairs=max_pairs)
+    except core.Cancelled:
+        raise
+    except core.ContactsError as error:
+        raise core.ContactsError(f"{error} in file '{path}'") from error
     return result, joints_of_analysis(assembly, result, ground, clearance_gap)
 
 
@@ -201,13 +208,13 @@ def joints_in_shapes(named_shapes, source="shapes", linear=None, angular=None, g
 
 
 def joints_in_document(doc, objects=None, linear=None, angular=None, progress=None, ground=None,
-                       clearance_gap=0.0):
+                       clearance_gap=0.0, max_pairs=None):
     """(analysis.Analysis, Joints, [DocumentBody]) of a FreeCAD document's visible solids."""
     from contactwb import bodies as document_bodies
     messages = []
     assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
     result = analysis.find_contacts_in_assembly(
         assembly, doc.Label, linear, angular, progress,
-        face_name=lambda body, index: bodies[body].object_face_name(index))
+        face_name=lambda body, index: bodies[body].object_face_name(index), max_pairs=max_pairs)
     result.messages.extend(messages)
     return result, joints_of_analysis(assembly, result, ground, clearance_gap), bodies

@@ -1,8 +1,12 @@
 #include "contactcore/bodies.h"
 
+#include "contactcore/instances.h"
+#include "contactcore/parallel.h"
+
 #include <map>
-#include <set>
 #include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepGProp.hxx>
@@ -149,14 +153,34 @@ void read_units(STEPCAFControl_Reader& reader, Assembly& assembly) {
 
 }  // namespace
 
-void make_names_unique(std::vector<Body>& bodies) {
-  std::set<std::string> used;
-  for (Body& body : bodies) {
-    std::string name = body.name;
-    for (int n = 2; used.count(name); ++n) name = body.name + "." + std::to_string(n);
-    used.insert(name);
-    body.name = std::move(name);
+std::vector<std::string> unique_names(const std::vector<std::string>& names) {
+  std::unordered_set<std::string> used;
+  // Per repeated name, the next suffix to try: every smaller one is taken
+  // (and stays taken), so each name costs O(1) amortised probes.
+  std::unordered_map<std::string, int> next_suffix;
+  std::vector<std::string> out;
+  out.reserve(names.size());
+  used.reserve(names.size() * 2);
+  for (const std::string& name : names) {
+    if (used.insert(name).second) {
+      out.push_back(name);
+      continue;
+    }
+    int& n = next_suffix.try_emplace(name, 2).first->second;
+    std::string candidate;
+    do candidate = name + "." + std::to_string(n++);
+    while (!used.insert(candidate).second);
+    out.push_back(std::move(candidate));
   }
+  return out;
+}
+
+void make_names_unique(std::vector<Body>& bodies) {
+  std::vector<std::string> names;
+  names.reserve(bodies.size());
+  for (const Body& body : bodies) names.push_back(body.name);
+  names = unique_names(names);
+  for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].name = std::move(names[i]);
 }
 
 AssemblyResult read_step(const std::string& path, Progress* progress) {
@@ -274,6 +298,29 @@ MassProperties mass_properties(const TopoDS_Shape& shape) {
   GProp_GProps props;
   BRepGProp::VolumeProperties(shape, props);
   return {props.Mass(), props.CentreOfMass()};
+}
+
+const MassProperties& Body::mass() const {
+  std::call_once(mass_cache->once, [this] { mass_cache->value = mass_properties(shape); });
+  return mass_cache->value;
+}
+
+bool compute_mass_properties(const Assembly& assembly, int threads, Progress* progress) {
+  const std::vector<Body>& bodies = assembly.bodies;
+  const std::vector<int> sources = instance_sources(bodies);
+  if (!parallel_for(bodies.size(), threads, progress, "mass properties", [&](std::size_t i) {
+        if (sources[i] == static_cast<int>(i)) bodies[i].mass();
+      }, 4))
+    return false;
+  return parallel_for(bodies.size(), threads, progress, "mass properties", [&](std::size_t i) {
+    const int source = sources[i];
+    if (source == static_cast<int>(i)) return;
+    std::call_once(bodies[i].mass_cache->once, [&] {
+      MassProperties moved = bodies[source].mass();  // a rigid motion keeps the volume
+      moved.centre.Transform(relative_motion(bodies[source], bodies[i]));
+      bodies[i].mass_cache->value = moved;
+    });
+  }, 64);
 }
 
 TopoDS_Shape assembly_compound(const Assembly& assembly) {

@@ -75,7 +75,7 @@ std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partit
   if (max_gap <= 0) return out;
   std::vector<Bnd_Box> boxes;
   for (const BodyPartitions& body : partitions) boxes.push_back(body.box);
-  for (const auto& [i, j] : broad_phase(boxes, max_gap)) {
+  for (const auto& [i, j] : broad_phase(boxes, max_gap).pairs) {
     const int a = std::min(i, j), b = std::max(i, j);
     if (a < 0 || b >= static_cast<int>(partitions.size())) continue;
     for (const Partition& pa : partitions[a].partitions) {

@@ -50,13 +50,17 @@ struct SurfaceParams {
 //    reference direction `ref_dir` perpendicular to the axis.
 //  - Planes: the 2D outline in the plane frame (origin `location`, x = ref_dir,
 //    y = axis ^ ref_dir): closed polygons, outer loops counter-clockwise,
-//    holes clockwise.
+//    holes clockwise, each chord with the bulge of its curve (Point2).
 struct AngularInterval {
   double start = 0;  // radians in [0, 2 pi)
   double span = 0;   // radians in (0, 2 pi]
 };
 struct Point2 {
   double x = 0, y = 0;
+  // Twice the signed area between the boundary curve and the chord from this
+  // point to the next (positive where the curve swings counter-clockwise of
+  // the chord): Green's theorem on chords plus bulges gives exact areas.
+  double bulge = 0;
 };
 using Polygon2 = std::vector<Point2>;
 
@@ -123,9 +127,10 @@ BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol)
 // The extent of a revolution face seen from another frame on the same axis
 // line (origin on the axis, axis of either sign, ref_dir perpendicular to it):
 // axial range measured along `axis` from `origin`, angles from `ref_dir`
-// counter-clockwise about `axis`.
+// counter-clockwise about `axis`. `linear` is the model's linear tolerance
+// (a sphere face re-measured about another axis classifies its poles with it).
 Extent revolution_extent_in(const FaceInfo& face, const gp_Pnt& origin, const gp_Dir& axis,
-                            const gp_Dir& ref_dir);
+                            const gp_Dir& ref_dir, double linear);
 
 // The outline of a planar face in another plane frame (origin, x_dir, y_dir),
 // loops re-oriented so outer loops are counter-clockwise in that frame.
