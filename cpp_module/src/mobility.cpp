@@ -6,13 +6,15 @@
 // component has no loop, by a dense SVD of that component only otherwise.
 #include <algorithm>
 #include <cmath>
-#include <memory>
+#include <optional>
 #include <numeric>
 #include <unordered_map>
 
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
+#include <TopLoc_Location.hxx>
 #include <gp_Mat.hxx>
+#include <gp_Trsf.hxx>
 
 #include "contactcore/joints.h"
 #include "twist_math.h"
@@ -62,39 +64,68 @@ struct UnionFind {
   }
 };
 
-// Whether a body is balanced about a line: its centre of mass on the line
-// and the line an axis of symmetry of its inertia (the two moments across it
-// equal). Such a body spinning about the line moves no mass around.
-class Balance {
+// Mass, centre and inertia (about the centre) of a body's solids. Placed
+// copies of one part share their TShape: computed once per TShape at the
+// identity placement, then moved (centre) and rotated (inertia).
+struct MassData {
+  double mass = 0;
+  Vec3 centre = Vec3::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+};
+
+class MassCache {
  public:
-  explicit Balance(const TopoDS_Shape& shape) {
-    GProp_GProps props;
-    BRepGProp::VolumeProperties(shape, props);
-    mass_ = props.Mass();
-    centre_ = vec(props.CentreOfMass());
-    const gp_Mat m = props.MatrixOfInertia();
+  MassData of(const TopoDS_Shape& shape) {
+    const gp_Trsf trsf = shape.Location().Transformation();
+    if (std::abs(trsf.ScaleFactor() - 1.0) > 1e-12) return compute(shape);
+    const void* key = shape.TShape().get();
+    auto it = cache_.find(key);
+    if (it == cache_.end()) it = cache_.emplace(key, compute(shape.Located(TopLoc_Location()))).first;
+    const MassData& local = it->second;
+    MassData out;
+    out.mass = local.mass;
+    gp_Pnt centre(local.centre.x(), local.centre.y(), local.centre.z());
+    out.centre = vec(centre.Transformed(trsf));
+    Eigen::Matrix3d rotation;
+    const gp_Mat r = trsf.VectorialPart();
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) inertia_(i, j) = m.Value(i + 1, j + 1);
-  }
-  bool about(const Vec3& point, const Vec3& direction) const {
-    if (mass_ <= 0) return false;
-    const Vec3 d = direction.normalized();
-    const double scale = inertia_.trace();
-    const double radius = std::sqrt(scale / mass_);  // radius of gyration, for the distance test
-    const Vec3 off = (centre_ - point) - d * d.dot(centre_ - point);
-    if (off.norm() > 1e-4 * radius) return false;
-    Vec3 u, v;
-    perpendiculars(d, u, v);
-    const double tol = 1e-4 * scale;
-    return std::abs(u.dot(inertia_ * u) - v.dot(inertia_ * v)) <= tol && std::abs(u.dot(inertia_ * v)) <= tol &&
-           std::abs(u.dot(inertia_ * d)) <= tol && std::abs(v.dot(inertia_ * d)) <= tol;
+      for (int j = 0; j < 3; ++j) rotation(i, j) = r.Value(i + 1, j + 1);
+    out.inertia = rotation * local.inertia * rotation.transpose();
+    return out;
   }
 
  private:
-  double mass_ = 0;
-  Vec3 centre_;
-  Eigen::Matrix3d inertia_;
+  static MassData compute(const TopoDS_Shape& shape) {
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(shape, props);
+    MassData out;
+    out.mass = props.Mass();
+    out.centre = vec(props.CentreOfMass());
+    const gp_Mat m = props.MatrixOfInertia();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) out.inertia(i, j) = m.Value(i + 1, j + 1);
+    return out;
+  }
+  std::unordered_map<const void*, MassData> cache_;
 };
+
+// Whether a body is balanced about a line: its centre of mass on the line
+// and the line an axis of symmetry of its inertia (the two moments across it
+// equal). Such a body spinning about the line moves no mass around.
+bool balanced_about(const MassData& m, const Vec3& point, const Vec3& direction) {
+  if (m.mass <= 0) return false;
+  const Vec3 d = direction.normalized();
+  const double scale = m.inertia.trace();
+  const double radius = std::sqrt(scale / m.mass);  // radius of gyration, for the distance test
+  const Vec3 off = (m.centre - point) - d * d.dot(m.centre - point);
+  if (off.norm() > 1e-4 * radius) return false;
+  Vec3 u, v;
+  perpendiculars(d, u, v);
+  const double tol = 1e-4 * scale;
+  const Eigen::Matrix3d& j = m.inertia;
+  return std::abs(u.dot(j * u) - v.dot(j * v)) <= tol && std::abs(u.dot(j * v)) <= tol &&
+         std::abs(u.dot(j * d)) <= tol && std::abs(v.dot(j * d)) <= tol;
+}
 
 struct Edge {  // one body pair, constraints on t_b - t_a, rows in the frame at `centre`
   int a = 0, b = 0;
@@ -116,6 +147,7 @@ struct Solver {
   std::vector<Eigen::MatrixXd> ambiguity;  // per group root: spins shared by all its bodies
   std::vector<Eigen::MatrixXd> motion;     // per group root: twists relative to the ground
   UnionFind groups{0};
+  MassCache masses;
 
   Solver(const JointsResult& j, const ContactsResult& c, double t) : joints(j), contacts(c), tol(t) {}
 
@@ -180,7 +212,7 @@ struct Solver {
         }
       }
       Eigen::MatrixXd basis(6, 0);
-      std::unique_ptr<Balance> balance;
+      std::optional<MassData> mass;
       for (const FreeRotation& axis : candidates) {
         const Vec3 d = vec(axis.direction), p = vec(axis.point);
         Vec6 spin;  // rotation about the line, in the body frame
@@ -191,8 +223,8 @@ struct Solver {
           if (residual.norm() > 1e-6 * std::max(1.0, spin.norm())) free = false;
         }
         if (!free) continue;
-        if (!balance) balance = std::make_unique<Balance>(assembly.bodies[body].shape);
-        if (!balance->about(p, d)) continue;
+        if (!mass) mass = masses.of(assembly.bodies[body].shape);
+        if (!balanced_about(*mass, p, d)) continue;
         const Eigen::MatrixXd grown = concat(basis, spin);
         if (rank_of(grown, 1e-6) > basis.cols()) {
           basis = range_space(grown, 1e-6);
@@ -269,10 +301,11 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
                                  "ground body index " + std::to_string(ground) + " out of range");
     return out;
   }
+  Solver s(joints, contacts, options.rank_tolerance);
   if (ground < 0) {
     double best = -1;
     for (int i = 0; i < n; ++i) {
-      const double volume = mass_properties(assembly.bodies[i].shape).volume;
+      const double volume = s.masses.of(assembly.bodies[i].shape).mass;
       if (volume > best) best = volume, ground = i;
     }
   }
@@ -282,7 +315,6 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
     return out;
   }
 
-  Solver s(joints, contacts, options.rank_tolerance);
   s.n = n;
   s.groups = UnionFind(n);
   s.build_edges();
@@ -373,26 +405,26 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
       component_dof += static_cast<int>(nulls.cols());
       for (int g : members)
         s.motion[g] = column.count(g) ? range_space(nulls.middleRows(column[g], 6), 1e-6) : Eigen::MatrixXd(6, 0);
-      // Groups that the loops hold together (relative motion made of their spins only).
-      for (int g : members)
-        for (const auto& [h, between] : neighbours[g]) {
-          const int rg = s.groups.find(g), rh = s.groups.find(h);
-          if (rg == rh) continue;
-          Eigen::MatrixXd relative(6, nulls.cols());
-          for (Eigen::Index k = 0; k < nulls.cols(); ++k) {
-            const Vec6 tg = column.count(g) ? Vec6(nulls.col(k).segment<6>(column[g])) : Vec6::Zero();
-            const Vec6 th = column.count(h) ? Vec6(nulls.col(k).segment<6>(column[h])) : Vec6::Zero();
-            relative.col(k) = move_twists(s.centre[h], s.centre[g], s.length) * th - tg;
+      // Groups that the loops hold together (relative motion made of their
+      // spins only), to a fixed point. A merged group moves as the root it keeps.
+      const auto twist_of = [&](int root, Eigen::Index k) {
+        return column.count(root) ? Vec6(nulls.col(k).segment<6>(column[root])) : Vec6(Vec6::Zero());
+      };
+      for (bool changed = true; changed;) {
+        changed = false;
+        for (int g : members)
+          for (const auto& [h, between] : neighbours[g]) {
+            const int rg = s.groups.find(g), rh = s.groups.find(h);
+            if (rg == rh) continue;
+            const bool keep_g = rg == ground_group || (rh != ground_group && rg < rh);
+            const int keep = keep_g ? rg : rh, drop = keep_g ? rh : rg;
+            Eigen::MatrixXd relative(6, nulls.cols());
+            for (Eigen::Index k = 0; k < nulls.cols(); ++k)
+              relative.col(k) = move_twists(s.centre[drop], s.centre[keep], s.length) * twist_of(drop, k) -
+                                twist_of(keep, k);
+            if (s.try_merge(keep, drop, range_space(relative, 1e-6))) changed = true;
           }
-          // Both still the roots they were when solved (their columns); keep the
-          // ground's group (or the lower index) and its motion.
-          if (rg != g || rh != h) continue;
-          const bool keep_g = rg == ground_group || (rh != ground_group && rg < rh);
-          const int keep = keep_g ? rg : rh, drop = keep_g ? rh : rg;
-          const Eigen::MatrixXd rel_keep = keep_g ? range_space(relative, 1e-6)
-                                                  : s.moved(range_space(relative, 1e-6), rg, rh);
-          s.try_merge(keep, drop, rel_keep);
-        }
+      }
     }
   }
 
