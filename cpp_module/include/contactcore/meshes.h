@@ -31,8 +31,9 @@ struct TaggedMesh {
   int partition_count = 0;
 };
 
-// Minimum angle and aspect ratio (longest edge over the shortest altitude
-// times 2/sqrt(3): 1 for an equilateral triangle) distribution.
+// Minimum angle and aspect ratio distribution (longest edge over the shortest
+// altitude, times sqrt(3)/2: 1 for an equilateral triangle, the paper's
+// equilaterality).
 struct MeshQuality {
   std::size_t triangles = 0;
   std::size_t boundary_edges = 0;     // edges in one triangle only
