@@ -114,6 +114,8 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     Bnd_Box model_box;
     for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, model_box, false);
     result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
+    result.status = check_tolerances(model_box, result.tolerances);
+    if (!result.status.ok()) return result;
 
     result.partitions.reserve(n);
     for (size_t i = 0; i < n; ++i) {
