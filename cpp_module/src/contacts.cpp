@@ -232,6 +232,8 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     Bnd_Box model_box;
     for (const Bnd_Box& box : boxes) model_box.Add(box);
     result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
+    result.status = check_tolerances(model_box, result.tolerances);
+    if (!result.status.ok()) return result;
 
     // Each distinct shape partitioned once (partition_shape only reads the
     // shapes, so bodies sharing TShapes through instancing can run
