@@ -186,3 +186,18 @@ def test_interferences_are_printed_when_present():
     assert "Interferences (overlapping material, not contacts): 1" in table
     assert "Column" in table and "12.5 mm3" in table
     assert joints.interferences_of(SimpleNamespace(), ["A"]) == []
+
+
+def test_shaft_in_a_120_degree_cradle_lifts_out_within_30_degrees_of_vertical(sample):
+    # The cradle (below) holds the shaft (axis x) over 120 deg centred on -z. By
+    # hand: as a joint, cylindrical about the axis; one-sided, its normals at the
+    # span's ends are (0, -/+sin 60, cos 60), so the shaft leaves along the axis
+    # (both ways) or upwards within 90 - 60 = 30 deg of +z: generators
+    # (0, -/+sin 30, cos 30).
+    _, found = joints.joints_in_step(sample("cases/cradle_120.step"))
+    j = joint_between(found, "Cradle", "Shaft")
+    assert (j.type, j.dof, j.one_sided) == ("cylindrical", 2, 2)
+    assert parallel(j.rotations[0]["direction"], (1, 0, 0)) and parallel(j.translations[0]["direction"], (1, 0, 0))
+    generators = sorted(tuple(round(x, 9) + 0.0 for x in d) for d in j.free_directions)
+    assert generators == [(-1.0, 0.0, 0.0), (0.0, -0.5, round(3 ** 0.5 / 2, 9)), (0.0, 0.5, round(3 ** 0.5 / 2, 9)),
+                          (1.0, 0.0, 0.0)]
