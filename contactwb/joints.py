@@ -67,6 +67,7 @@ class Joints:
     interferences: List[dict] = field(default_factory=list)
     clearance_gap: float = 0.0
     raw: Optional[object] = None  # (contactcore.ContactsResult, .JointsResult, .MobilityResult)
+    _body_index: dict = field(default_factory=dict, repr=False)
 
     def to_json(self):
         """The CLI's --joints --json additions."""
@@ -110,6 +111,15 @@ class Joints:
             for i in self.interferences:
                 lines.append(f"  {i['a']:<{width}}  <->  {i['b']:<{width}}  {i['volume']:.4g} mm3")
         return "\n".join(lines)
+
+    def free_directions_of(self, body):
+        """Directions in which `body` (a name) can translate out, every part it
+        touches held still: generators of that cone, [] when it cannot."""
+        raw, found, _ = self.raw
+        if body not in self._body_index:
+            raise core.ContactsError(f"no body named '{body}'")
+        index = self._body_index[body]
+        return [_vec(d) for d in core.contactcore.body_free_directions(raw, found, index)]
 
     def write_graph(self, path):
         """Writes the liaison graph: .dot as text, .svg or .png rendered by Graphviz `dot`."""
@@ -177,7 +187,7 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     return result, Joints(source=source, joints=records, mobility=record,
                           dot=cc.liaison_graph_dot(assembly, found, mobility), clearances=clearances,
                           interferences=interferences_of(raw, names), clearance_gap=clearance_gap,
-                          raw=(raw, found, mobility))
+                          raw=(raw, found, mobility), _body_index={name: i for i, name in enumerate(names)})
 
 
 def interferences_of(raw, names):

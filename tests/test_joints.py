@@ -101,6 +101,20 @@ def test_motor_joints_groups_and_mobility(sample):
         assert joint_between(found, f"Magnet-{k}", "Rotor-back").type == "planar"
     for part in ("Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"):
         assert joint_between(found, "Axis", part).type == "cylindrical"
+    # Ways out with every neighbour held: a screw up its axis only (head first),
+    # the stator off the body's shoulder towards the front (+z) only (nothing
+    # else touches it), the rotor-front none (planes on both sides, the shaft across).
+    assert found.free_directions_of("Screw-3") == [pytest.approx([0, 0, 1], abs=1e-9)]
+    assert found.free_directions_of("Stator") == [pytest.approx([0, 0, 1], abs=1e-9)]
+    assert found.free_directions_of("Rotor-front") == []
+
+
+def test_motor_document_gives_the_same_mobility(sample):
+    done = run_cli(sample("motor.FCStd"), "--joints", "--json")
+    assert done.returncode == 0, done.stderr
+    mobility = json.loads(done.stdout)["mobility"]
+    assert (mobility["ground"], mobility["dof"], mobility["passive"]) == ("Body", 26, 9)
+    assert set(mobility["groups"][0]) == MOTOR_GROUND_GROUP
 
 
 def test_motor_answers_do_not_depend_on_body_order(sample):
