@@ -396,3 +396,19 @@ TEST(Clearances, PinInLargerBore) {
   EXPECT_NEAR(r.clearances[0].gap, 0.2, 1e-9);
   EXPECT_TRUE(find_clearances(r.partitions, 0.1, r.tolerances).empty());
 }
+
+// Results of another assembly, or a ground out of range: a clear error, no crash.
+TEST(Joints, MismatchedInputIsAnError) {
+  const Analysed a = analyse({{"Base", box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 10))},
+                              {"Top", box(gp_Pnt(10, 10, 10), gp_Pnt(30, 30, 15))}});
+  Assembly one;
+  one.bodies.push_back(a.assembly.bodies[0]);
+  const JointsResult wrong = find_joints(one, a.contacts);
+  EXPECT_EQ(wrong.status.code, StatusCode::InvalidInput);
+  EXPECT_NE(wrong.status.message.find("another assembly"), std::string::npos);
+  const MobilityResult m = assembly_mobility(one, a.contacts, a.joints);
+  EXPECT_EQ(m.status.code, StatusCode::InvalidInput);
+  MobilityOptions far;
+  far.ground = 5;
+  EXPECT_EQ(assembly_mobility(a.assembly, a.contacts, a.joints, far).status.code, StatusCode::InvalidInput);
+}
