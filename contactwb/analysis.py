@@ -229,10 +229,11 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pa
         raise core.ContactsError(f"{error} in file '{path}'") from error
 
 
-def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None):
+def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None,
+                            max_pairs=None):
     """Contacts between (name, Part.Shape) pairs placed globally."""
     assembly = core.assembly_from_shapes(named_shapes)
-    return find_contacts_in_assembly(assembly, source, linear, angular, progress)
+    return find_contacts_in_assembly(assembly, source, linear, angular, progress, max_pairs=max_pairs)
 
 
 def find_contacts_in_document(doc, objects=None, linear=None, angular=None, progress=None, max_pairs=None):

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <exception>
 #include <sstream>
+#include <tuple>
+#include <unordered_map>
 
 #include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
@@ -112,6 +114,37 @@ std::string faces_text(const std::vector<int>& faces) {
   return text;
 }
 
+// Two bodies' shapes (their instance sources) and the placement of the
+// second relative to the first, rounded far below the tolerance: equal keys,
+// equal contacts up to a rigid motion.
+struct PairKey {
+  int source_a, source_b;
+  std::array<long long, 12> placement;
+  bool operator==(const PairKey& o) const {
+    return source_a == o.source_a && source_b == o.source_b && placement == o.placement;
+  }
+};
+struct PairKeyHash {
+  std::size_t operator()(const PairKey& key) const {
+    std::size_t h = std::hash<long long>()(key.source_a) * 1000003u ^ std::hash<long long>()(key.source_b);
+    for (long long v : key.placement) h = h * 1000003u ^ std::hash<long long>()(v);
+    return h;
+  }
+};
+
+PairKey pair_key(int source_a, int source_b, const Body& a, const Body& b, double linear) {
+  const gp_Trsf relative =
+      a.shape.Location().Transformation().Inverted().Multiplied(b.shape.Location().Transformation());
+  PairKey key{source_a, source_b, {}};
+  for (int row = 1; row <= 3; ++row) {
+    for (int col = 1; col <= 4; ++col) {
+      const double quantum = col == 4 ? linear * 1e-3 : 1e-10;
+      key.placement[(row - 1) * 4 + col - 1] = std::llround(relative.Value(row, col) / quantum);
+    }
+  }
+  return key;
+}
+
 // Span of a box along each axis, grown by `gap`, for the sweep.
 struct Span {
   std::array<double, 3> lo, hi;
@@ -154,7 +187,7 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
   }
   std::sort(spans.begin(), spans.end(), [axis](const Span& l, const Span& r) { return l.lo[axis] < r.lo[axis]; });
   using Clock = std::chrono::steady_clock;
-  auto last = Clock::now();
+  auto last = Clock::now() - std::chrono::seconds(1);  // report at the start too
   for (std::size_t i = 0; i < spans.size(); ++i) {
     if (progress && (i & 255) == 0 && Clock::now() - last > std::chrono::milliseconds(50)) {
       if (!progress->report("broad phase", static_cast<double>(i) / static_cast<double>(spans.size()))) {
@@ -164,9 +197,9 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
       last = Clock::now();
     }
     for (std::size_t j = i + 1; j < spans.size() && spans[j].lo[axis] <= spans[i].hi[axis]; ++j) {
-      const int a = spans[i].body, b = spans[j].body;
-      if (!boxes_meet(boxes[a], boxes[b], gap)) continue;
-      out.pairs.emplace_back(std::min(a, b), std::max(a, b));
+      const int a = std::min(spans[i].body, spans[j].body), b = std::max(spans[i].body, spans[j].body);
+      if (!boxes_meet(boxes[a], boxes[b], gap)) continue;  // in index order: boxes' own gaps differ
+      out.pairs.emplace_back(a, b);
       if (out.pairs.size() > max_pairs) {
         std::ostringstream message;
         message << "more than " << max_pairs << " body pairs have meeting boxes (up to " << work
@@ -199,6 +232,8 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     Bnd_Box model_box;
     for (const Bnd_Box& box : boxes) model_box.Add(box);
     result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
+    result.status = check_tolerances(model_box, result.tolerances);
+    if (!result.status.ok()) return result;
 
     // Each distinct shape partitioned once (partition_shape only reads the
     // shapes, so bodies sharing TShapes through instancing can run
@@ -257,46 +292,48 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     result.body_pairs = std::move(broad.pairs);
     result.times.broad_phase = seconds_since(start);
 
-    // Candidates per chunk of body pairs, concatenated in pair order.
-    start = Clock::now();
-    constexpr std::size_t kPairChunk = 256;
-    const std::size_t pair_chunks = (result.body_pairs.size() + kPairChunk - 1) / kPairChunk;
-    std::vector<std::vector<Candidate>> chunk_candidates(pair_chunks);
-    if (!parallel_for(pair_chunks, threads, progress, "candidates", [&](std::size_t c) {
-          const std::size_t end = std::min(result.body_pairs.size(), (c + 1) * kPairChunk);
-          for (std::size_t k = c * kPairChunk; k < end; ++k)
-            pair_candidates(result.body_pairs[k].first, result.body_pairs[k].second, keys, result.partitions,
-                            result.tolerances, chunk_candidates[c]);
-        }))
-      return cancelled();
-    std::vector<Candidate> candidates;
+    // Body pairs placed alike (the same two shapes, the second placed the
+    // same way relative to the first: a bolt in each of 500 plates) make the
+    // same contacts, moved: each such group is tested once, on its first pair.
+    const std::vector<std::pair<int, int>>& pairs = result.body_pairs;
+    std::vector<std::size_t> representative(pairs.size());
     {
-      std::size_t total = 0;
-      for (const auto& chunk : chunk_candidates) total += chunk.size();
-      candidates.reserve(total);
-      for (auto& chunk : chunk_candidates) {
-        candidates.insert(candidates.end(), chunk.begin(), chunk.end());
-        std::vector<Candidate>().swap(chunk);
+      std::unordered_map<PairKey, std::size_t, PairKeyHash> first;
+      if (options.reuse_instances) first.reserve(pairs.size());
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        representative[k] = k;
+        if (!options.reuse_instances) continue;
+        const auto [ia, ib] = pairs[k];
+        const PairKey key = pair_key(sources[ia], sources[ib], assembly.bodies[ia], assembly.bodies[ib],
+                                     result.tolerances.linear);
+        representative[k] = first.try_emplace(key, k).first->second;
       }
     }
-    result.candidates = candidates.size();
+    std::vector<std::size_t> tested;  // the pairs whose candidates are tested, in order
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (representative[k] == k) tested.push_back(k);
+
+    start = Clock::now();
+    std::vector<std::vector<Candidate>> pair_candidates_of(pairs.size());
+    if (!parallel_for(tested.size(), threads, progress, "candidates", [&](std::size_t t) {
+          const auto [ia, ib] = pairs[tested[t]];
+          pair_candidates(ia, ib, keys, result.partitions, result.tolerances, pair_candidates_of[tested[t]]);
+        }, 64))
+      return cancelled();
+    for (std::size_t k = 0; k < pairs.size(); ++k) result.candidates += pair_candidates_of[representative[k]].size();
     result.times.candidates = seconds_since(start);
 
-    // The tests, per chunk of candidates; a pair whose test throws is skipped
-    // and recorded, the rest kept.
+    // The tests; a pair whose test throws is skipped and recorded, the rest kept.
     start = Clock::now();
     const PairContext ctx{result.partitions, result.tolerances, options.min_area_ratio};
-    constexpr std::size_t kCandidateChunk = 16;
-    const std::size_t chunks = (candidates.size() + kCandidateChunk - 1) / kCandidateChunk;
-    std::vector<std::vector<Contact>> chunk_contacts(chunks);
-    std::vector<std::vector<SkippedPair>> chunk_skipped(chunks);
-    if (!parallel_for(chunks, threads, progress, "contacts", [&](std::size_t chunk) {
-          const std::size_t end = std::min(candidates.size(), (chunk + 1) * kCandidateChunk);
-          for (std::size_t k = chunk * kCandidateChunk; k < end; ++k) {
-            const Candidate& c = candidates[k];
+    std::vector<std::vector<Contact>> pair_contacts(pairs.size());
+    std::vector<std::vector<SkippedPair>> pair_skipped(pairs.size());
+    if (!parallel_for(tested.size(), threads, progress, "contacts", [&](std::size_t t) {
+          const std::size_t k = tested[t];
+          std::vector<Contact>& out = pair_contacts[k];
+          for (const Candidate& c : pair_candidates_of[k]) {
             const Partition& pa = result.partitions[c.body_a].partitions[c.partition_a];
             const Partition& pb = result.partitions[c.body_b].partitions[c.partition_b];
-            std::vector<Contact>& out = chunk_contacts[chunk];
             const std::size_t before = out.size();
             std::string failure;
             bool failed = false;
@@ -312,21 +349,39 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
             }
             if (failed) {
               out.resize(before);  // nothing half-done from the failed pair
-              chunk_skipped[chunk].push_back({c.body_a, c.body_b, c.partition_a, c.partition_b, pa.faces, pb.faces,
-                                              failure.empty() ? "unknown error" : failure});
+              pair_skipped[k].push_back({c.body_a, c.body_b, c.partition_a, c.partition_b, pa.faces, pb.faces,
+                                         failure.empty() ? "unknown error" : failure});
             }
           }
-        }))
+          std::vector<Candidate>().swap(pair_candidates_of[k]);
+        }, 4))
       return cancelled();
-    for (std::size_t chunk = 0; chunk < chunks; ++chunk) {
-      for (Contact& contact : chunk_contacts[chunk]) result.contacts.push_back(std::move(contact));
-      for (SkippedPair& skipped : chunk_skipped[chunk]) {
-        result.messages.push_back("skipped the candidate pair '" + assembly.bodies[skipped.body_a].name + "' " +
-                                  faces_text(skipped.faces_a) + " / '" + assembly.bodies[skipped.body_b].name +
-                                  "' " + faces_text(skipped.faces_b) + ": " + skipped.message);
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      const std::size_t r = representative[k];
+      const auto [ia, ib] = pairs[k];
+      const gp_Trsf motion = r == k ? gp_Trsf() : relative_motion(assembly.bodies[pairs[r].first], assembly.bodies[ia]);
+      for (const Contact& found : pair_contacts[r]) {
+        result.contacts.push_back(found);
+        if (r == k) continue;
+        Contact& moved = result.contacts.back();
+        moved.body_a = ia, moved.body_b = ib;
+        moved.point.Transform(motion);
+        moved.direction.Transform(motion);
+      }
+      for (SkippedPair skipped : pair_skipped[r]) {
+        skipped.body_a = ia, skipped.body_b = ib;
+        result.messages.push_back("skipped the candidate pair '" + assembly.bodies[ia].name + "' " +
+                                  faces_text(skipped.faces_a) + " / '" + assembly.bodies[ib].name + "' " +
+                                  faces_text(skipped.faces_b) + ": " + skipped.message);
         result.skipped.push_back(std::move(skipped));
       }
     }
+    // Pairs in order, then partitions: the order does not hang on rounding
+    // (partitions with nearly equal keys meet in either order).
+    std::stable_sort(result.contacts.begin(), result.contacts.end(), [](const Contact& l, const Contact& r) {
+      return std::tie(l.body_a, l.body_b, l.partition_a, l.partition_b) <
+             std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
+    });
     result.times.area = seconds_since(start);
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <numeric>
 #include <optional>
@@ -1220,7 +1221,9 @@ double Extent::angular_span() const {
 Tolerances default_tolerances(const Bnd_Box& model_box) {
   Tolerances tol;
   const double diagonal = model_box.IsVoid() ? 0 : std::sqrt(model_box.SquareExtent());
-  tol.linear = std::clamp(1e-5 * diagonal, 1e-6, 1e-2);
+  // Relative, with no floor or ceiling: the motor scaled by 1e-6 or 1e6 must
+  // give its own contacts (an empty box keeps the plain default).
+  if (diagonal > 0 && std::isfinite(diagonal)) tol.linear = kDefaultRelativeLinear * diagonal;
   tol.angular = 1e-4;
   return tol;
 }
@@ -1231,6 +1234,33 @@ Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> li
   if (linear) tol.linear = *linear;
   if (angular) tol.angular = *angular;
   return tol;
+}
+
+Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances) {
+  const auto text = [](double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", value);
+    return std::string(buffer);
+  };
+  const auto fail = [](const std::string& message) { return Status::failure(StatusCode::InvalidInput, message); };
+  if (!std::isfinite(tolerances.linear) || !(tolerances.linear > 0))
+    return fail("linear tolerance must be a positive, finite length in mm; got " + text(tolerances.linear));
+  if (!std::isfinite(tolerances.angular) || !(tolerances.angular > 0))
+    return fail("angular tolerance must be a positive, finite angle in radians; got " + text(tolerances.angular));
+  if (tolerances.angular > kMaxAngular)
+    return fail("angular tolerance " + text(tolerances.angular) + " rad is too large (at most " + text(kMaxAngular) +
+                " rad)");
+  const double diagonal = model_box.IsVoid() ? 0 : std::sqrt(model_box.SquareExtent());
+  if (diagonal > 0 && std::isfinite(diagonal)) {
+    if (tolerances.linear > kMaxRelativeLinear * diagonal)
+      return fail("linear tolerance " + text(tolerances.linear) + " mm is too large for this model (box diagonal " +
+                  text(diagonal) + " mm; at most " + text(kMaxRelativeLinear * diagonal) + " mm)");
+    // Below this, coordinates of the model's size cannot tell points apart.
+    if (tolerances.linear < 1e-12 * diagonal)
+      return fail("linear tolerance " + text(tolerances.linear) + " mm is below the precision of coordinates of a " +
+                  text(diagonal) + " mm model");
+  }
+  return Status::success();
 }
 
 std::vector<AngularInterval> unite(std::vector<AngularInterval> intervals) {

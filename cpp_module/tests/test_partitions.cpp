@@ -248,7 +248,7 @@ TEST(PartitionHelpers, ToStrings) {
   EXPECT_STREQ(to_string(MaterialSide::Concave), "concave");
 }
 
-TEST(PartitionHelpers, DefaultTolerancesScaleWithTheModelAndClamp) {
+TEST(PartitionHelpers, DefaultTolerancesScaleWithTheModelWithoutFloorOrCeiling) {
   Bnd_Box box;
   box.Update(0, 0, 0, 300, 400, 0);  // diagonal 500
   box.SetGap(0);
@@ -258,11 +258,11 @@ TEST(PartitionHelpers, DefaultTolerancesScaleWithTheModelAndClamp) {
 
   Bnd_Box huge;
   huge.Update(0, 0, 0, 1e6, 0, 0);
-  EXPECT_DOUBLE_EQ(default_tolerances(huge).linear, 1e-2);
+  EXPECT_NEAR(default_tolerances(huge).linear, 10, 1e-9);
   Bnd_Box tiny;
   tiny.Update(0, 0, 0, 1e-3, 0, 0);
-  EXPECT_DOUBLE_EQ(default_tolerances(tiny).linear, 1e-6);
-  EXPECT_DOUBLE_EQ(default_tolerances(Bnd_Box()).linear, 1e-6);
+  EXPECT_NEAR(default_tolerances(tiny).linear, 1e-8, 1e-20);
+  EXPECT_DOUBLE_EQ(default_tolerances(Bnd_Box()).linear, Tolerances{}.linear);
 }
 
 TEST(PartitionHelpers, UniteMergesTouchingAndWrappingIntervals) {

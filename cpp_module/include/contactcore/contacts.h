@@ -89,7 +89,7 @@ struct ContactsResult {
   Tolerances tolerances;
   std::vector<BodyPartitions> partitions;  // one per body
   std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
-  std::size_t candidates = 0;                   // partition pairs tested for area
+  std::size_t candidates = 0;  // candidate partition pairs (those of body pairs placed alike each counted)
   std::vector<Contact> contacts;
   std::vector<Interference> interferences;
   std::vector<Clearance> clearances;

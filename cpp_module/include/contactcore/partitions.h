@@ -99,14 +99,26 @@ struct Tolerances {
   double angular = 1e-4;  // radians
 };
 
-// Defaults that scale with the model: linear = 1e-5 of the box diagonal,
-// clamped to [1e-6, 1e-2] mm; angular 1e-4 rad. Shapes are in mm, so the same
-// assembly in inch and in mm gets the same tolerances.
+// Defaults that scale with the model: linear = 1e-5 of the box diagonal (no
+// floor or ceiling, so a model scaled by 1e-6 or 1e6 behaves the same);
+// angular 1e-4 rad. Shapes are in mm, so the same assembly in inch and in mm
+// gets the same tolerances.
+constexpr double kDefaultRelativeLinear = 1e-5;
 Tolerances default_tolerances(const Bnd_Box& model_box);
 
 // Those defaults, with whichever value the caller gives instead.
 Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> linear,
                               std::optional<double> angular);
+
+// Largest tolerances accepted, relative to the model: linear below 1 % of the
+// box diagonal (beyond it every face "touches" every other and the search
+// blows up), angular below 0.1 rad (about 6 degrees).
+constexpr double kMaxRelativeLinear = 1e-2;
+constexpr double kMaxAngular = 0.1;
+
+// InvalidInput naming the bad value unless both tolerances are finite,
+// positive and below those bounds.
+Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances);
 
 struct BodyPartitions {
   Status status;
