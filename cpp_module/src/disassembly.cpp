@@ -11,6 +11,8 @@
 
 #include <Standard_Failure.hxx>
 
+#include "contactcore/joints.h"
+
 namespace contactcore {
 
 namespace {
@@ -330,12 +332,20 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
     parts[i].model = built.model;
     if (i < extra_directions.size()) parts[i].directions = extra_directions[i];
   }
-  // Each contact's axis (joints) or normal (planar fits) is a way out for its parts.
+  // Each contact's axis (joints) or normal (planar fits) is a way out for its parts, and so is
+  // every free translation of the pair joints (b leaves a along d, a leaves b along -d).
   for (const Contact& c : found.contacts) {
     const Direction d{c.direction.X(), c.direction.Y(), c.direction.Z()};
     parts[c.body_a].directions.push_back(d);
     parts[c.body_b].directions.push_back(d);
   }
+  const JointsResult joints = find_joints(assembly, found);
+  if (joints.status.ok())
+    for (const PairJoint& joint : joints.joints)
+      for (const gp_Dir& d : joint.free_directions) {
+        parts[joint.body_b].directions.push_back({d.X(), d.Y(), d.Z()});
+        parts[joint.body_a].directions.push_back({-d.X(), -d.Y(), -d.Z()});
+      }
   return plan_disassembly(parts, found.contacts, options, progress);
 }
 
