@@ -10,6 +10,9 @@ void bind_bodies(py::module_& m);
 void bind_partitions(py::module_& m);
 void bind_contacts(py::module_& m);
 void bind_joints(py::module_& m);
+void bind_meshes(py::module_& m);
+void bind_collision(py::module_& m);
+void bind_disassembly(py::module_& m);
 }  // namespace contactcore::bindings
 
 PYBIND11_MODULE(contactcore, m) {
@@ -20,4 +23,7 @@ PYBIND11_MODULE(contactcore, m) {
   bind_partitions(m);
   bind_contacts(m);
   bind_joints(m);
+  bind_meshes(m);
+  bind_collision(m);
+  bind_disassembly(m);
 }
