@@ -135,6 +135,62 @@ def _make_names_unique(bodies):
         body.name = name
 
 
+def _object_path(subname):
+    """The object part of a selection subname ("Part.Link.Face3" -> "Part.Link.")."""
+    if not subname or subname.endswith("."):
+        return subname or ""
+    prefix = subname.rpartition(".")[0]
+    return prefix + "." if prefix else ""
+
+
+def _element_face(subname):
+    """N of a trailing "FaceN" in a selection subname, else None."""
+    element = (subname or "").rpartition(".")[2]
+    if element.startswith("Face") and element[4:].isdigit():
+        return int(element[4:])
+    return None
+
+
+def _body_matches(body, root, subname):
+    """Whether a selection (root object, subname) picks or contains this body."""
+    path = _object_path(subname)
+    if body.root is root:
+        if not (body.subname.startswith(path) or path.startswith(body.subname)):
+            return False
+    elif root is not body.obj and root not in body.containers \
+            and body.obj.getLinkedObject(True) is not root:
+        return False
+    face = _element_face(subname)
+    if face is not None and body.face_map is not None and path == body.subname:
+        return face in body.face_map  # a face of one solid of a multi-solid feature
+    return True
+
+
+def bodies_of_selection(bodies, entries):
+    """The bodies (of `bodies`, named for the whole document) that the
+    selection entries pick: (object, [subnames]) pairs as the 3D view and the
+    tree give them unresolved (top-level object, "Part.Link.Body.Pad.Face3"),
+    or plain objects. A face or an inner feature picks its body (with the
+    link's placement), a container all the bodies inside it. Contact analyses
+    and contacts are ignored."""
+    selected = []
+    for entry in entries:
+        root, subnames = entry if isinstance(entry, tuple) else (entry, [""])
+        if _is_analysis_object(root):
+            continue
+        for subname in (subnames or [""]):
+            target = root.getSubObject(subname, retType=1) if subname else root
+            if not _is_analysis_object(target):
+                selected.append((root, subname))
+    # in document order, as the whole document's analysis lists them
+    return [body for body in bodies if any(_body_matches(body, root, sub) for root, sub in selected)]
+
+
+def body_link(body):
+    """XLinkSub entry of a body: its top-level object and its path."""
+    return (body.root, [body.subname])
+
+
 def assembly_from_document(doc, objects=None, messages=None):
     """(contactcore.Assembly, [DocumentBody]) for a document or a selection."""
     from contactwb import core

@@ -664,7 +664,10 @@ def select_contact_faces(contact):
 def attach(group):
     """Gives a ContactAnalysis group and its contacts their view providers,
     and draws the contacts."""
-    provider = ViewProviderContactAnalysis(group.ViewObject)
+    provider = group.ViewObject.Proxy
+    if not isinstance(provider, ViewProviderContactAnalysis):
+        provider = ViewProviderContactAnalysis(group.ViewObject)
     for child in group.Group:
-        ViewProviderContact(child.ViewObject)
+        if is_contact(child) and not isinstance(child.ViewObject.Proxy, ViewProviderContact):
+            ViewProviderContact(child.ViewObject)
     provider.rebuild()

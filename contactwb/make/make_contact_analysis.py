@@ -1,11 +1,19 @@
-"""make_contact_analysis(): find the contacts of a document (or a selection)
-and record them in the tree as a ContactAnalysis group of Contact objects."""
-from math import degrees
+"""make_contact_analysis(): find the contacts of a document (a selection, or
+one part against the rest) and record them in the tree as a ContactAnalysis
+group of Contact objects; update_contact_analysis() finds them again in place
+(the group's recompute, the task panel's re-run)."""
+import json
+from math import degrees, radians
 
 import FreeCAD
 
 from contactwb import analysis as contact_analysis
-from contactwb.objects.contact_objects import Contact, ContactAnalysis
+from contactwb import bodies as document_bodies
+from contactwb import core
+from contactwb.objects.contact_objects import (CONTACT_TYPES, SCOPES, Contact, ContactAnalysis,
+                                               is_contact, is_contact_analysis)
+
+EN_DASH = "\u2013"
 
 
 def _face_links(body, face_names):
@@ -13,33 +21,149 @@ def _face_links(body, face_names):
     return [(body.root, [body.subname + name for name in face_names])]
 
 
-def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, progress=None,
-                          name="Contacts"):
-    """Runs contact identification and adds the result to `doc`.
+def _source_entries(objects):
+    """XLinkSub entries of objects or (object, [subnames]) selection entries,
+    without contact analyses and contacts (selected while re-running)."""
+    entries = []
+    for entry in objects or []:
+        obj, subnames = entry if isinstance(entry, tuple) else (entry, [""])
+        if is_contact_analysis(obj) or is_contact(obj):
+            continue
+        entries.append((obj, list(subnames) or [""]))
+    return entries
 
-    objects: analyse only these (and what they contain); default every visible
-    solid. Returns the ContactAnalysis object; its Group holds one Contact per
-    contact. Raises contactwb.core.ContactsError on bad input and
-    contactwb.core.Cancelled when `progress` cancels (nothing is added then)."""
-    doc = doc or FreeCAD.ActiveDocument
-    if doc is None:
-        raise ValueError("no document")
-    result, bodies = contact_analysis.find_contacts_in_document(doc, objects, linear, angular, progress)
 
-    group = doc.addObject("App::DocumentObjectGroupPython", name)
-    ContactAnalysis(group)
-    group.Sources = list(objects or [])
+def contact_label(kind, number, a, b):
+    """"PLF 3: Axis – Rotor-front": unique through its number (FreeCAD would
+    otherwise rename a duplicate by changing its trailing digits, which can
+    name another part)."""
+    return f"{kind} {number}: {a} {EN_DASH} {b}"
+
+
+def contact_label2(record):
+    """The tree's description column: area, span or radius."""
+    if record.type in ("LAF", "SPT"):
+        return f"circle r {record.radius:.4g} mm"
+    text = f"{record.area:.4g} mm\u00b2"
+    if record.partial:
+        text += f", span {record.span:.0f}\u00b0"
+    return text
+
+
+def _choose_bodies(doc, group, messages):
+    """(bodies to analyse, indices of the focus bodies or None)."""
+    everything = document_bodies.document_bodies(doc, None, messages)
+    scope = group.Scope
+    if scope == "Document":
+        return everything, None
+    picked = document_bodies.bodies_of_selection(everything, list(group.Sources))
+    if not picked:
+        if not group.Sources:
+            raise core.ContactsError(f"scope {scope} of '{group.Label}' needs parts (Sources is empty)")
+        names = ", ".join(f"{o.Label}{'.' + s if s else ''}" for o, subs in group.Sources for s in subs)
+        raise core.ContactsError(f"no visible solid in the parts of '{group.Label}': {names}")
+    if scope == "Selection":
+        return picked, None
+    return everything, {id(b) for b in picked}
+
+
+def _find(bodies, source, linear, angular, gap, progress):
+    assembly = core.assembly_from_shapes((b.name, b.shape) for b in bodies)
+    face_name = lambda body, index: bodies[body].object_face_name(index)  # noqa: E731
+    options = {"linear": linear, "angular": angular, "progress": progress}
+    if gap > 0:
+        options["clearance_gap"] = gap
+    try:
+        raw = core.contactcore.find_contacts(assembly, **options)
+    except TypeError:
+        if gap <= 0:
+            raise
+        options.pop("clearance_gap")
+        raw = core.contactcore.find_contacts(assembly, **options)
+        result = contact_analysis._analysis(source, assembly, raw, face_name)
+        result.messages.append("clearance gap ignored: this contactcore build reports no clearances")
+        return result
+    return contact_analysis._analysis(source, assembly, raw, face_name)
+
+
+def _clearance_lines(result, names):
+    lines = []
+    for clearance in getattr(result.raw, "clearances", []) or []:
+        kind = getattr(clearance.kind, "name", str(clearance.kind))
+        lines.append(f"{names[clearance.body_a]} {EN_DASH} {names[clearance.body_b]}: "
+                     f"{kind}, gap {clearance.gap:.4g} mm")
+    return lines
+
+
+def _numbers_in_use(doc, group):
+    used = set()
+    for other in doc.Objects:
+        if other is not group and is_contact_analysis(other):
+            used.update(c.Number for c in other.Group if is_contact(c))
+    return used
+
+
+def update_contact_analysis(group, progress=None):
+    """Finds the contacts of `group` again from its inputs (Scope, Sources,
+    tolerance settings, ContactTypes, ClearanceGap) and updates the group in
+    place: its Contact children are reused, added or removed. Raises
+    contactwb.core.ContactsError on bad input and contactwb.core.Cancelled
+    when `progress` cancels (the group is left as it was then)."""
+    doc = group.Document
+    messages = []
+    bodies, focus = _choose_bodies(doc, group, messages)
+    if not bodies:
+        raise core.ContactsError(f"no visible solid in document '{doc.Label}'")
+    linear = group.LinearToleranceSetting.Value or None
+    angular = radians(group.AngularToleranceSetting.Value) or None
+    result = _find(bodies, doc.Label, linear, angular, group.ClearanceGap.Value, progress)
+    result.messages.extend(messages)
+    wanted = set(group.ContactTypes) or set(CONTACT_TYPES)
+    records = [r for r in result.contacts if r.type in wanted and
+               (focus is None or id(bodies[r.body_a]) in focus or id(bodies[r.body_b]) in focus)]
+
+    group.Bodies = [document_bodies.body_link(b) for b in bodies]
+    group.BodyTable = json.dumps([{"name": b.name, "path": b.path, "volume": b.volume,
+                                   "center": list(b.center)} for b in result.bodies])
     group.LinearTolerance = result.linear_tolerance
     group.AngularTolerance = degrees(result.angular_tolerance)
     group.BodyCount = len(result.bodies)
-    group.Summary = [f"{kind}: {count}" for kind, count in sorted(result.counts().items())]
+    kept = contact_analysis.Analysis(result.source, result.units, result.linear_tolerance,
+                                     result.angular_tolerance, result.bodies, records)
+    group.Summary = [f"{kind}: {count}" for kind, count in sorted(kept.counts().items())]
+    group.PairSummary = [f"{a} {EN_DASH} {b}: " + ", ".join(f"{n} {k}" for k, n in sorted(types.items()))
+                         for (a, b), types in kept.by_pair().items()]
     group.Messages = result.messages
+    group.Clearances = _clearance_lines(result, [b.name for b in result.bodies])
+    _update_children(doc, group, records, bodies)
+    return group
+
+
+def _update_children(doc, group, records, bodies):
+    old = [c for c in group.Group if is_contact(c)]
+    others = [c for c in group.Group if not is_contact(c)]  # joints and the like stay
+    used = _numbers_in_use(doc, group)
+    base = group.NumberBase
+    if any(base + k in used for k in range(1, len(records) + 1)):
+        base = max(used)
+    group.NumberBase = base
     children = []
-    for record in result.contacts:
-        obj = doc.addObject("App::FeaturePython", f"{record.type}")
-        Contact(obj)
-        obj.Label = f"{record.type} {record.a} - {record.b}"
+    for index, record in enumerate(records):
+        if index < len(old):
+            obj = old[index]
+        else:
+            obj = doc.addObject("App::FeaturePython", record.type)
+            Contact(obj)
+            if FreeCAD.GuiUp:
+                from contactwb.gui import view_providers
+                view_providers.ViewProviderContact(obj.ViewObject)
+        obj.Label = obj.Name  # frees the label for the contact that will take it
+        children.append(obj)
+    remove_after_recompute(doc, old[len(records):])
+    for index, (obj, record) in enumerate(zip(children, records)):
+        number = base + index + 1
         obj.ContactType = record.type
+        obj.Number = number
         obj.BodyA, obj.BodyB = record.a, record.b
         obj.FacesA = _face_links(bodies[record.body_a], record.faces_a)
         obj.FacesB = _face_links(bodies[record.body_b], record.faces_b)
@@ -47,10 +171,79 @@ def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, pro
         obj.Partial = record.partial
         obj.Span = record.span
         obj.Radius = record.radius
+        obj.HalfAngle = record.half_angle
         obj.Point = FreeCAD.Vector(*record.point)
         obj.Direction = FreeCAD.Vector(*record.direction)
-        children.append(obj)
-    group.Group = children
+        obj.Label = contact_label(record.type, number, record.a, record.b)
+        obj.Label2 = contact_label2(record)
+    group.Group = children + others
+    for obj in children:
+        obj.purgeTouched()  # results, not edits: no second execute of the group
+
+
+def remove_after_recompute(doc, objects):
+    """Removes contacts no longer found: at once outside a recompute; inside
+    one (the group's execute), once it is over, since FreeCAD defers and
+    mixes up removals made while recomputing."""
+    if not objects:
+        return
+    if not doc.Recomputing:
+        for obj in objects:
+            doc.removeObject(obj.Name)
+        return
+    from contactwb.objects.contact_objects import pending_removal
+    pending_removal(doc, [obj.Name for obj in objects])
+
+
+def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, progress=None,
+                          name="Contacts", scope=None, types=None, clearance_gap=0.0, group=None):
+    """Runs contact identification and records the result in `doc`.
+
+    objects: the parts (objects, or (object, [subnames]) entries as the
+    selection gives them); scope: "Document" (default without objects),
+    "Selection" (default with objects: only those) or "PartAgainstRest" (the
+    objects against every other visible solid). linear (mm) / angular (rad):
+    tolerances, None for the model's defaults; types: contact types kept
+    (None: all). group: an existing ContactAnalysis to update in place
+    instead of adding one. Returns the ContactAnalysis; raises
+    contactwb.core.ContactsError on bad input and contactwb.core.Cancelled
+    when `progress` cancels (nothing is added then)."""
+    doc = doc or (group.Document if group is not None else FreeCAD.ActiveDocument)
+    if doc is None:
+        raise ValueError("no document")
+    entries = _source_entries(objects)
+    scope = scope or ("Selection" if entries else "Document")
+    if scope not in SCOPES:
+        raise ValueError(f"unknown scope '{scope}' (use one of {', '.join(SCOPES)})")
+    unknown = sorted(set(types or []) - set(CONTACT_TYPES))
+    if unknown:
+        raise ValueError(f"unknown contact types {unknown} (use {', '.join(CONTACT_TYPES)})")
+    created = group is None
+    if created:
+        group = doc.addObject("App::DocumentObjectGroupPython", name)
+        ContactAnalysis(group)
+        if FreeCAD.GuiUp:
+            from contactwb.gui import view_providers
+            view_providers.ViewProviderContactAnalysis(group.ViewObject)
+    previous = {key: getattr(group, key) for key in
+                ("Scope", "Sources", "LinearToleranceSetting", "AngularToleranceSetting",
+                 "ContactTypes", "ClearanceGap")}
+    group.Scope = scope
+    group.Sources = entries
+    group.LinearToleranceSetting = linear or 0.0
+    group.AngularToleranceSetting = degrees(angular) if angular else 0.0
+    group.ContactTypes = list(types or [])
+    group.ClearanceGap = clearance_gap or 0.0
+    try:
+        update_contact_analysis(group, progress)
+    except BaseException:
+        if created:
+            doc.removeObject(group.Name)
+        else:
+            for key, value in previous.items():
+                setattr(group, key, value)
+        raise
+    group.purgeTouched()
     if FreeCAD.GuiUp:
         from contactwb.gui import view_providers
         view_providers.attach(group)
