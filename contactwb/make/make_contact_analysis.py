@@ -142,10 +142,21 @@ def update_contact_analysis(group, progress=None):
 def _update_children(doc, group, records, bodies):
     old = [c for c in group.Group if is_contact(c)]
     others = [c for c in group.Group if not is_contact(c)]  # joints and the like stay
+    # Contacts no analysis holds any more (an undo can bring them back):
+    # they would keep labels the live contacts need.
+    orphans = [o for o in doc.Objects if is_contact(o) and o not in old
+               and not any(is_contact_analysis(p) for p in o.InList)]
+    remove_after_recompute(doc, orphans)
     used = _numbers_in_use(doc, group)
     base = group.NumberBase
     if any(base + k in used for k in range(1, len(records) + 1)):
         base = max(used)
+    mine = set(old) | set(orphans)
+    taken = {o.Label for o in doc.Objects if o not in mine}
+    labels = lambda b: [contact_label(r.type, b + k + 1, r.a, r.b) for k, r in enumerate(records)]  # noqa: E731
+    if taken.intersection(labels(base)):
+        # another object holds one of the labels: number after every contact
+        base = max([base] + list(used) + [o.Number for o in doc.Objects if is_contact(o)])
     group.NumberBase = base
     children = []
     for index, record in enumerate(records):
@@ -157,8 +168,9 @@ def _update_children(doc, group, records, bodies):
             if FreeCAD.GuiUp:
                 from contactwb.gui import view_providers
                 view_providers.ViewProviderContact(obj.ViewObject)
-        obj.Label = obj.Name  # frees the label for the contact that will take it
         children.append(obj)
+    for obj in children + orphans:
+        obj.Label = obj.Name  # frees the labels for the contacts that will take them
     remove_after_recompute(doc, old[len(records):])
     for index, (obj, record) in enumerate(zip(children, records)):
         number = base + index + 1

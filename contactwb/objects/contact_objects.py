@@ -148,7 +148,7 @@ class _BodyWatcher:
     """Marks an analysis touched when a body it depends on moves, changes
     shape or is deleted (FreeCAD itself only recomputes it, silently)."""
 
-    WATCHED = ("Placement", "Shape", "LinkPlacement", "LinkedObject", "Group", "Visibility")
+    WATCHED = ("Placement", "Shape", "LinkPlacement", "LinkedObject", "Group")
 
     def __init__(self):
         self.documents = set()
@@ -177,6 +177,21 @@ class _BodyWatcher:
         try:
             self._touch_dependents(obj)
         except Exception:  # an observer must never break an edit
+            pass
+
+    def slotCreatedObject(self, obj):
+        # a new part (or one brought back by an undo): the document-wide
+        # analyses may have missed its contacts
+        try:
+            doc = obj.Document
+            if doc.Recomputing or doc.Name not in self.documents:
+                return
+            if not (hasattr(obj, "Shape") or obj.isDerivedFrom("App::Link") or obj.isDerivedFrom("App::Part")):
+                return
+            for group in self._analyses(doc):
+                if group.UpdateOnRecompute and group.Scope != "Selection":
+                    group.touch()
+        except Exception:
             pass
 
     def slotRecomputedDocument(self, doc):
