@@ -152,3 +152,40 @@ def test_asm4_selection_paths_resolve_to_the_linked_bodies(shared_fcstd):
         assert [(o.Name, s) for o, s in group.Sources] == [("Model", ("arm001.",))]
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_compound_import_gets_the_product_names(sample, tmp_path):
+    """Bug 8: FreeCAD's compound import gives one object named after the file
+    (as Part.read does); its bodies take the STEP's product names, found
+    through FreeCAD's recent files."""
+    import shutil
+    import Part
+    from contactwb import bodies, core
+    step = str(tmp_path / "motor.step")
+    shutil.copy(sample("motor.step"), step)
+    params = FreeCAD.ParamGet(bodies.RECENT_FILES)
+    saved = {k: params.GetString(f"MRU{k}", "") for k in range(12)}
+    for k in saved:  # no recent file of the user's may name the solids
+        params.SetString(f"MRU{k}", "")
+    doc = FreeCAD.newDocument("CompoundTest")
+    try:
+        feature = doc.addObject("Part::Feature", "motor001")
+        feature.Shape = Part.read(step)
+        assert len(feature.Shape.Solids) == 18
+        unnamed = [b.name for b in bodies.document_bodies(doc)]
+        assert unnamed[:2] == ["motor001", "motor001.2"]
+        params.SetString("MRU0", step)  # as File > Import records it
+        names = [b.name for b in bodies.document_bodies(doc)]
+        expected = [b.name for b in core.contactcore.read_step(step).bodies]
+        assert sorted(names) == sorted(expected) and len(set(names)) == 18
+        group = make_contact_analysis(doc)
+        assert len(group.Group) == 35
+        assert {c.BodyA for c in group.Group} <= set(expected)
+        # a face of one solid picks that body only
+        axis = next(b for b in bodies.document_bodies(doc) if b.name == "Axis")
+        picked = bodies.bodies_of_selection(bodies.document_bodies(doc), [(feature, [f"Face{axis.face_map[0]}"])])
+        assert [b.name for b in picked] == ["Axis"]
+    finally:
+        for k, path in saved.items():
+            params.SetString(f"MRU{k}", path)
+        FreeCAD.closeDocument(doc.Name)

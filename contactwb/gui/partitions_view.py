@@ -81,7 +81,7 @@ class PartitionsView:
             layer.addChild(face_set)
             self.root.addChild(layer)
         self.legend = view_providers.legend_node(
-            [(f"{kind}: {count} partitions", view_providers.rgb(SURFACE_COLOURS[kind]))
+            [(f"{kind}: {count} partition{'s' if count > 1 else ''}", view_providers.rgb(SURFACE_COLOURS[kind]))
              for kind, count in self.counts.items() if count], "PartitionsLegend")
         self.root.addChild(self.legend)
 

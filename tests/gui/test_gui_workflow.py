@@ -179,6 +179,16 @@ def test_stale_marking_after_move_and_delete(report):
     assert stale["after_undo"] == MOTOR_CONTACTS
 
 
+@steps("export_command")
+def test_export_command_writes_the_cli_schema(report):
+    """Bug 6: the GUI export holds the bodies and the half-angle, as the CLI's JSON."""
+    export = report["export"]
+    assert export["keys"] == ["bodies", "contacts", "messages", "source", "times", "tolerances", "totals", "units"]
+    assert export["contacts"] == MOTOR_CONTACTS and export["bodies"] == 18
+    assert export["contact_keys"] == ["type", "a", "b", "faces_a", "faces_b", "area", "partial", "span", "radius",
+                                      "half_angle", "point", "direction"]
+
+
 @steps("ghost_and_context_menu")
 def test_ghost_and_context_menus(report):
     ghost = report["ghost"]
@@ -235,3 +245,22 @@ def test_no_traceback_in_the_report_view(report):
     text = report["report_view"]
     assert "Contacts" in text  # the workbench's messages are there
     assert "Traceback" not in text and "Error" not in text, text[-3000:]
+    assert "allowed scope" not in text  # bug 5: Sources inside App::Part are global links
+
+
+@steps("cancel_in_panel")
+def test_cancel_inside_the_panel(report):
+    cancel = report["cancel"]
+    assert cancel["accepted"] is False and cancel["status"] == "Cancelled: nothing changed."
+    assert cancel["calls"] >= 2
+    assert cancel["analyses"] == 0 and "Find contacts" not in cancel["undo"]
+    assert cancel["cancel_enabled_after"] is False
+
+
+@steps("compound_import")
+def test_compound_import_names_the_bodies(report):
+    """Bug 8."""
+    compound = report["compound"]
+    assert compound["objects"] == [["motor001", 18]] or [n for _, n in compound["objects"]] == [18]
+    assert compound["contacts"] == MOTOR_CONTACTS
+    assert set(compound["bodies"]) <= set(compound["products"]) and len(compound["bodies"]) == 18
