@@ -9,6 +9,7 @@ void bind_errors(py::module_& m);
 void bind_bodies(py::module_& m);
 void bind_partitions(py::module_& m);
 void bind_contacts(py::module_& m);
+void bind_joints(py::module_& m);
 }  // namespace contactcore::bindings
 
 PYBIND11_MODULE(contactcore, m) {
@@ -18,4 +19,5 @@ PYBIND11_MODULE(contactcore, m) {
   bind_bodies(m);
   bind_partitions(m);
   bind_contacts(m);
+  bind_joints(m);
 }
