@@ -44,6 +44,16 @@ def live_contacts(group):
     return [c for c in group.Group if is_contact(c) and c.FacesA and c.FacesB]
 
 
+class _StoredMass:
+    """Volumes and centres as the analysis stored them (BodyInfo's mass table)."""
+
+    def __init__(self, values):
+        self.values = values
+
+    def get(self, index):
+        return self.values[index]
+
+
 def as_analysis(group):
     """The group as a contactwb.analysis.Analysis: the CLI's data, so that
     both export through the same schema (Analysis.to_json)."""
@@ -60,7 +70,8 @@ def as_analysis(group):
             point=(contact.Point.x, contact.Point.y, contact.Point.z),
             direction=(contact.Direction.x, contact.Direction.y, contact.Direction.z)))
     table = json.loads(getattr(group, "BodyTable", "") or "[]")
-    bodies = [BodyInfo(b["name"], b["path"], b["volume"], tuple(b["center"])) for b in table]
+    stored = _StoredMass([(b["volume"], tuple(b["center"])) for b in table])
+    bodies = [BodyInfo(b["name"], b["path"], stored, index) for index, b in enumerate(table)]
     return Analysis(source=group.Document.Label, units="mm",
                     linear_tolerance=group.LinearTolerance.Value,
                     angular_tolerance=radians(group.AngularTolerance.Value),

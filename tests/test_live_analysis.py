@@ -189,3 +189,27 @@ def test_compound_import_gets_the_product_names(sample, tmp_path):
         for k, path in saved.items():
             params.SetString(f"MRU{k}", path)
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_derived_joints_follow_the_contacts(boxes):
+    """Two boxes on a base, each on one face: planar joints (3 DOF: two
+    translations in the plane, the rotation about its normal)."""
+    from contactwb.objects.contact_objects import is_joint
+    group = make_contact_analysis(boxes, derive_joints=True)
+    joints = [o for o in group.Group if is_joint(o)]
+    assert sorted((j.JointType, j.DOF, j.BodyA, j.BodyB) for j in joints) == [
+        ("planar", 3, "Base", "Side"), ("planar", 3, "Base", "Top")]
+    top = next(j for j in joints if j.BodyB == "Top")
+    assert [abs(d.z) for d in top.AxisDirections] == pytest.approx([1.0])  # about the contact's normal
+    assert len(top.Translations) == 2 and all(abs(d.z) < 1e-9 for d in top.Translations)
+    assert [c.BodyB for c in top.Contacts] == ["Top"]
+    assert top.Label.startswith("J") and top.Label.endswith("planar: Base \u2013 Top")
+    assert group.Mobility[0].startswith("Ground: ") and "digraph" in group.LiaisonGraph or "graph" in group.LiaisonGraph
+    # the joints follow a move: Top lifted off, its joint goes at the recompute
+    boxes.getObject("Top").Placement = FreeCAD.Placement(FreeCAD.Vector(2, 3, 12), FreeCAD.Rotation())
+    boxes.recompute()
+    assert [(j.BodyA, j.BodyB) for j in group.Group if is_joint(j)] == [("Base", "Side")]
+    group.DeriveJoints = False
+    boxes.recompute()
+    assert not [o for o in group.Group if is_joint(o)] and group.Mobility == []
+    assert not [o for o in boxes.Objects if is_joint(o)]

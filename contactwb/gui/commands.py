@@ -1,4 +1,6 @@
 """Workbench commands (one class each, FreeCAD Assembly style)."""
+import math
+
 import FreeCAD
 import FreeCADGui
 
@@ -155,6 +157,78 @@ class Contacts_ShowPartitions:
             _show_error(str(error))
 
 
+def _analysis_for_joints():
+    """The selected analysis (or the one holding a selected contact or
+    joint), else the document's only one."""
+    from contactwb import export
+    from contactwb.objects.contact_objects import is_contact, is_contact_analysis, is_joint
+    doc = FreeCAD.ActiveDocument
+    if doc is None:
+        return None
+    for obj in FreeCADGui.Selection.getSelection(doc.Name):
+        if is_contact_analysis(obj):
+            return obj
+        if is_contact(obj) or is_joint(obj):
+            return next((p for p in obj.InList if is_contact_analysis(p)), None)
+    found = export.analyses(doc)
+    return found[0] if len(found) == 1 else None
+
+
+class Contacts_DeriveJoints:
+    """Derives the joints of an analysis (Joint objects drawn as axis glyphs)."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_DeriveJoints"),
+            "MenuText": "Derive joints",
+            "ToolTip": "Derive the kinematic joint each body pair's contacts allow (type, degrees of "
+                       "freedom, axes, free directions) as Joint objects of the selected analysis, "
+                       "drawn as axis glyphs; kept up to date with the contacts",
+        }
+
+    def IsActive(self):
+        return _analysis_for_joints() is not None
+
+    def Activated(self):
+        from contactwb import core
+        from contactwb.make import make_contact_analysis
+        group = _analysis_for_joints()
+        doc = group.Document
+        doc.openTransaction("Derive joints")
+        try:
+            make_contact_analysis(doc, list(group.Sources) or None, group.LinearToleranceSetting.Value or None,
+                                  math.radians(group.AngularToleranceSetting.Value) or None, scope=group.Scope, types=list(group.ContactTypes) or None,
+                                  clearance_gap=group.ClearanceGap.Value, group=group, derive_joints=True)
+        except (core.ContactsError, ValueError) as error:
+            doc.abortTransaction()
+            _show_error(str(error))
+            return
+        doc.commitTransaction()
+        FreeCAD.Console.PrintMessage(f"Contacts: {'; '.join(group.Mobility[:2])}\n")
+        from contactwb.gui import joint_view
+        joint_view.open_joints_panel(group)
+
+
+class Contacts_ShowJoints:
+    """The mobility, rigid groups and liaison graph of an analysis, in a panel."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_ShowJoints"),
+            "MenuText": "Joints and liaison graph",
+            "ToolTip": "Show the assembly's degrees of freedom, its rigid groups and the liaison graph "
+                       "of the selected analysis (after Derive joints)",
+        }
+
+    def IsActive(self):
+        group = _analysis_for_joints()
+        return group is not None and bool(getattr(group, "LiaisonGraph", ""))
+
+    def Activated(self):
+        from contactwb.gui import joint_view
+        joint_view.open_joints_panel(_analysis_for_joints())
+
+
 class Contacts_OpenSample:
     """Opens the bundled motor."""
 
@@ -252,6 +326,8 @@ COMMANDS = {
     "Contacts_ShowAll": Contacts_ShowAll,
     "Contacts_GhostBodies": Contacts_GhostBodies,
     "Contacts_ShowPartitions": Contacts_ShowPartitions,
+    "Contacts_DeriveJoints": Contacts_DeriveJoints,
+    "Contacts_ShowJoints": Contacts_ShowJoints,
     "Contacts_ExportContacts": Contacts_ExportContacts,
     "Contacts_OpenSample": Contacts_OpenSample,
 }

@@ -7,9 +7,9 @@ import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from contactwb.objects.contact_objects import CONTACT_TYPES, is_contact
+from contactwb.objects.contact_objects import CONTACT_TYPES, is_contact, is_joint
 
-COLUMNS = ["#", "Type", "Part A", "Part B", "Area (mm\u00b2)", "Span (\u00b0)", "Radius (mm)", "Partial",
+COLUMNS = ["#", "Type", "Part A", "Part B", "Area (mm\u00b2)", "Span (\u00b0) / DOF", "Radius (mm)", "Partial",
            "Analysis"]
 NUMERIC = {0, 4, 5, 6}
 DOCK_NAME = "ContactsTable"
@@ -53,6 +53,7 @@ class ContactTable(QtWidgets.QWidget):
         self.filter_type.addItem("All types", "")
         for kind in CONTACT_TYPES:
             self.filter_type.addItem(kind, kind)
+        self.filter_type.addItem("Joints", "joint")
         self.filter_partial = QtWidgets.QCheckBox("Partial only")
         self.min_area = QtWidgets.QDoubleSpinBox()
         self.min_area.setRange(0, 1e12)
@@ -99,10 +100,11 @@ class ContactTable(QtWidgets.QWidget):
         self.doc_name = doc.Name if doc else None
         groups = export.analyses(doc) if doc else []
         self.contacts = [c for g in groups for c in export.live_contacts(g)]
+        joints = [j for g in groups for j in g.Group if is_joint(j)]
         colours = view_providers.legend_colours()
         self._syncing = True
         self.table.setSortingEnabled(False)
-        self.table.setRowCount(len(self.contacts))
+        self.table.setRowCount(len(self.contacts) + len(joints))
         for row, contact in enumerate(self.contacts):
             group = next((p for p in contact.InList if p in groups), None)
             cells = [
@@ -117,6 +119,15 @@ class ContactTable(QtWidgets.QWidget):
             ]
             for column, item in enumerate(cells):
                 item.setData(QtCore.Qt.UserRole, contact.Name)
+                self.table.setItem(row, column, item)
+        for row, joint in enumerate(joints, start=len(self.contacts)):
+            group = next((p for p in joint.InList if p in groups), None)
+            number = joint.Label.split(" ", 1)[0]  # "J3"
+            cells = [_cell(number), _cell(f"joint: {joint.JointType}"), _cell(joint.BodyA), _cell(joint.BodyB),
+                     _cell("", 0.0), _cell(f"{joint.DOF} DOF", joint.DOF), _cell(""), _cell(""),
+                     _cell(group.Label if group else "")]
+            for column, item in enumerate(cells):
+                item.setData(QtCore.Qt.UserRole, joint.Name)
                 self.table.setItem(row, column, item)
         self.table.setSortingEnabled(True)
         self.table.resizeColumnsToContents()
@@ -156,7 +167,7 @@ class ContactTable(QtWidgets.QWidget):
         for row in range(self.table.rowCount()):
             values = [self.table.item(row, c).text() for c in (1, 2, 3)]
             hidden = bool(text) and not any(text in v.lower() for v in values)
-            hidden |= bool(kind) and values[0] != kind
+            hidden |= bool(kind) and values[0] != kind and not (kind == "joint" and values[0].startswith("joint"))
             hidden |= partial_only and self.table.item(row, 7).text() != "yes"
             hidden |= self.table.item(row, 4).data(QtCore.Qt.UserRole + 1) < least
             self.table.setRowHidden(row, hidden)
@@ -168,6 +179,16 @@ class ContactTable(QtWidgets.QWidget):
     def selected_contacts(self):
         rows = sorted({index.row() for index in self.table.selectionModel().selectedRows()})
         return [c for c in (self.contact_of_row(r) for r in rows) if c is not None]
+
+    def _first_contact(self):
+        """The first selected row's contact (a joint's first contact)."""
+        for obj in self.selected_contacts():
+            if is_joint(obj):
+                if obj.Contacts:
+                    return obj.Contacts[0]
+            else:
+                return obj
+        return None
 
     def _rows_selected(self):
         if self._syncing:
@@ -202,7 +223,7 @@ class ContactTable(QtWidgets.QWidget):
             obj = selected.Object
             for subname in selected.SubElementNames or [""]:
                 target = obj.getSubObject(subname, retType=1) if subname else obj
-                if is_contact(target):
+                if is_contact(target) or is_joint(target):
                     wanted.add(target.Name)
                     continue
                 if (obj.Name, subname) in faces:  # a painted face: its contacts
@@ -235,16 +256,16 @@ class ContactTable(QtWidgets.QWidget):
     # --- buttons -------------------------------------------------------
     def zoom(self):
         from contactwb.gui import actions
-        contacts = self.selected_contacts()
-        if contacts:
-            actions.zoom_to(contacts[0])
+        contact = self._first_contact()
+        if contact is not None:
+            actions.zoom_to(contact)
 
     def isolate(self):
         from contactwb.gui import actions
-        contacts = self.selected_contacts()
-        if contacts:
-            actions.isolate(contacts[0])
-            actions.zoom_to(contacts[0])
+        contact = self._first_contact()
+        if contact is not None:
+            actions.isolate(contact)
+            actions.zoom_to(contact)
 
     def show_all(self):
         from contactwb.gui import actions

@@ -667,7 +667,8 @@ class ViewProviderContactAnalysis(_ViewProvider):
         overlay = getattr(self, "overlay", None)
         if overlay is None:
             return
-        if prop == "Bodies" or (prop == "Group" and tuple(c.Name for c in obj.Group) != overlay.names):
+        if prop == "Bodies" or (prop == "Group" and
+                                tuple(c.Name for c in obj.Group if is_contact(c)) != overlay.names):
             self.schedule_rebuild()
 
     def schedule_rebuild(self):

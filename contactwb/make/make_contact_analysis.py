@@ -10,8 +10,8 @@ import FreeCAD
 from contactwb import analysis as contact_analysis
 from contactwb import bodies as document_bodies
 from contactwb import core
-from contactwb.objects.contact_objects import (CONTACT_TYPES, SCOPES, Contact, ContactAnalysis,
-                                               is_contact, is_contact_analysis)
+from contactwb.objects.contact_objects import (CONTACT_TYPES, SCOPES, Contact, ContactAnalysis, Joint,
+                                               is_contact, is_contact_analysis, is_joint)
 
 EN_DASH = "\u2013"
 
@@ -67,32 +67,20 @@ def _choose_bodies(doc, group, messages):
     return everything, {id(b) for b in picked}
 
 
-def _find(bodies, source, linear, angular, gap, progress):
+def _find(bodies, source, linear, angular, progress):
+    """(analysis.Analysis, contactcore.Assembly, contactcore.ContactsResult)."""
     assembly = core.assembly_from_shapes((b.name, b.shape) for b in bodies)
     face_name = lambda body, index: bodies[body].object_face_name(index)  # noqa: E731
-    options = {"linear": linear, "angular": angular, "progress": progress}
-    if gap > 0:
-        options["clearance_gap"] = gap
-    try:
-        raw = core.contactcore.find_contacts(assembly, **options)
-    except TypeError:
-        if gap <= 0:
-            raise
-        options.pop("clearance_gap")
-        raw = core.contactcore.find_contacts(assembly, **options)
-        result = contact_analysis._analysis(source, assembly, raw, face_name)
-        result.messages.append("clearance gap ignored: this contactcore build reports no clearances")
-        return result
-    return contact_analysis._analysis(source, assembly, raw, face_name)
+    raw = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress)
+    return contact_analysis._analysis(source, assembly, raw, face_name), assembly, raw
 
 
-def _clearance_lines(result, names):
-    lines = []
-    for clearance in getattr(result.raw, "clearances", []) or []:
-        kind = getattr(clearance.kind, "name", str(clearance.kind))
-        lines.append(f"{names[clearance.body_a]} {EN_DASH} {names[clearance.body_b]}: "
-                     f"{kind}, gap {clearance.gap:.4g} mm")
-    return lines
+def _clearance_lines(raw, gap, names):
+    """Clearance fits (radii within `gap` mm: a fit with play, not a contact)."""
+    if gap <= 0:
+        return []
+    return [f"{names[c.body_a]} {EN_DASH} {names[c.body_b]}: {c.kind}, gap {c.gap:.4g} mm"
+            for c in core.contactcore.find_clearances(raw, gap)]
 
 
 def _numbers_in_use(doc, group):
@@ -116,11 +104,12 @@ def update_contact_analysis(group, progress=None):
         raise core.ContactsError(f"no visible solid in document '{doc.Label}'")
     linear = group.LinearToleranceSetting.Value or None
     angular = radians(group.AngularToleranceSetting.Value) or None
-    result = _find(bodies, doc.Label, linear, angular, group.ClearanceGap.Value, progress)
+    result, assembly, raw = _find(bodies, doc.Label, linear, angular, progress)
     result.messages.extend(messages)
     wanted = set(group.ContactTypes) or set(CONTACT_TYPES)
-    records = [r for r in result.contacts if r.type in wanted and
-               (focus is None or id(bodies[r.body_a]) in focus or id(bodies[r.body_b]) in focus)]
+    kept = [index for index, r in enumerate(result.contacts) if r.type in wanted and
+            (focus is None or id(bodies[r.body_a]) in focus or id(bodies[r.body_b]) in focus)]
+    records = [result.contacts[index] for index in kept]
 
     group.Bodies = [document_bodies.body_link(b) for b in bodies]
     group.BodyTable = json.dumps([{"name": b.name, "path": b.path, "volume": b.volume,
@@ -128,20 +117,82 @@ def update_contact_analysis(group, progress=None):
     group.LinearTolerance = result.linear_tolerance
     group.AngularTolerance = degrees(result.angular_tolerance)
     group.BodyCount = len(result.bodies)
-    kept = contact_analysis.Analysis(result.source, result.units, result.linear_tolerance,
-                                     result.angular_tolerance, result.bodies, records)
-    group.Summary = [f"{kind}: {count}" for kind, count in sorted(kept.counts().items())]
+    shown = contact_analysis.Analysis(result.source, result.units, result.linear_tolerance,
+                                      result.angular_tolerance, result.bodies, records)
+    group.Summary = [f"{kind}: {count}" for kind, count in sorted(shown.counts().items())]
     group.PairSummary = [f"{a} {EN_DASH} {b}: " + ", ".join(f"{n} {k}" for k, n in sorted(types.items()))
-                         for (a, b), types in kept.by_pair().items()]
+                         for (a, b), types in shown.by_pair().items()]
     group.Messages = result.messages
-    group.Clearances = _clearance_lines(result, [b.name for b in result.bodies])
+    group.Clearances = _clearance_lines(raw, group.ClearanceGap.Value, [b.name for b in result.bodies])
     _update_children(doc, group, records, bodies)
+    if group.DeriveJoints:
+        _update_joints(doc, group, assembly, raw, result, kept, bodies)
+    else:
+        remove_after_recompute(doc, [o for o in group.Group if is_joint(o)])
+        group.Group = [o for o in group.Group if not is_joint(o)]
+        group.Mobility, group.LiaisonGraph = [], ""
     return group
+
+
+def _update_joints(doc, group, assembly, raw, result, kept, bodies):
+    """Joint children from contactcore.find_joints (reused in place like the
+    contacts), the mobility lines and the liaison graph's DOT."""
+    cc = core.contactcore
+    names = [b.name for b in result.bodies]
+    found = cc.find_joints(assembly, raw)
+    ground = names.index(group.Ground) if group.Ground in names else \
+        max(range(len(names)), key=lambda i: result.bodies[i].volume)
+    mobility = cc.assembly_mobility(assembly, raw, found, ground)
+    group.LiaisonGraph = cc.liaison_graph_dot(assembly, found, mobility)
+    lines = [f"Ground: {names[mobility.ground]}" if mobility.ground >= 0 else "Ground: none",
+             f"Degrees of freedom: {mobility.dof} ({mobility.passive} passive spins)"]
+    for number, (members, motion) in enumerate(zip(mobility.groups, mobility.group_motions), start=1):
+        lines.append(f"Rigid group {number}: {', '.join(names[i] for i in members)} "
+                     f"({motion.type}, {motion.dof} DOF)")
+    group.Mobility = lines
+    contacts = [c for c in group.Group if is_contact(c)]
+    position = {raw_index: k for k, raw_index in enumerate(kept)}
+    old = [o for o in group.Group if is_joint(o)]
+    joints = []
+    for pair in found.joints:
+        mine = [contacts[position[i]] for i in pair.contacts if i in position]
+        if not mine:  # a pair outside the scope shown
+            continue
+        index = len(joints)
+        if index < len(old):
+            obj = old[index]
+        else:
+            obj = doc.addObject("App::FeaturePython", "Joint")
+            Joint(obj)
+            if FreeCAD.GuiUp:
+                from contactwb.gui import joint_view
+                joint_view.ViewProviderJoint(obj.ViewObject)
+        obj.Label = obj.Name
+        a, b = names[pair.body_a], names[pair.body_b]
+        obj.JointType, obj.DOF, obj.BodyA, obj.BodyB = pair.type, pair.dof, a, b
+        obj.AxisPoints = [FreeCAD.Vector(*point) for point, _ in pair.rotations]
+        obj.AxisDirections = [FreeCAD.Vector(*direction) for _, direction in pair.rotations]
+        obj.Translations = [FreeCAD.Vector(*d) for d in pair.translations]
+        obj.FreeDirections = [FreeCAD.Vector(*d) for d in pair.free_directions]
+        centre = FreeCAD.Vector()
+        for contact in mine:
+            centre += contact.Point
+        obj.Centre = centre * (1.0 / len(mine))
+        obj.GlyphLength = 0.6 * min(bodies[pair.body_a].shape.BoundBox.DiagonalLength,
+                                    bodies[pair.body_b].shape.BoundBox.DiagonalLength)
+        obj.Contacts = mine
+        obj.Label = f"J{group.NumberBase + index + 1} {pair.type}: {a} {EN_DASH} {b}"
+        obj.Label2 = f"{pair.dof} DOF"
+        joints.append(obj)
+    remove_after_recompute(doc, old[len(joints):])
+    group.Group = contacts + joints
+    for obj in joints:
+        obj.purgeTouched()
 
 
 def _update_children(doc, group, records, bodies):
     old = [c for c in group.Group if is_contact(c)]
-    others = [c for c in group.Group if not is_contact(c)]  # joints and the like stay
+    others = [c for c in group.Group if not is_contact(c)]  # joints: updated after
     # Contacts no analysis holds any more (an undo can bring them back):
     # they would keep labels the live contacts need.
     orphans = [o for o in doc.Objects if is_contact(o) and o not in old
@@ -208,7 +259,8 @@ def remove_after_recompute(doc, objects):
 
 
 def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, progress=None,
-                          name="Contacts", scope=None, types=None, clearance_gap=0.0, group=None):
+                          name="Contacts", scope=None, types=None, clearance_gap=0.0, group=None,
+                          derive_joints=None):
     """Runs contact identification and records the result in `doc`.
 
     objects: the parts (objects, or (object, [subnames]) entries as the
@@ -217,7 +269,8 @@ def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, pro
     objects against every other visible solid). linear (mm) / angular (rad):
     tolerances, None for the model's defaults; types: contact types kept
     (None: all). group: an existing ContactAnalysis to update in place
-    instead of adding one. Returns the ContactAnalysis; raises
+    instead of adding one. derive_joints: also derive the joints (None:
+    keep the group's setting). Returns the ContactAnalysis; raises
     contactwb.core.ContactsError on bad input and contactwb.core.Cancelled
     when `progress` cancels (nothing is added then)."""
     doc = doc or (group.Document if group is not None else FreeCAD.ActiveDocument)
@@ -239,13 +292,15 @@ def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, pro
             view_providers.ViewProviderContactAnalysis(group.ViewObject)
     previous = {key: getattr(group, key) for key in
                 ("Scope", "Sources", "LinearToleranceSetting", "AngularToleranceSetting",
-                 "ContactTypes", "ClearanceGap")}
+                 "ContactTypes", "ClearanceGap", "DeriveJoints")}
     group.Scope = scope
     group.Sources = entries
     group.LinearToleranceSetting = linear or 0.0
     group.AngularToleranceSetting = degrees(angular) if angular else 0.0
     group.ContactTypes = list(types or [])
     group.ClearanceGap = clearance_gap or 0.0
+    if derive_joints is not None:
+        group.DeriveJoints = bool(derive_joints)
     try:
         update_contact_analysis(group, progress)
     except BaseException:

@@ -72,6 +72,12 @@ def _analysis_properties(obj):
     _add(obj, "App::PropertyXLinkSubList", "Bodies", "Contacts", "Bodies analysed (their paths)", 2)
     _add(obj, "App::PropertyString", "BodyTable", "Contacts", "Bodies as JSON (name, path, volume, center)", 2)
     _add(obj, "App::PropertyInteger", "NumberBase", "Contacts", "Contact numbers start after this", 2)
+    # Joints (stage 4): derived from the contacts when DeriveJoints is on
+    _add(obj, "App::PropertyBool", "DeriveJoints", "Joints",
+         "Also derive the joints each body pair's contacts allow, and the assembly's mobility")
+    _add(obj, "App::PropertyString", "Ground", "Joints", "Body held still (empty: the largest by volume)")
+    _add(obj, "App::PropertyStringList", "Mobility", "Joints", "Degrees of freedom and rigid groups", 1)
+    _add(obj, "App::PropertyString", "LiaisonGraph", "Joints", "The liaison graph (Graphviz DOT)", 2)
 
 
 class ContactAnalysis:
@@ -161,7 +167,7 @@ class _BodyWatcher:
 
     def _touch_dependents(self, obj, deleted=False):
         doc = obj.Document
-        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj):
+        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj):
             return
         for group in self._analyses(doc):
             if not getattr(group, "UpdateOnRecompute", False):
@@ -224,3 +230,46 @@ def pending_removal(doc, names):
     """Contacts to remove once the document's recompute is over."""
     watch_document(doc)
     _watcher.pending.setdefault(doc.Name, []).extend(names)
+
+
+def is_joint(obj):
+    """Whether a document object is one Joint of an analysis."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == "Joint"
+
+
+def _joint_properties(obj):
+    _add(obj, "App::PropertyString", "JointType", "Joint",
+         "ISO 3952 name: rigid, revolute, prismatic, helical, cylindrical, spherical, planar, ...")
+    _add(obj, "App::PropertyInteger", "DOF", "Joint", "Degrees of freedom of body B relative to body A")
+    _add(obj, "App::PropertyString", "BodyA", "Joint", "First body")
+    _add(obj, "App::PropertyString", "BodyB", "Joint", "Second body (moving relative to the first)")
+    _add(obj, "App::PropertyVectorList", "AxisPoints", "Joint", "A point of each rotation axis (mm)")
+    _add(obj, "App::PropertyVectorList", "AxisDirections", "Joint", "Direction of each rotation axis")
+    _add(obj, "App::PropertyVectorList", "Translations", "Joint", "Directions of free translation")
+    _add(obj, "App::PropertyVectorList", "FreeDirections", "Joint",
+         "Generators of the cone of directions in which B can leave A")
+    _add(obj, "App::PropertyVector", "Centre", "Joint", "Centre of the pair's contacts (where glyphs are drawn)")
+    _add(obj, "App::PropertyLength", "GlyphLength", "Joint", "Length of the axis glyphs")
+    _add(obj, "App::PropertyLinkListHidden", "Contacts", "Joint", "The contacts making this joint")
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == "Joint":
+            obj.setEditorMode(name, 1)
+
+
+class Joint:
+    """The kinematic joint two bodies' contacts allow (contactcore.find_joints)."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.Type = "Joint"
+        _joint_properties(obj)
+
+    def onDocumentRestored(self, obj):
+        obj.Proxy = self
+        _joint_properties(obj)
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        self.Type = "Joint"

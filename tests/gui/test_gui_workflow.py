@@ -189,6 +189,21 @@ def test_export_command_writes_the_cli_schema(report):
                                       "half_angle", "point", "direction"]
 
 
+@steps("joints")
+def test_derive_joints(report):
+    joints = report["joints"]
+    assert joints["joints"] == joints["pairs"] > 10  # one joint per body pair in contact
+    assert joints["contacts_kept"] == MOTOR_CONTACTS
+    assert joints["axis_bearing"] == ["cylindrical", 2]  # one CLJ: turn and slide along the axis
+    assert joints["glyph_axes"] == joints["rotations"] > 0
+    assert joints["mobility"][0].startswith("Ground: ") and any(m.startswith("Rigid group") for m in joints["mobility"])
+    assert joints["graph_png"]
+    assert joints["undo"] == "Derive joints"
+    assert joints["table_rows"] == MOTOR_CONTACTS + joints["joints"]
+    assert joints["after_undo"] == 0 and joints["after_redo"] == joints["joints"]
+    assert joints["show_joints_panel"]
+
+
 @steps("ghost_and_context_menu")
 def test_ghost_and_context_menus(report):
     ghost = report["ghost"]

@@ -385,6 +385,63 @@ def export_command():
                         "contact_keys": list(data["contacts"][0])}
 
 
+def joints():
+    """Derive joints: Joint objects drawn as axis glyphs, the panel with the
+    mobility and the liaison graph; the table lists them; undoable."""
+    from contactwb.gui import contact_table, joint_view
+    from contactwb.objects.contact_objects import is_joint
+    doc, group = state["doc"], state["group"]
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    FreeCADGui.runCommand("Contacts_DeriveJoints")
+    FreeCADGui.updateGui()
+    found = [o for o in group.Group if is_joint(o)]
+    panel = joint_view.current_panel
+    glyphs = {o.Name: (o.ViewObject.Proxy.axes, o.ViewObject.Proxy.arrows) for o in found}
+    result = {"joints": len(found), "pairs": len(group.PairSummary),
+              "types": sorted({o.JointType for o in found}),
+              "axis_bearing": next(([o.JointType, o.DOF] for o in found
+                                    if {o.BodyA, o.BodyB} == {"Axis", "Bearing-front"}), None),
+              "glyph_axes": sum(a for a, _ in glyphs.values()),
+              "rotations": sum(len(o.AxisDirections) for o in found),
+              "mobility": list(group.Mobility),
+              "graph_png": bool(panel and panel.graph_path and panel.graph.pixmap() is not None),
+              "undo": doc.UndoNames[0] if doc.UndoNames else None,
+              "contacts_kept": sum(1 for c in group.Group if not is_joint(c))}
+    widget = contact_table.dock().widget()
+    widget.fill()
+    result["table_rows"] = widget.table.rowCount()
+    # the README picture: the rotor parts and the axis with their joint glyphs
+    for obj in doc.Objects:
+        if obj.TypeId == "Part::Feature":
+            obj.ViewObject.Visibility = obj.Label in ("Axis", "Bearing-front", "Bearing-back", "Front-cover")
+    for joint in found:
+        joint.ViewObject.Visibility = {joint.BodyA, joint.BodyB} <= {"Axis", "Bearing-front", "Bearing-back",
+                                                                      "Front-cover"}
+    group.ViewObject.Visibility = False
+    widen_combo_view()
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewIsometric()
+    view.fitAll()
+    result["png"] = grab_window("gui_joints.png")
+    group.ViewObject.Visibility = True
+    for obj in doc.Objects:
+        if obj.TypeId == "Part::Feature":
+            obj.ViewObject.Visibility = True
+    FreeCADGui.Control.closeDialog()
+    doc.undo()
+    result["after_undo"] = sum(1 for o in group.Group if is_joint(o))
+    doc.redo()
+    result["after_redo"] = sum(1 for o in group.Group if is_joint(o))
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    FreeCADGui.runCommand("Contacts_ShowJoints")
+    result["show_joints_panel"] = joint_view.current_panel is not panel
+    FreeCADGui.Control.closeDialog()
+    FreeCADGui.Selection.clearSelection()
+    report["joints"] = result
+
+
 def ghost_and_context_menu():
     from contactwb.gui import actions
     doc, group = state["doc"], state["group"]
@@ -561,7 +618,7 @@ def report_view():
 
 for function in (open_sample, panel_whole_document, update_in_place, other_scopes, table,
                  highlighted_contact, colours_and_paint, stale_after_move_and_delete,
-                 export_command, ghost_and_context_menu, partitions, save_and_reopen, asm4_pick, cancel_in_panel,
+                 export_command, joints, ghost_and_context_menu, partitions, save_and_reopen, asm4_pick, cancel_in_panel,
                  compound_import, report_view):
     step(function)
 with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
