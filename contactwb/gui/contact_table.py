@@ -140,11 +140,16 @@ class ContactTable(QtWidgets.QWidget):
     def _summary(groups):
         lines = []
         for group in groups:
-            lines.append(f"<b>{group.Label}</b>: {len(group.Group)} contacts between {group.BodyCount} bodies"
+            contacts = sum(1 for c in group.Group if is_contact(c))
+            joints = sum(1 for c in group.Group if is_joint(c))
+            lines.append(f"<b>{group.Label}</b>: {contacts} contacts between {group.BodyCount} bodies"
+                         + (f", {joints} joints" if joints else "")
                          + (" <i>(out of date: recompute)</i>" if "Touched" in group.State else ""))
             lines.append("By type: " + (", ".join(group.Summary) or "none"))
             if group.PairSummary:
                 lines.append("By pair: " + "; ".join(group.PairSummary))
+            if getattr(group, "Mobility", None):
+                lines.append("; ".join(group.Mobility[:2]))
         return "<br>".join(lines) or "No contact analysis in this document: run Find contacts."
 
     def contact_of_row(self, row):

@@ -209,8 +209,8 @@ class JointsPanel:
             self.graph_path = render_graph(group.LiaisonGraph, path)
         if self.graph_path:
             pixmap = QtGui.QPixmap(self.graph_path)
-            if pixmap.width() > 380:
-                pixmap = pixmap.scaledToWidth(380, QtCore.Qt.SmoothTransformation)
+            if pixmap.width() > 560:
+                pixmap = pixmap.scaledToWidth(560, QtCore.Qt.SmoothTransformation)
             self.graph.setPixmap(pixmap)
         else:
             self.graph.setText("(no liaison graph)")

@@ -418,13 +418,15 @@ def joints():
     for joint in found:
         joint.ViewObject.Visibility = {joint.BodyA, joint.BodyB} <= {"Axis", "Bearing-front", "Bearing-back",
                                                                       "Front-cover"}
-    group.ViewObject.Visibility = False
-    widen_combo_view()
+    FreeCADGui.Selection.clearSelection()  # a selected group paints all its children in the selection colour
+    widget.parent().hide()  # the table dock: room for the view
+    widen_combo_view(620)
     view = FreeCADGui.activeDocument().activeView()
     view.viewIsometric()
     view.fitAll()
     result["png"] = grab_window("gui_joints.png")
-    group.ViewObject.Visibility = True
+    widget.parent().show()
+    widen_combo_view()
     for obj in doc.Objects:
         if obj.TypeId == "Part::Feature":
             obj.ViewObject.Visibility = True
@@ -517,7 +519,10 @@ def save_and_reopen():
     result["touched_after_move"] = "Touched" in group.State
     axis.Placement = placement
     doc.recompute()
-    result["after_recompute"] = len(group.Group)
+    from contactwb.objects.contact_objects import is_contact, is_joint
+    result["after_recompute"] = sum(1 for c in group.Group if is_contact(c))
+    result["joints_after_recompute"] = sum(1 for c in group.Group if is_joint(c))
+    result["joint_providers"] = sorted({type(c.ViewObject.Proxy).__name__ for c in group.Group if is_joint(c)})
     report["reopened"] = result
     FreeCAD.closeDocument(doc.Name)
 
