@@ -24,8 +24,10 @@ def boxes():
     side = doc.addObject("Part::Box", "Side")
     side.Placement.Base = FreeCAD.Vector(10, 0, 0)
     doc.recompute()
+    name = doc.Name
     yield doc
-    FreeCAD.closeDocument(doc.Name)
+    if name in FreeCAD.listDocuments():
+        FreeCAD.closeDocument(name)
 
 
 def pairs(group):
@@ -213,3 +215,36 @@ def test_derived_joints_follow_the_contacts(boxes):
     boxes.recompute()
     assert not [o for o in group.Group if is_joint(o)] and group.Mobility == []
     assert not [o for o in boxes.Objects if is_joint(o)]
+
+
+def test_analysis_saved_by_the_first_version_reopens_live(boxes, tmp_path):
+    """A 0.1 file: Sources a local link list, none of the new properties."""
+    from contactwb.objects.contact_objects import ContactAnalysis
+    group = make_contact_analysis(boxes, [boxes.getObject("Top"), boxes.getObject("Base")])
+    for name in ("Scope", "LinearToleranceSetting", "AngularToleranceSetting", "ContactTypes", "ClearanceGap",
+                 "UpdateOnRecompute", "Bodies", "BodyTable", "NumberBase", "PairSummary", "Clearances",
+                 "DeriveJoints", "Ground", "Mobility", "LiaisonGraph"):
+        group.removeProperty(name)
+    group.removeProperty("Sources")
+    group.addProperty("App::PropertyLinkList", "Sources", "Contacts", "")
+    group.Sources = [boxes.getObject("Top"), boxes.getObject("Base")]
+    for contact in group.Group:
+        contact.removeProperty("HalfAngle")
+        contact.removeProperty("Number")
+    path = str(tmp_path / "old.FCStd")
+    boxes.saveAs(path)
+    name = group.Name
+    FreeCAD.closeDocument(boxes.Name)
+    doc = FreeCAD.openDocument(path)
+    try:
+        group = doc.getObject(name)
+        assert isinstance(group.Proxy, ContactAnalysis)
+        assert group.getTypeIdOfProperty("Sources") == "App::PropertyXLinkSubList"
+        assert sorted(o.Name for o, _ in group.Sources) == ["Base", "Top"]
+        assert group.Scope == "Selection" and group.UpdateOnRecompute
+        group.touch()
+        doc.recompute()
+        assert pairs(group) == [("PLF", "Base", "Top")]
+        assert [c.HalfAngle.Value for c in group.Group] == [0.0]
+    finally:
+        FreeCAD.closeDocument(doc.Name)
