@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
+#include <set>
 
 #include "contactcore/haptics/servo_loop.h"
 #include "contactcore/haptics/simulated.h"
@@ -479,4 +480,111 @@ TEST(TripleBuffer, ReaderGetsTheLatest) {
   EXPECT_EQ(buffer.read(), 2);
   buffer.write(3);
   EXPECT_EQ(buffer.read(), 3);
+}
+
+// ---- the motor: real-time contacts, engagement and the scripted insertion
+
+#include "contactcore/haptics/trial.h"
+
+namespace {
+struct MotorScene {
+  contactcore::Assembly assembly;
+  std::unique_ptr<TrialScene> scene;
+};
+MotorScene& motor_scene() {
+  static MotorScene motor = [] {
+    MotorScene m;
+    auto read = contactcore::read_step(std::string(CONTACTS_SAMPLES) + "/motor.step");
+    m.assembly = read.assembly;
+    contactcore::Status status;
+    m.scene = TrialScene::build(m.assembly, "Axis", SceneOptions{}, status);
+    return m;
+  }();
+  return motor;
+}
+int body_index(const TrialScene& scene, const std::string& name) {
+  for (std::size_t i = 0; i < scene.body_names().size(); ++i)
+    if (scene.body_names()[i] == name) return static_cast<int>(i);
+  return -1;
+}
+}  // namespace
+
+TEST(TrialScene, UnknownPartIsAClearError) {
+  MotorScene& motor = motor_scene();
+  contactcore::Status status;
+  auto scene = TrialScene::build(motor.assembly, "Crankshaft", SceneOptions{}, status);
+  EXPECT_EQ(scene, nullptr);
+  EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(status.message.find("Crankshaft"), std::string::npos);
+  EXPECT_NE(status.message.find("Axis"), std::string::npos);
+}
+
+TEST(RealtimeContacts, MotorAxisAssembledHasTheFiveShaftJoints) {
+  TrialScene& scene = *motor_scene().scene;
+  std::vector<LiveContact> live(64);
+  const int n = scene.contacts().update(Pose::Identity(), live.data(), 64);
+  std::set<std::string> clj;
+  int plf = 0;
+  for (int i = 0; i < n; ++i) {
+    if (live[i].type == contactcore::ContactType::CLJ) clj.insert(scene.body_names()[live[i].body]);
+    if (live[i].type == contactcore::ContactType::PLF) ++plf;
+  }
+  // The expected contacts of the motor (motor.expected.json): five CLJ, no PLF.
+  EXPECT_EQ(clj, (std::set<std::string>{"Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"}));
+  EXPECT_EQ(plf, 0);
+  // 30 mm out along the axis it has left the back bearing only.
+  const int n30 = scene.contacts().update(offset_pose(Vec3(0, 0, 30), Vec3::Zero(), scene.centre()), live.data(), 64);
+  std::set<std::string> clj30;
+  for (int i = 0; i < n30; ++i)
+    if (live[i].type == contactcore::ContactType::CLJ) clj30.insert(scene.body_names()[live[i].body]);
+  EXPECT_EQ(clj30, (std::set<std::string>{"Rotor-front", "Rotor-back", "Bearing-front", "Seal"}));
+  // Off the axis by more than the capture distance: none.
+  const int far = scene.contacts().update(offset_pose(Vec3(2, 0, 30), Vec3::Zero(), scene.centre()), live.data(), 64);
+  int clj_far = 0;
+  for (int i = 0; i < far; ++i) clj_far += live[i].type == contactcore::ContactType::CLJ;
+  EXPECT_EQ(clj_far, 0);
+}
+
+TEST(RealtimeContacts, CaptureSnapsOntoTheBoreAxis) {
+  TrialScene& scene = *motor_scene().scene;
+  const Pose misaligned = offset_pose(Vec3(0.2, -0.15, 30), Vec3(rad(0.3), rad(-0.2), 0), scene.centre());
+  JointState joint;
+  ASSERT_TRUE(scene.finder().capture(misaligned, joint));
+  EXPECT_EQ(joint.kind, JointKind::Cylindrical);
+  EXPECT_NEAR(std::abs(joint.axis.z()), 1.0, 1e-9);
+  EXPECT_NEAR(joint.point.head<2>().norm(), 0.0, 1e-6);
+  EXPECT_EQ(joint.stop_count, 0);  // the motor's shaft has no shoulder (no PLF contact)
+  EXPECT_GE(joint.group, 0);
+  const Pose snapped = snap_to_joint(joint, misaligned);
+  EXPECT_LT(joint_deviation(joint, snapped), 1e-9);
+  EXPECT_GT(joint_deviation(joint, misaligned), 0.1);
+  // Switched off, the shaft slides in its bores without collision; without, it collides.
+  EXPECT_FALSE(scene.collision().collides(snapped, joint.group));
+  EXPECT_TRUE(scene.collision().collides(snapped, -1));
+  // Free (not engaged), 1 mm off the axis: clear above the motor, colliding
+  // once its end reaches the seal (z 54..57; the shaft's end is at z 4 + offset).
+  EXPECT_FALSE(scene.collision().collides(offset_pose(Vec3(1, 0, 70), Vec3::Zero(), scene.centre()), -1));
+  EXPECT_TRUE(scene.collision().collides(offset_pose(Vec3(1, 0, 51), Vec3::Zero(), scene.centre()), -1));
+  EXPECT_FALSE(scene.collision().collides(offset_pose(Vec3(1, 0, 54), Vec3::Zero(), scene.centre()), -1));
+  EXPECT_GE(body_index(scene, "Seal"), 0);
+}
+
+TEST(Trial, MotorAxisInsertionEndsSeated) {
+  TrialScene& scene = *motor_scene().scene;
+  TrialScript script;
+  script.start.translate = Vec3(0.25, -0.2, 30);
+  script.start.rotate_deg = Vec3(0.4, -0.3, 0);
+  script.hand = {{0.0, Vec3(0.25, -0.2, 30), Vec3(0.4, -0.3, 0)},
+                 {2.5, Vec3(0.3, 0.2, 0), Vec3(-0.5, 0.4, 2)},
+                 {3.0, Vec3(0, 0, 0), Vec3(0, 0, 0)}};
+  TrialOptions options;
+  const TrialResult r = run_trial(scene, script, options);
+  ASSERT_TRUE(r.status.ok());
+  EXPECT_EQ(r.ticks, 4500u);
+  EXPECT_LT(r.final_translate.norm(), 0.05) << r.final_translate.transpose();
+  EXPECT_LT(r.final_rotate_deg.norm(), 0.1) << r.final_rotate_deg.transpose();
+  EXPECT_LE(r.max_penetration_mm, 0.05);
+  std::set<std::string> with;
+  for (const auto& j : r.joints_engaged) with.insert(j.with);
+  EXPECT_EQ(with, (std::set<std::string>{"Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"}));
 }
