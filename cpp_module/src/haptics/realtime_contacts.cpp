@@ -335,17 +335,16 @@ CollisionGroups collision_groups(const RealtimeContacts& contacts) {
   const double rtol = contacts.tolerances().radius;
   std::vector<const SurfaceProxy*> representatives;  // one per group
   for (const SurfaceProxy& m : moving) {
-    if (m.kind != SurfaceKind::Cylinder && m.kind != SurfaceKind::Sphere && m.kind != SurfaceKind::Cone) continue;
-    // Partners anywhere: same kind and radius (or cone angle), opposite side.
+    // Joints the loop engages (CLJ, SPF); cones match too loosely by angle alone.
+    if (m.kind != SurfaceKind::Cylinder && m.kind != SurfaceKind::Sphere) continue;
+    // Partners anywhere: same kind and radius, opposite side.
     std::vector<std::vector<int>> partners(contacts.body_count());
     bool any = false;
     for (int b = 0; b < contacts.body_count(); ++b) {
       if (b == contacts.moving()) continue;
       for (const SurfaceProxy& o : contacts.surfaces(b)) {
         if (o.kind != m.kind || !opposite_sides(m.side, o.side)) continue;
-        if (m.kind == SurfaceKind::Cone ? std::abs(o.half_angle - m.half_angle) > contacts.tolerances().angle
-                                        : std::abs(o.radius - m.radius) > rtol)
-          continue;
+        if (std::abs(o.radius - m.radius) > rtol) continue;
         partners[b].push_back(o.partition);
         any = true;
       }

@@ -59,11 +59,13 @@ double SimulatedHand::kinetic_energy() const {
 
 // Semi-implicit Euler with the damping taken implicitly (dissipative for any step).
 void SimulatedHand::integrate(double dt) noexcept {
-  const HandKey key = script_.at(time_ + dt, centre_);
+  HandKey key = script_.at(time_ + dt, centre_);
+  const bool live = live_.load(std::memory_order_relaxed);
+  if (live) key.pose = live_target_.read();
   const Vec3 c = pose_ * centre_;
   Vec3 force = applied_.force + key.force;
   Vec3 torque = applied_.torque + key.torque;
-  if (!script_.empty()) {
+  if (!script_.empty() || live) {
     force += params_.stiffness * (key.pose * centre_ - c);
     torque += params_.angular_stiffness * rotation_vector(key.pose.linear() * pose_.linear().transpose());
   }
@@ -89,8 +91,8 @@ DeviceSample SimulatedHand::read(double now) noexcept {
   // Fixed sub-steps of at most 1 ms, so the hand does not depend on the caller's rate.
   while (now - time_ > 1e-12) integrate(std::min(1e-3, now - time_));
   DeviceSample s;
-  s.connected = connected_;
-  s.time = connected_ ? now : 0;
+  s.connected = connected_.load(std::memory_order_relaxed);
+  s.time = s.connected ? now : 0;
   s.pose = pose_;
   s.velocity = velocity_;
   return s;

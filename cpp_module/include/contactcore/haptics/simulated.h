@@ -4,9 +4,11 @@
 // device of headless trials and tests, and the fallback with no hardware.
 #pragma once
 
+#include <atomic>
 #include <vector>
 
 #include "contactcore/haptics/device.h"
+#include "contactcore/haptics/servo_loop.h"
 
 namespace contactcore::haptics {
 
@@ -49,6 +51,14 @@ class SimulatedHand : public Device {
   DeviceSample read(double now) noexcept override;  // integrates the hand up to `now`
   void write(const Wrench& wrench) noexcept override { applied_ = wrench; }
 
+  // Live target (the mouse in the 3D view, from the GUI thread): replaces the
+  // script's pose from the next tick on. Lock-free.
+  void set_live_target(const Pose& pose) {
+    live_target_.write(pose);
+    live_.store(true);
+  }
+  void clear_live_target() { live_.store(false); }
+
   // Test hooks: pull the cable, give the hand a push, read its state.
   void set_connected(bool connected) { connected_ = connected; }
   void set_velocity(const Vec6& v) { velocity_ = v; }
@@ -70,7 +80,9 @@ class SimulatedHand : public Device {
   Wrench applied_;
   double time_ = 0;
   bool started_ = false;
-  bool connected_ = true;
+  std::atomic<bool> connected_{true};
+  std::atomic<bool> live_{false};
+  TripleBuffer<Pose> live_target_;
 };
 
 // The simulated device's capabilities: a desktop 6-DOF arm's order of size.
