@@ -25,7 +25,9 @@ def _progress_printer(stream):
 
 
 # `contacts NAME ...` runs another tool: NAME -> module with main(argv) -> exit code.
-SUBCOMMANDS = {}
+SUBCOMMANDS = {
+    "trial": "contactwb.cli_trial",
+}
 
 
 def main(argv=None):
