@@ -118,7 +118,7 @@ class HapticSession {
       auto hand = std::make_unique<SimulatedHand>(HandScript{}, HandParameters{}, c, start_);
       hand_ = hand.get();
       device_ = std::move(hand);
-      if (message_.empty()) message_ = "Simulated hand (drag in the 3D view or script it).";
+      if (message_.empty()) message_ = "Simulated hand (scripted, or replaying a recorded path).";
     }
     ServoConfig cfg = config;
     cfg.centre = c;
