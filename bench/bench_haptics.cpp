@@ -6,6 +6,8 @@
 //  3. the loop on its own thread for 10 s: rate, jitter, overruns.
 //
 //   bench_haptics [--seconds S] [--triangles N] [MOTOR.step]
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -28,6 +30,12 @@ using namespace contactcore::haptics;
 namespace {
 
 double now() { return steady_seconds(); }
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
 
 double percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
@@ -119,35 +127,72 @@ int main(int argc, char** argv) {
   }
   TrialOptions options;
   const TrialResult lockstep = run_trial(*dense, insertion(), options, false);
+  // The same steps timed in CPU time of this thread: the step's own cost,
+  // without the waits of a machine shared with other jobs.
+  std::vector<double> cpu_steps;
+  {
+    const Vec3 c = dense->centre();
+    const TrialScript script = insertion();
+    std::vector<HandKey> keys;
+    for (const ScriptKey& k : script.hand)
+      keys.push_back({k.t, offset_pose(k.translate, Vec3(rad(k.rotate_deg.x()), rad(k.rotate_deg.y()), rad(k.rotate_deg.z())), c)});
+    const Pose start = keys.front().pose;
+    SimulatedHand hand(HandScript(keys), HandParameters{}, c, start);
+    ServoConfig config;
+    config.centre = c;
+    config.lockstep = true;
+    ServoLoop loop(hand, config, start);
+    loop.set_joint_finder(&dense->finder());
+    loop.set_collision(&dense->collision());
+    for (int i = 0; i < 4500; ++i) {
+      const double t0 = cpu_seconds();
+      loop.step_lockstep();
+      cpu_steps.push_back(cpu_seconds() - t0);
+    }
+  }
   std::printf("| servo step, scripted insertion in lockstep | triangles (moving part) | ticks | p50 | p99 | max | steps over 1 ms | final offset |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
-  std::printf("| motor, deflection %.4f mm | %zu (%zu) | %llu | %.1f us | %.1f us | %.0f us | %llu | %.1e mm |\n\n",
+  std::printf("| motor, deflection %.4f mm, wall clock | %zu (%zu) | %llu | %.1f us | %.1f us | %.0f us | %llu | %.1e mm |\n",
               deflection, dense->collision().triangle_count(), dense->collision().moving_triangle_count(),
               static_cast<unsigned long long>(lockstep.ticks), lockstep.step_p50_us, lockstep.step_p99_us,
               lockstep.step_max_us, static_cast<unsigned long long>(lockstep.overruns), lockstep.final_translate.norm());
+  std::size_t cpu_over = 0;
+  for (double t : cpu_steps) cpu_over += t > 1e-3;
+  std::printf("| the same steps, thread CPU time | | %zu | %.1f us | %.1f us | %.0f us | %zu | |\n\n", cpu_steps.size(),
+              percentile(cpu_steps, 50) * 1e6, percentile(cpu_steps, 99) * 1e6,
+              *std::max_element(cpu_steps.begin(), cpu_steps.end()) * 1e6, cpu_over);
 
   // 3. The loop on its thread: the hand keeps inserting and extracting.
-  std::vector<HandKey> keys;
-  const Vec3 c = dense->centre();
-  for (int k = 0; k <= static_cast<int>(seconds / 2) + 1; ++k) {
-    keys.push_back({2.0 * k, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c)});
-    keys.push_back({2.0 * k + 1.0, offset_pose(Vec3(0, 0, 0), Vec3::Zero(), c)});
-  }
-  SimulatedHand hand(HandScript(keys), HandParameters{}, c, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c));
-  ServoConfig config;
-  config.centre = c;
-  ServoLoop loop(hand, config, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c));
-  loop.set_joint_finder(&dense->finder());
-  loop.set_collision(&dense->collision());
-  loop.start();
-  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-  loop.stop();
   std::printf("| loop thread, %.0f s, insert/extract every second | ticks | rate | jitter (sd of period) | step p50 | step p99 | overruns |\n", seconds);
   std::printf("|---|---|---|---|---|---|---|\n");
-  std::printf("| motor, %zu triangles | %llu | %.1f Hz | %.1f us | %.1f us | %.1f us | %llu |\n\n",
-              dense->collision().triangle_count(), static_cast<unsigned long long>(loop.ticks()), loop.rate_hz(),
-              loop.jitter_us(), loop.step_percentile_us(50), loop.step_percentile_us(99),
-              static_cast<unsigned long long>(loop.overruns()));
+  for (int priority : {0, 80}) {
+    std::vector<HandKey> keys;
+    const Vec3 c = dense->centre();
+    for (int k = 0; k <= static_cast<int>(seconds / 2) + 1; ++k) {
+      keys.push_back({2.0 * k, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c)});
+      keys.push_back({2.0 * k + 1.0, offset_pose(Vec3(0, 0, 0), Vec3::Zero(), c)});
+    }
+    SimulatedHand hand(HandScript(keys), HandParameters{}, c, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c));
+    ServoConfig config;
+    config.centre = c;
+    config.realtime_priority = priority;
+    ServoLoop loop(hand, config, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c));
+    loop.set_joint_finder(&dense->finder());
+    loop.set_collision(&dense->collision());
+    loop.start();
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    loop.stop();
+    if (priority > 0 && !loop.got_realtime_priority()) {
+      std::printf("| SCHED_FIFO %d refused (no CAP_SYS_NICE) | | | | | | |\n", priority);
+      continue;
+    }
+    std::printf("| motor, %zu triangles, %s | %llu | %.1f Hz | %.1f us | %.1f us | %.1f us | %llu |\n",
+                dense->collision().triangle_count(), priority > 0 ? "SCHED_FIFO 80" : "normal priority",
+                static_cast<unsigned long long>(loop.ticks()), loop.rate_hz(), loop.jitter_us(),
+                loop.step_percentile_us(50), loop.step_percentile_us(99),
+                static_cast<unsigned long long>(loop.overruns()));
+  }
+  std::printf("\n");
   std::printf("Machine load average at end: %s\n", load_average().c_str());
   return 0;
 }

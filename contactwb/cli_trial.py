@@ -38,6 +38,8 @@ def main(argv):
         scene = trial.make_scene(assembly, args.part, capture_distance=args.capture_distance,
                                  capture_angle_deg=args.capture_angle)
         options = {"stiffness": args.stiffness} if args.stiffness is not None else {}
+        if args.realtime:
+            options["realtime_priority"] = 80  # SCHED_FIFO when the system grants it
         result = trial.run(scene, script, realtime=args.realtime, **options)
     except core.Cancelled:
         print("contacts trial: cancelled", file=sys.stderr)

@@ -174,7 +174,8 @@ class HapticTrialPanel:
         if self.session is not None:
             self.session.stop()
         h = self.trial.haptics()
-        self.session = h.HapticSession(self.scene, device, list(translate), list(rotate_deg))
+        # A real-time class for the loop thread when the system grants it (else it runs as it is).
+        self.session = h.HapticSession(self.scene, device, list(translate), list(rotate_deg), realtime_priority=80)
         caps = self.session.capabilities
         self.device_message.setText(self.session.message)
         # Gains within what the device renders (a rate device renders none: keep the defaults).

@@ -167,6 +167,7 @@ class HapticSession {
     for (int i = 0; i < 6; ++i) axes.append(s.axes[i]);
     d["axes"] = axes;
     d["time"] = s.time;
+    d["realtime_priority"] = loop_->got_realtime_priority();
     return d;
   }
 
@@ -187,6 +188,7 @@ ServoConfig config_from(const py::kwargs& kw) {
   if (kw.contains("max_speed")) c.max_speed = kw["max_speed"].cast<double>();
   if (kw.contains("breakaway_force")) c.breakaway_force = kw["breakaway_force"].cast<double>();
   if (kw.contains("rate_hz")) c.rate_hz = kw["rate_hz"].cast<double>();
+  if (kw.contains("realtime_priority")) c.realtime_priority = kw["realtime_priority"].cast<int>();
   return c;
 }
 
@@ -351,7 +353,8 @@ void bind_haptics(py::module_& root) {
       py::arg("scene"), py::arg("script"), py::arg("realtime") = false, py::arg("record_every") = 10,
       py::arg("settle") = 1.5,
       "Runs a scripted trial with the simulated hand (lockstep unless realtime). Keyword options: "
-      "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz.");
+      "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz, "
+      "realtime_priority (SCHED_FIFO priority of the loop thread when permitted).");
 
   py::class_<HapticSession>(m, "HapticSession", "A device and the 1 kHz loop on its own thread.")
       .def(py::init([](TrialScene& scene, const std::string& device, const std::vector<double>& translate,

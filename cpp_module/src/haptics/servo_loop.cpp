@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cmath>
 
+#include <pthread.h>
+#include <sched.h>
+
 #include "contactcore/haptics/spacemouse.h"
 
 namespace contactcore::haptics {
@@ -291,6 +294,12 @@ void ServoLoop::stop() {
 
 void ServoLoop::run() {
   using clock = std::chrono::steady_clock;
+  if (config_.realtime_priority > 0) {
+    // A haptic loop wants a real-time class; without the privilege it runs as it is.
+    sched_param param{};
+    param.sched_priority = config_.realtime_priority;
+    got_priority_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
+  }
   const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(period_));
   const double origin = steady_seconds();
   start_time_ = 0;

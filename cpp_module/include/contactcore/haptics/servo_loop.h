@@ -66,6 +66,7 @@ struct ServoConfig {
   double breakaway_force = 8;       // N across the joint's free directions breaks away
   int collision_bisections = 10;
   bool lockstep = false;            // virtual clock; overruns counted, not acted on
+  int realtime_priority = 0;        // > 0: ask for SCHED_FIFO at this priority (needs CAP_SYS_NICE)
 };
 
 // What the GUI (or a test) sees, published every tick.
@@ -141,6 +142,7 @@ class ServoLoop {
   const ServoSnapshot& last() const { return last_; }
   const std::vector<EngagementEvent>& engagement_events() const { return events_; }
   const ServoConfig& config() const { return config_; }
+  bool got_realtime_priority() const { return got_priority_.load(); }
 
  private:
   void tick(double now);
@@ -170,6 +172,7 @@ class ServoLoop {
   std::atomic<bool> enabled_{true};
   std::atomic<double> stiffness_, angular_stiffness_, damping_, angular_damping_;
   std::atomic<bool> stop_{false};
+  std::atomic<bool> got_priority_{false};
   std::thread thread_;
 
   std::uint64_t ticks_ = 0, overruns_ = 0;
