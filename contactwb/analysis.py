@@ -25,12 +25,52 @@ TYPE_TITLES = {
 TYPE_ORDER = list(TYPE_TITLES)
 
 
-@dataclass
+class _MassTable:
+    """Volumes and centres of an assembly's bodies, all computed at the first
+    question (in C++, on all cores, each shared shape once), then the
+    assembly let go."""
+
+    def __init__(self, assembly):
+        self._assembly = assembly
+        self._values = None
+
+    def get(self, index):
+        if self._values is None:
+            self._assembly.compute_mass_properties()
+            self._values = [(b.volume, b.center) for b in self._assembly.bodies]
+            self._assembly = None
+        return self._values[index]
+
+
 class BodyInfo:
-    name: str
-    path: str
-    volume: float                       # mm^3
-    center: Tuple[float, float, float]  # mm
+    """A body of the result; its volume (mm^3) and center (mm) are computed
+    when first read, never twice."""
+    __slots__ = ("name", "path", "_mass", "_index")
+
+    def __init__(self, name, path, mass_table, index):
+        self.name, self.path, self._mass, self._index = name, path, mass_table, index
+
+    @property
+    def volume(self) -> float:
+        return self._mass.get(self._index)[0]
+
+    @property
+    def center(self) -> Tuple[float, float, float]:
+        return self._mass.get(self._index)[1]
+
+    def __repr__(self):
+        return f"BodyInfo(name={self.name!r}, path={self.path!r})"
+
+
+@dataclass
+class SkippedRecord:
+    """A candidate pair whose test failed (an OCCT exception): skipped, the rest kept.
+    `message` is the error; Analysis.messages has a readable line for it."""
+    a: str
+    b: str
+    faces_a: List[str]
+    faces_b: List[str]
+    message: str
 
 
 @dataclass
@@ -67,7 +107,7 @@ class Analysis:
     body_pairs: int = 0
     candidates: int = 0
     times: Dict[str, float] = field(default_factory=dict)
-    raw: Optional[object] = None  # the contactcore.ContactsResult
+    skipped: List[SkippedRecord] = field(default_factory=list)
 
     def counts(self):
         """Counter of contact types."""
@@ -93,6 +133,8 @@ class Analysis:
                           "half_angle": c.half_angle, "point": list(c.point),
                           "direction": list(c.direction)} for c in self.contacts],
             "totals": dict(self.counts()),
+            "skipped": [{"a": s.a, "b": s.b, "faces_a": s.faces_a, "faces_b": s.faces_b, "message": s.message}
+                        for s in self.skipped],
             "messages": self.messages,
             "times": self.times,
         }
@@ -119,11 +161,16 @@ class Analysis:
         summary = ", ".join(f"{counts[k]} {k}" for k in TYPE_ORDER if counts[k])
         lines.append(f"Total: {len(self.contacts)} contacts ({summary or 'none'}) "
                      f"between {len(self.by_pair())} body pairs")
+        if self.skipped:
+            pairs = ", ".join(f"{s.a} <-> {s.b}" for s in self.skipped)
+            lines.append(f"Skipped {len(self.skipped)} candidate pair(s) whose test failed, the rest kept "
+                         f"(see the notes): {pairs}")
         return "\n".join(lines)
 
 
 def _analysis(source, assembly, result, face_name=None):
-    names = [b.name for b in assembly.bodies]
+    core_bodies = assembly.bodies
+    names = [b.name for b in core_bodies]
     face_name = face_name or (lambda body, index: f"Face{index}")
     contacts = []
     for c in result.contacts:
@@ -139,44 +186,57 @@ def _analysis(source, assembly, result, face_name=None):
     for name, body in zip(names, result.partitions):
         if body.status != "ok":
             messages.append(f"body '{name}': {body.status}")
+    skipped = []
+    for s in result.skipped:
+        skipped.append(SkippedRecord(
+            a=names[s.body_a], b=names[s.body_b], faces_a=[face_name(s.body_a, f) for f in s.faces_a],
+            faces_b=[face_name(s.body_b, f) for f in s.faces_b], message=s.message))
+    messages.extend(result.messages)
+    mass = _MassTable(assembly)
     times = {"partitions": result.times.partitions, "broad_phase": result.times.broad_phase,
              "candidates": result.times.candidates, "area": result.times.area}
     return Analysis(
         source=source, units=assembly.units,
         linear_tolerance=result.tolerances.linear, angular_tolerance=result.tolerances.angular,
-        bodies=[BodyInfo(b.name, b.path, b.volume, b.center) for b in assembly.bodies],
+        bodies=[BodyInfo(b.name, b.path, mass, i) for i, b in enumerate(core_bodies)],
         contacts=contacts, messages=messages, body_pairs=len(result.body_pairs),
-        candidates=result.candidates, times=times, raw=result)
+        candidates=result.candidates, times=times, skipped=skipped)
 
 
 def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None,
-                              face_name=None):
-    """Contacts of a contactcore.Assembly. `progress(stage, fraction)` may
-    return False to cancel (raises contactwb.core.Cancelled)."""
-    result = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress)
+                              face_name=None, threads=0, max_pairs=None):
+    """Contacts of a contactcore.Assembly, on `threads` threads (0: all
+    cores). `progress(stage, fraction)` may return False to cancel (raises
+    contactwb.core.Cancelled). More than `max_pairs` body pairs with meeting
+    boxes (default 2,000,000) raise ContactsError. The core result is not
+    kept: only what the Analysis reports."""
+    result = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress,
+                                            threads=threads, max_pairs=max_pairs)
     return _analysis(source, assembly, result, face_name)
 
 
-def find_contacts_in_step(path, linear=None, angular=None, progress=None):
+def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None):
     """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
     if not os.path.isfile(path):
         raise core.ContactsError(f"no such file: '{path}'")
     assembly = core.contactcore.read_step(os.path.abspath(path))  # its errors name the file
     try:
-        return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress)
+        return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
+                                         max_pairs=max_pairs)
     except core.Cancelled:
         raise
     except core.ContactsError as error:
         raise core.ContactsError(f"{error} in file '{path}'") from error
 
 
-def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None):
+def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None,
+                            max_pairs=None):
     """Contacts between (name, Part.Shape) pairs placed globally."""
     assembly = core.assembly_from_shapes(named_shapes)
-    return find_contacts_in_assembly(assembly, source, linear, angular, progress)
+    return find_contacts_in_assembly(assembly, source, linear, angular, progress, max_pairs=max_pairs)
 
 
-def find_contacts_in_document(doc, objects=None, linear=None, angular=None, progress=None):
+def find_contacts_in_document(doc, objects=None, linear=None, angular=None, progress=None, max_pairs=None):
     """Contacts of a FreeCAD document's visible solids (or of a selection).
     Returns (Analysis, [DocumentBody]); face names are the objects' FaceN."""
     from contactwb import bodies as document_bodies
@@ -184,6 +244,6 @@ def find_contacts_in_document(doc, objects=None, linear=None, angular=None, prog
     assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
     result = find_contacts_in_assembly(
         assembly, doc.Label, linear, angular, progress,
-        face_name=lambda body, index: bodies[body].object_face_name(index))
+        face_name=lambda body, index: bodies[body].object_face_name(index), max_pairs=max_pairs)
     result.messages.extend(messages)
     return result, bodies

@@ -5,15 +5,30 @@
 
 namespace contactcore::bindings {
 
+namespace {
+// The body's cached mass properties; an OCCT failure raises ContactsError naming the body.
+MassProperties mass_of(const Body& body) {
+  MassProperties mass;
+  Status status = guarded([&] {
+    mass = body.mass();
+    return Status::success();
+  });
+  status.body = status.ok() ? "" : body.name;
+  raise_if_failed(status);
+  return mass;
+}
+}  // namespace
+
 void bind_bodies(py::module_& m) {
   py::class_<Body>(m, "Body", "A solid of the assembly with its global placement (mm).")
       .def_readonly("name", &Body::name)
       .def_readonly("path", &Body::path)
-      .def_property_readonly("brep", [](const Body& b) { return shape_to_brep(b.shape); },
+      .def_property_readonly("brep", [](const Body& b) { return without_gil([&] { return shape_to_brep(b.shape); }); },
                              "The located shape as BRep text (Part.Shape.importBrepFromString).")
-      .def_property_readonly("volume", [](const Body& b) { return mass_properties(b.shape).volume; })
-      .def_property_readonly("center", [](const Body& b) { return to_tuple(mass_properties(b.shape).centre); },
-                             "Centre of mass (x, y, z), mm.")
+      .def_property_readonly("volume", [](const Body& b) { return mass_of(b).volume; },
+                             "Volume, mm^3 (computed on first use, then kept).")
+      .def_property_readonly("center", [](const Body& b) { return to_tuple(mass_of(b).centre); },
+                             "Centre of mass (x, y, z), mm (computed on first use, then kept).")
       .def("__repr__", [](const Body& b) { return "<Body '" + b.name + "' path='" + b.path + "'>"; });
 
   py::class_<Assembly>(m, "Assembly", "Bodies of an assembly, in mm, with the source file's unit.")
@@ -21,8 +36,19 @@ void bind_bodies(py::module_& m) {
       .def_readonly("units", &Assembly::units)
       .def_readonly("source_unit_in_mm", &Assembly::source_unit_in_mm)
       .def_readonly("messages", &Assembly::messages)
-      .def("to_brep", [](const Assembly& a) { return shape_to_brep(assembly_compound(a)); },
+      .def("to_brep", [](const Assembly& a) { return without_gil([&] { return shape_to_brep(assembly_compound(a)); }); },
            "All bodies as one compound, BRep text.")
+      .def(
+          "compute_mass_properties",
+          [](const Assembly& a, int threads) {
+            raise_if_failed(guarded([&] {
+              return compute_mass_properties(a, threads) ? Status::success()
+                                                         : Status::failure(StatusCode::Cancelled, "cancelled");
+            }));
+          },
+          py::arg("threads") = 0,
+          "Volumes and centres of every body at once, on all cores (each shared shape once); "
+          "Body.volume and Body.center then read them.")
       .def("__len__", [](const Assembly& a) { return a.bodies.size(); })
       .def("__repr__", [](const Assembly& a) {
         return "<Assembly " + std::to_string(a.bodies.size()) + " bodies, units " + a.units + ">";
@@ -40,6 +66,9 @@ void bind_bodies(py::module_& m) {
       },
       py::arg("path"),
       "Reads a STEP file through OCCT's XDE reader: product names, instances, units (shapes in mm).");
+
+  m.def("unique_names", &unique_names, py::arg("names"),
+        "Names made unique by appending '.2', '.3', ... to repeats, in order (linear time).");
 
   m.def(
       "bodies_from_brep",

@@ -11,8 +11,9 @@ namespace contactcore::bindings {
 
 namespace {
 
-// Calls a Python callable(stage, fraction) -> bool from the core's worker
-// (which runs without the GIL). A raised exception cancels the work.
+// Calls a Python callable(stage, fraction) -> bool from the thread that called
+// the core (which runs without the GIL; its workers never call it). A raised
+// exception cancels the work.
 class PythonProgress : public Progress {
  public:
   explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
@@ -84,12 +85,28 @@ void bind_contacts(py::module_& m) {
         return out.str();
       });
 
+  py::class_<SkippedPair>(m, "SkippedPair", "A candidate pair whose test failed: skipped, the rest kept.")
+      .def_readonly("body_a", &SkippedPair::body_a)
+      .def_readonly("body_b", &SkippedPair::body_b)
+      .def_readonly("partition_a", &SkippedPair::partition_a)
+      .def_readonly("partition_b", &SkippedPair::partition_b)
+      .def_readonly("faces_a", &SkippedPair::faces_a)
+      .def_readonly("faces_b", &SkippedPair::faces_b)
+      .def_readonly("message", &SkippedPair::message)
+      .def("__repr__", [](const SkippedPair& s) {
+        return "<SkippedPair bodies " + std::to_string(s.body_a) + "-" + std::to_string(s.body_b) + ": " +
+               s.message + ">";
+      });
+
   py::class_<ContactsResult>(m, "ContactsResult", "Contacts of an assembly and what led to them.")
       .def_readonly("tolerances", &ContactsResult::tolerances)
       .def_readonly("partitions", &ContactsResult::partitions)
       .def_readonly("body_pairs", &ContactsResult::body_pairs)
       .def_readonly("candidates", &ContactsResult::candidates)
       .def_readonly("contacts", &ContactsResult::contacts)
+      .def_readonly("skipped", &ContactsResult::skipped)
+      .def_readonly("messages", &ContactsResult::messages)
+      .def_readonly("clearances", &ContactsResult::clearances)
       .def_readonly("times", &ContactsResult::times)
       .def("__repr__", [](const ContactsResult& r) {
         return "<ContactsResult " + std::to_string(r.contacts.size()) + " contacts, " +
@@ -100,10 +117,15 @@ void bind_contacts(py::module_& m) {
   m.def(
       "find_contacts",
       [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
-         py::object progress) {
+         py::object progress, int threads, std::optional<std::size_t> max_pairs, bool reuse_instances,
+         double clearance_gap) {
         ContactOptions options;
+        options.clearance_gap = clearance_gap;
         options.linear = linear;
         options.angular = angular;
+        options.threads = threads;
+        if (max_pairs) options.max_body_pairs = *max_pairs;
+        options.reuse_instances = reuse_instances;
         std::unique_ptr<PythonProgress> reporter;
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         ContactsResult result;
@@ -114,9 +136,13 @@ void bind_contacts(py::module_& m) {
         return result;
       },
       py::arg("assembly"), py::arg("linear") = py::none(), py::arg("angular") = py::none(),
-      py::arg("progress") = py::none(),
-      "Partitions every body, then finds contacts. `progress(stage, fraction)` returning False "
-      "cancels (raises contactcore.Cancelled). Tolerances default to the model's scale.");
+      py::arg("progress") = py::none(), py::arg("threads") = 0, py::arg("max_pairs") = py::none(),
+      py::arg("reuse_instances") = true, py::arg("clearance_gap") = 0.0,
+      "Partitions every body, then finds contacts, on `threads` threads (0: all cores; the result "
+      "is the same for any number). `progress(stage, fraction)` returning False cancels (raises "
+      "contactcore.Cancelled); it is called from the calling thread. Tolerances default to the "
+      "model's scale. More than `max_pairs` body pairs with meeting boxes (default 2,000,000) "
+      "stops with ContactsError saying how many. `clearance_gap` > 0 also reports clearance fits.");
 
   m.def(
       "common_area",

@@ -30,6 +30,14 @@ inline std::vector<std::string> face_names(const std::vector<int>& faces) {
   return names;
 }
 
+// Runs `work` (which must not touch Python objects) without the GIL, so
+// FreeCAD's GUI and other Python threads go on meanwhile.
+template <class Work>
+auto without_gil(Work&& work) {
+  py::gil_scoped_release release;
+  return work();
+}
+
 // Raises contactcore.ContactsError (a RuntimeError) with Status::describe().
 void raise_if_failed(const Status& status);
 

@@ -9,6 +9,7 @@ void bind_errors(py::module_& m);
 void bind_bodies(py::module_& m);
 void bind_partitions(py::module_& m);
 void bind_contacts(py::module_& m);
+void bind_joints(py::module_& m);
 #ifdef CONTACTS_WITH_HAPTICS
 void bind_haptics(py::module_& m);
 #endif
@@ -21,6 +22,7 @@ PYBIND11_MODULE(contactcore, m) {
   bind_bodies(m);
   bind_partitions(m);
   bind_contacts(m);
+  bind_joints(m);
 #ifdef CONTACTS_WITH_HAPTICS
   bind_haptics(m);
 #endif

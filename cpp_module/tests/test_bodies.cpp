@@ -5,6 +5,7 @@
 #include <GProp_GProps.hxx>
 #include <TopExp_Explorer.hxx>
 #include <set>
+#include <gp_Ax1.hxx>
 #include <gp_Trsf.hxx>
 
 #include "contactcore/bodies.h"
@@ -57,6 +58,45 @@ TEST(Bodies, NamesMadeUniqueWithoutClashes) {
   EXPECT_EQ(bodies[0].name, "A");
   EXPECT_EQ(bodies[1].name, "A.2");
   EXPECT_EQ(bodies[2].name, "A.2.2");
+}
+
+// Thousands of identical screws are normal: 8,000 same-named instances get
+// the suffixes in order, every one distinct, and a name already taken by
+// hand keeps its place.
+TEST(Bodies, ManySameNamedInstancesGetUniqueNamesInOrder) {
+  std::vector<std::string> names(8000, "Screw");
+  names.insert(names.begin() + 1, "Screw.3");
+  const std::vector<std::string> unique = unique_names(names);
+  ASSERT_EQ(unique.size(), names.size());
+  EXPECT_EQ(unique[0], "Screw");
+  EXPECT_EQ(unique[1], "Screw.3");
+  EXPECT_EQ(unique[2], "Screw.2");
+  EXPECT_EQ(unique[3], "Screw.4");  // .3 was taken
+  EXPECT_EQ(unique.back(), "Screw.8001");
+  EXPECT_EQ(std::set<std::string>(unique.begin(), unique.end()).size(), unique.size());
+}
+
+// Volumes and centres computed once for all bodies (each shared shape once,
+// moved to its other placements) equal each body's own computation.
+TEST(Bodies, MassPropertiesOfInstancesEqualTheirOwn) {
+  const TopoDS_Shape part = BRepPrimAPI_MakeBox(gp_Pnt(1, 2, 3), 4, 5, 6).Shape();
+  Assembly assembly;
+  for (int i = 0; i < 20; ++i) {
+    gp_Trsf turn, shift;
+    turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 1, 0)), 0.3 * i);
+    shift.SetTranslation(gp_Vec(10.0 * i, -3.0 * i, 7));
+    assembly.bodies.push_back({"part", "part", part.Moved(TopLoc_Location(shift * turn))});
+  }
+  assembly.bodies.push_back({"other", "other", BRepPrimAPI_MakeBox(2, 2, 2).Shape()});
+  ASSERT_TRUE(compute_mass_properties(assembly, 3));
+  for (const Body& body : assembly.bodies) {
+    const MassProperties own = mass_properties(body.shape);
+    EXPECT_NEAR(body.mass().volume, own.volume, 1e-9 * own.volume) << body.name;
+    EXPECT_LT(body.mass().centre.Distance(own.centre), 1e-9) << body.name;
+  }
+  EXPECT_NEAR(assembly.bodies[0].mass().volume, 120.0, 1e-9);
+  const Body copy = assembly.bodies[5];  // copies share the cache
+  EXPECT_EQ(&copy.mass(), &assembly.bodies[5].mass());
 }
 
 TEST(Bodies, MissingStepFileIsAReadError) {

@@ -4,6 +4,8 @@
 // units, MAPPED_ITEM placements).
 #pragma once
 
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -14,10 +16,26 @@
 
 namespace contactcore {
 
+// Volume (mm^3) and centre of mass of a body's solid(s).
+struct MassProperties {
+  double volume = 0;
+  gp_Pnt centre;
+};
+
+// Filled once, on first use (copies of a body share it).
+struct MassCache {
+  std::once_flag once;
+  MassProperties value;
+};
+
 struct Body {
   std::string name;    // unique within the assembly
   std::string path;    // assembly tree path, "Root/Sub/Part" (STEP) or the caller's
   TopoDS_Shape shape;  // a solid (or compsolid/compound of solids), located globally
+  std::shared_ptr<MassCache> mass_cache = std::make_shared<MassCache>();
+
+  // Volume and centre of mass, computed on the first call only (thread-safe).
+  const MassProperties& mass() const;
 };
 
 struct Assembly {
@@ -48,14 +66,17 @@ std::string shape_to_brep(const TopoDS_Shape& shape);
 // One compound of all bodies' shapes (in order), e.g. to hand back to FreeCAD.
 TopoDS_Shape assembly_compound(const Assembly& assembly);
 
-// Volume (mm^3) and centre of mass of a body's solid(s).
-struct MassProperties {
-  double volume = 0;
-  gp_Pnt centre;
-};
+// Volume and centre of mass of a shape, computed each call (Body::mass keeps them).
 MassProperties mass_properties(const TopoDS_Shape& shape);
 
-// Makes names unique by appending ".2", ".3", ... to repeats, keeping order.
+// Fills every body's mass cache on `threads` threads (0: all cores), each
+// shared shape computed once and moved to its other placements. Reports
+// "mass properties"; false when cancelled.
+bool compute_mass_properties(const Assembly& assembly, int threads = 0, Progress* progress = nullptr);
+
+// Names made unique by appending ".2", ".3", ... to repeats (the smallest
+// suffix not yet taken), keeping order; linear time however many repeat.
+std::vector<std::string> unique_names(const std::vector<std::string>& names);
 void make_names_unique(std::vector<Body>& bodies);
 
 }  // namespace contactcore

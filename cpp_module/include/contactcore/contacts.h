@@ -3,6 +3,8 @@
 // sides (LpC) found by sorting, then a real common-area test per candidate.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <utility>
@@ -44,6 +46,15 @@ struct ContactOptions {
   std::optional<double> angular;  // radians; unset: the default
   double min_area_ratio = 1e-6;   // common area below ratio * smaller partition area: no contact
   double clearance_gap = 0;       // mm; > 0: also report clearance fits with radii this close
+  int threads = 0;                // worker threads; 0: all cores, 1: serial in the calling thread
+  bool reuse_instances = true;    // partition each shared shape once, moved to its other placements
+  // Beyond this many body pairs with meeting boxes the broad phase stops with
+  // a Status (heavily overlapping input: duplicates placed in place) instead
+  // of enumerating them all. Raise it to go on.
+  std::size_t max_body_pairs = 2'000'000;
+  // For tests: called before each candidate pair's test (bodies, partitions);
+  // what it throws skips that pair as a failing test would.
+  std::function<void(int, int, int, int)> candidate_hook;
 };
 
 // Found beside contacts, never counted as contacts.
@@ -60,7 +71,7 @@ struct Clearance {
   SurfaceKind kind = SurfaceKind::Cylinder;
   double gap = 0;  // mm, radial (cylinders, spheres) or normal (planes)
 };
-// A candidate pair whose test raised an OCCT exception: skipped, the rest kept.
+// A candidate pair whose test raised an exception (OCCT or C++): skipped, the rest kept.
 struct SkippedPair {
   int body_a = 0, body_b = 0;
   int partition_a = 0, partition_b = 0;
@@ -78,7 +89,7 @@ struct ContactsResult {
   Tolerances tolerances;
   std::vector<BodyPartitions> partitions;  // one per body
   std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
-  std::size_t candidates = 0;                   // partition pairs tested for area
+  std::size_t candidates = 0;  // candidate partition pairs (those of body pairs placed alike each counted)
   std::vector<Contact> contacts;
   std::vector<Interference> interferences;
   std::vector<Clearance> clearances;
@@ -87,15 +98,29 @@ struct ContactsResult {
   StageTimes times;
 };
 
-// Body pairs whose boxes meet within `gap`, by sort and sweep on x.
-std::vector<std::pair<int, int>> broad_phase(const std::vector<Bnd_Box>& boxes, double gap);
+// Body pairs (i < j, sorted) whose boxes meet within `gap`, by sort and sweep
+// on the axis along which the fewest boxes overlap (so an assembly stacked
+// along any axis does not degrade). Stops once more than `max_pairs` pairs
+// are found: `pairs` then holds max_pairs + 1 of them and the Status says how
+// many there may be and how to raise the limit.
+struct BroadPhase {
+  Status status;
+  std::vector<std::pair<int, int>> pairs;
+};
+// Reports "broad phase" progress and stops when asked (Status Cancelled).
+BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap,
+                       std::size_t max_pairs = static_cast<std::size_t>(-1), Progress* progress = nullptr);
 
 // Area of the intersection of two polygon sets (outer loops counter-clockwise,
 // holes clockwise) in the same 2D frame.
 double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol);
 
 // The whole stage on an assembly. Partitions each body (progress "partitions"),
-// then broad phase, candidates and area ("contacts").
+// then broad phase, candidates ("candidates") and area ("contacts"), the
+// partitions and the candidate tests on `options.threads` threads; the result
+// is the same whatever the number of threads (bodies, pairs and contacts in
+// the serial order). Progress is reported, and cancellation honoured within
+// one body's or one candidate's work, from the calling thread.
 ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& options,
                              Progress* progress = nullptr);
 
