@@ -46,7 +46,7 @@ for suite in python gui; do
   failed=$((failed + $(count '[0-9]+ failed' "$logs/$suite.log") + $(count '[0-9]+ error' "$logs/$suite.log")))
   skipped=$((skipped + suite_skipped))
   if [ "$suite_skipped" -gt 0 ]; then
-    reasons=$(grep -E '^SKIPPED \[' "$logs/$suite.log" | sed -E 's/^SKIPPED \[[0-9]+\] [^ ]*: //' | sort -u | head -3 | paste -sd ';' -)
+    reasons=$(grep -E '^SKIPPED \[' "$logs/$suite.log" | sed -E 's/^SKIPPED \[[0-9]+\] [^ ]*: //; s/: \/.*$//' | sort -u | head -3 | paste -sd ';' -)
     if [ "${result[$suite]}" = ok ] && [ "$suite_passed" -eq 0 ]; then result[$suite]="not run"; fi
     result[$suite]="${result[$suite]} ($suite_skipped skipped: $reasons)"
   fi
