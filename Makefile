@@ -19,7 +19,8 @@ DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
   libocct-visualization-dev libcoin-dev libhidapi-dev pybind11-dev python3-pybind11 \
   python3-dev python3-pytest cmake make g++ googletest libgtest-dev libbenchmark-dev \
-  libtbb-dev python3-pil xvfb xauth
+  libtbb-dev python3-pil xvfb xauth \
+  libeigen3-dev graphviz libfcl-dev pkg-config
 
 .PHONY: run test deps build install uninstall samples bench test-cpp test-python test-gui clean
 

@@ -25,7 +25,10 @@ def _progress_printer(stream):
 
 
 # `contacts NAME ...` runs another tool: NAME -> module with main(argv) -> exit code.
-SUBCOMMANDS = {}
+SUBCOMMANDS = {
+    "mesh": "contactwb.cli_mesh",
+    "trial": "contactwb.cli_trial",
+}
 
 
 def main(argv=None):
@@ -43,22 +46,46 @@ def main(argv=None):
     parser.add_argument("--max-pairs", type=int, default=None, metavar="N",
                         help="stop when more than N body pairs have meeting boxes (default 2000000): "
                              "heavily overlapping input")
+    parser.add_argument("--joints", action="store_true", help="also print joints, mobility and rigid groups")
+    parser.add_argument("--graph", metavar="FILE", help="write the liaison graph (.svg, .png or .dot)")
+    parser.add_argument("--ground", metavar="NAME", help="body held still (default: the largest by volume)")
+    parser.add_argument("--clearance-gap", type=float, default=0.0, metavar="MM",
+                        help="with --joints: also list clearance fits with a gap below MM")
+    parser.add_argument("--disassembly", action="store_true",
+                        help="print the removal sequence (with --json: {\"disassembly\": [{\"parts\", \"direction\"}]})")
     args = parser.parse_args(argv)
+    if args.disassembly:
+        from contactwb import cli_mesh
+        return cli_mesh.print_disassembly(args.file, args.json, args.linear, args.angular)
 
     from contactwb import analysis, core
+    from contactwb import joints as joints_api
     progress = _progress_printer(sys.stderr) if args.progress else None
     start = time.perf_counter()
+    found = None
+    wants_joints = args.joints or args.graph
     try:
         if args.file.lower().endswith(".fcstd"):
             from contactwb import freecad_setup
             if not os.path.isfile(args.file):
                 raise core.ContactsError(f"no such file: '{args.file}'")
             doc = freecad_setup.open_document(os.path.abspath(args.file))
-            result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
-                                                           progress=progress, max_pairs=args.max_pairs)
+            if wants_joints:
+                result, found, _ = joints_api.joints_in_document(
+                    doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
+                    clearance_gap=args.clearance_gap, max_pairs=args.max_pairs)
+            else:
+                result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
+                                                               progress=progress, max_pairs=args.max_pairs)
+        elif wants_joints:
+            result, found = joints_api.joints_in_step(args.file, args.linear, args.angular, progress,
+                                                      ground=args.ground, clearance_gap=args.clearance_gap,
+                                                      max_pairs=args.max_pairs)
         else:
             result = analysis.find_contacts_in_step(args.file, args.linear, args.angular, progress,
                                                     max_pairs=args.max_pairs)
+        if args.graph:
+            found.write_graph(args.graph)
     except core.Cancelled:
         print("contacts: cancelled", file=sys.stderr)
         return 130
@@ -67,10 +94,18 @@ def main(argv=None):
         return 1
     elapsed = time.perf_counter() - start
     if args.json:
-        json.dump(result.to_json(), sys.stdout, indent=2)
+        document = result.to_json()
+        if args.joints:
+            document.update(found.to_json())
+            if args.clearance_gap > 0:
+                document["clearances"] = found.clearances
+        json.dump(document, sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
         print(result.table())
+        if args.joints:
+            print()
+            print(found.table())
         t = result.times
         print(f"Time: {elapsed * 1000:.1f} ms in all (partitions {t['partitions'] * 1000:.1f} ms, "
               f"broad phase {t['broad_phase'] * 1000:.2f} ms, candidates {t['candidates'] * 1000:.2f} ms, "

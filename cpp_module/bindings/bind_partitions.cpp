@@ -182,7 +182,7 @@ void bind_partitions(py::module_& m) {
         return default_tolerances(box);
       },
       py::arg("xmin"), py::arg("ymin"), py::arg("zmin"), py::arg("xmax"), py::arg("ymax"), py::arg("zmax"),
-      "Tolerances scaled to a model box: linear 1e-5 of its diagonal in [1e-6, 1e-2] mm, angular 1e-4 rad");
+      "Tolerances scaled to a model box: linear 1e-5 of its diagonal (no floor or ceiling), angular 1e-4 rad");
 
   m.def(
       "partition_brep",
@@ -194,7 +194,10 @@ void bind_partitions(py::module_& m) {
           if (!read.ok()) return read;
           Bnd_Box box;
           BRepBndLib::Add(shape, box);
-          result = partition_shape(shape, resolve_tolerances(box, linear, angular));
+          const Tolerances tolerances = resolve_tolerances(box, linear, angular);
+          const Status valid = check_tolerances(box, tolerances);
+          if (!valid.ok()) return valid;
+          result = partition_shape(shape, tolerances);
           return Status::success();
         });
         raise_if_failed(status);

@@ -1,14 +1,24 @@
 #include "contactcore/bodies.h"
+#include "contactcore/occt_guard.h"
+#include "contactcore/step_check.h"
 
 #include "contactcore/instances.h"
 #include "contactcore/parallel.h"
 
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
 #include <unordered_set>
 
+#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
+#include <Bnd_Box.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <BRepTools.hxx>
@@ -18,6 +28,7 @@
 #include <Interface_Static.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TDF_Label.hxx>
@@ -84,6 +95,18 @@ std::string skipped_message(const std::string& name, const SolidHarvest& h) {
   return msg.str();
 }
 
+// False for a shape with NaN or infinite coordinates (a broken placement).
+bool has_finite_box(const TopoDS_Shape& shape) {
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box, false);
+  if (box.IsVoid()) return true;
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  for (double v : {x0, y0, z0, x1, y1, z1})
+    if (!std::isfinite(v) || std::abs(v) >= 1e100) return false;
+  return true;
+}
+
 class StepTreeWalker {
  public:
   StepTreeWalker(Handle(XCAFDoc_ShapeTool) tool, Assembly& out, Progress* progress)
@@ -118,7 +141,11 @@ class StepTreeWalker {
     const SolidHarvest harvest = harvest_solids(shape);
     if (harvest.open_shells || harvest.loose_faces) out_.messages.push_back(skipped_message(path, harvest));
     for (const TopoDS_Shape& solid : harvest.solids) {
-      out_.bodies.push_back(Body{name, path, solid.Moved(location)});
+      const TopoDS_Shape placed = solid.Moved(location);
+      if (has_finite_box(placed))
+        out_.bodies.push_back(Body{name, path, placed});
+      else
+        out_.messages.push_back("skipped '" + path + "': coordinates that are not finite numbers");
     }
     return true;
   }
@@ -183,17 +210,103 @@ void make_names_unique(std::vector<Body>& bodies) {
   for (std::size_t i = 0; i < bodies.size(); ++i) bodies[i].name = std::move(names[i]);
 }
 
+namespace {
+
+// Why a file cannot be read, said before OCCT tries (it says only "cannot read").
+Status check_input_file(const std::string& path, const char* format) {
+  const auto fail = [&path](StatusCode code, const std::string& message) {
+    Status status = Status::failure(code, message);
+    status.file = path;
+    return status;
+  };
+  if (path.find('\0') != std::string::npos)
+    return fail(StatusCode::InvalidInput, "the path contains a NUL character");
+  if (path.empty()) return fail(StatusCode::InvalidInput, "empty path");
+  std::error_code error;
+  const std::filesystem::file_status info = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(info)) return fail(StatusCode::ReadError, "no such file");
+  if (std::filesystem::is_directory(info)) return fail(StatusCode::ReadError, "a directory, not a file");
+  std::ifstream probe(path, std::ios::binary);
+  if (!probe) {
+    const int code = errno;
+    return fail(StatusCode::ReadError, code == EACCES ? std::string("permission denied")
+                                                      : std::string("cannot open: ") + std::strerror(code));
+  }
+  char head[64] = {};
+  probe.read(head, sizeof head);
+  const std::string start(head, static_cast<size_t>(probe.gcount()));
+  if (start.empty()) return fail(StatusCode::InvalidInput, "empty file");
+  if (start.rfind("\x89PNG", 0) == 0) return fail(StatusCode::InvalidInput, std::string("not a ") + format + " file: a PNG image");
+  if (start.rfind("PK\x03\x04", 0) == 0)
+    return fail(StatusCode::InvalidInput, std::string("not a ") + format + " file: a zip archive (a FreeCAD document?)");
+  if (std::string(format) == "STEP" && start.find("ISO-10303-21") == std::string::npos)
+    return fail(StatusCode::InvalidInput, "not a STEP file: it does not begin with ISO-10303-21");
+  return Status::success();
+}
+
+// BRep text OCCT's reader would loop on or misread (text cut short).
+// OCCT 7.6 loops forever on an edge record cut short, so the text must hold
+// its "TShapes N" table with N records (each ends with a '*' line) and the
+// root reference after them.
+Status check_brep_text(const std::string& brep) {
+  const auto fail = [](const std::string& why) { return Status::failure(StatusCode::InvalidInput, "unreadable BRep: " + why); };
+  if (brep.empty()) return fail("empty text");
+  if (brep.find("CASCADE Topology") == std::string::npos) return fail("not BRep text (no 'CASCADE Topology' header)");
+  const size_t table = brep.find("\nTShapes ");
+  if (table == std::string::npos) return fail("text cut short (no TShapes table)");
+  size_t line_start = brep.find('\n', table + 1);
+  long expected = 0;
+  try {
+    expected = std::stol(brep.substr(table + 9, line_start == std::string::npos ? std::string::npos : line_start - table - 9));
+  } catch (const std::exception&) {
+    return fail("bad TShapes count");
+  }
+  long records = 0;
+  while (line_start != std::string::npos && records < expected) {
+    const size_t next = brep.find('\n', line_start + 1);
+    size_t end = next == std::string::npos ? brep.size() : next;
+    while (end > line_start + 1 && std::isspace(static_cast<unsigned char>(brep[end - 1]))) --end;
+    if (end > line_start + 1 && brep[end - 1] == '*') ++records;
+    line_start = next;
+  }
+  if (records < expected)
+    return fail("text cut short (" + std::to_string(records) + " of " + std::to_string(expected) + " shapes)");
+  if (line_start == std::string::npos || brep.find_first_not_of(" \t\r\n", line_start) == std::string::npos)
+    return fail("text cut short (no root shape)");
+  return Status::success();
+}
+
+// OCCT's console messages about the file, as notes ("StepFile : Incorrect Syntax ...").
+void keep_reader_notes(const OcctGuard& guard, std::vector<std::string>& messages) {
+  for (const std::string& line : guard.messages()) {
+    std::string text = line;
+    text.erase(0, text.find_first_not_of(" *\t"));
+    while (!text.empty() && (text.back() == ' ' || text.back() == '*' || text.back() == '\n')) text.pop_back();
+    if (!text.empty()) messages.push_back("STEP reader: " + text);
+  }
+}
+
+}  // namespace
+
 AssemblyResult read_step(const std::string& path, Progress* progress) {
   AssemblyResult result;
+  const auto fail = [&result, &path](StatusCode code, const std::string& message) {
+    result.status = Status::failure(code, message);
+    result.status.file = path;
+    return result;
+  };
+  if (progress && !progress->report("read", 0.0)) return fail(StatusCode::Cancelled, "cancelled");
+  result.status = check_input_file(path, "STEP");
+  if (!result.status.ok()) return result;
+  // Damaged files make OCCT 7.6 dereference null handles: its signal handler
+  // turns that into a Standard_Failure here, and its messages are kept off stdout.
+  OcctGuard guard;
+  Handle(XCAFApp_Application) app = XCAFApp_Application::GetApplication();
+  Handle(TDocStd_Document) doc;
   try {
-    if (progress && !progress->report("read", 0.0)) {
-      result.status = Status::failure(StatusCode::Cancelled, "cancelled");
-      return result;
-    }
+    OCC_CATCH_SIGNALS
     // Shapes come out in millimetres whatever the file's unit.
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-    Handle(XCAFApp_Application) app = XCAFApp_Application::GetApplication();
-    Handle(TDocStd_Document) doc;
     app->NewDocument("MDTV-XCAF", doc);
     STEPCAFControl_Reader reader;
     reader.SetNameMode(true);
@@ -201,56 +314,85 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
     reader.SetLayerMode(false);
     reader.SetPropsMode(false);
     if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
-      result.status = Status::failure(StatusCode::ReadError, "cannot read STEP file");
-      result.status.file = path;
-      app->Close(doc);
-      return result;
-    }
-    read_units(reader, result.assembly);
-    if (progress && !progress->report("read", 0.3)) {
-      result.status = Status::failure(StatusCode::Cancelled, "cancelled");
-      app->Close(doc);
-      return result;
-    }
-    if (!reader.Transfer(doc)) {
-      result.status = Status::failure(StatusCode::ReadError, "STEP transfer failed");
-      result.status.file = path;
-      app->Close(doc);
-      return result;
-    }
-    Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
-    TDF_LabelSequence roots;
-    tool->GetFreeShapes(roots);
-    StepTreeWalker walker(tool, result.assembly, progress);
-    for (Standard_Integer i = 1; i <= roots.Length(); ++i) {
-      if (!walker.walk(roots.Value(i), TopLoc_Location(), "")) {
-        result.status = Status::failure(StatusCode::Cancelled, "cancelled");
-        break;
+      std::string why;
+      for (const std::string& line : guard.messages()) why += (why.empty() ? "" : "; ") + line;
+      fail(StatusCode::ReadError, "not a readable STEP file" + (why.empty() ? std::string() : ": " + why));
+    } else {
+      read_units(reader, result.assembly);
+      const StepModelCheck check = check_step_model(reader.ChangeReader().StepModel());
+      if (!check.cycle.empty()) {
+        fail(StatusCode::InvalidInput, "cyclic assembly reference (an assembly contains itself): " + check.cycle);
+      } else if (check.assembly_depth > kMaxAssemblyDepth) {
+        fail(StatusCode::InvalidInput, "assembly nested " + std::to_string(check.assembly_depth) +
+                                           " levels deep (at most " + std::to_string(kMaxAssemblyDepth) + ")");
+      } else if (progress && !progress->report("read", 0.3)) {
+        fail(StatusCode::Cancelled, "cancelled");
+      } else {
+        if (check.damaged_count)
+          result.assembly.messages.push_back(std::to_string(check.damaged_count) +
+                                             " damaged STEP entities ignored: " + describe_damaged(check));
+        bool transferred = false;
+        try {
+          OCC_CATCH_SIGNALS
+          transferred = reader.Transfer(doc);
+        } catch (const Standard_Failure& failure) {
+          std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
+          if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
+          message += ")";
+          if (check.damaged_count) message += "; damaged entities: " + describe_damaged(check);
+          fail(StatusCode::ReadError, message);
+        }
+        if (result.status.ok() && !transferred) {
+          fail(StatusCode::ReadError, "STEP transfer failed" +
+                                          (check.damaged_count ? "; damaged entities: " + describe_damaged(check) : ""));
+        }
+        if (result.status.ok()) {
+          Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
+          TDF_LabelSequence roots;
+          tool->GetFreeShapes(roots);
+          StepTreeWalker walker(tool, result.assembly, progress);
+          for (Standard_Integer i = 1; i <= roots.Length(); ++i) {
+            if (!walker.walk(roots.Value(i), TopLoc_Location(), "")) {
+              result.status = Status::failure(StatusCode::Cancelled, "cancelled");
+              break;
+            }
+          }
+          make_names_unique(result.assembly.bodies);
+          if (result.status.ok() && result.assembly.bodies.empty())
+            fail(StatusCode::InvalidInput, result.assembly.messages.empty()
+                                               ? "no solid in the file"
+                                               : "no solid in the file (" + result.assembly.messages.back() + ")");
+        }
       }
-    }
-    app->Close(doc);
-    make_names_unique(result.assembly.bodies);
-    if (result.status.ok() && result.assembly.bodies.empty()) {
-      result.status = Status::failure(StatusCode::InvalidInput, "no solid in the file");
-      result.status.file = path;
+      keep_reader_notes(guard, result.assembly.messages);
     }
   } catch (const Standard_Failure& failure) {
-    result.status = Status::failure(StatusCode::ReadError,
-                                    std::string("OCCT: ") + failure.GetMessageString());
-    result.status.file = path;
+    std::string message = std::string("OCCT ") + failure.DynamicType()->Name();
+    if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
+    fail(StatusCode::ReadError, message + " while reading the STEP file");
+  }
+  try {
+    if (!doc.IsNull()) app->Close(doc);
+  } catch (const Standard_Failure&) {
+    // A document half-filled by a failed transfer: nothing more to free safely.
   }
   if (progress && result.status.ok()) progress->report("read", 1.0);
   return result;
 }
 
 Status shape_from_brep(const std::string& brep, TopoDS_Shape& shape) {
+  const Status check = check_brep_text(brep);
+  if (!check.ok()) return check;
+  OcctGuard guard;
   try {
+    OCC_CATCH_SIGNALS
     std::istringstream stream(brep);
     BRep_Builder builder;
     BRepTools::Read(shape, stream, builder);
   } catch (const Standard_Failure& failure) {
-    return Status::failure(StatusCode::InvalidInput,
-                           std::string("unreadable BRep: ") + failure.GetMessageString());
+    const char* text = failure.GetMessageString();
+    return Status::failure(StatusCode::InvalidInput, std::string("unreadable BRep: ") +
+                                                         (text && *text ? text : failure.DynamicType()->Name()));
   }
   if (shape.IsNull()) return Status::failure(StatusCode::InvalidInput, "unreadable BRep: no shape");
   return Status::success();
@@ -285,6 +427,12 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
         result.assembly.messages.push_back(skipped_message(name, harvest));
       // One body per child: FreeCAD face names (FaceN) index the child's faces.
       result.assembly.bodies.push_back(Body{name, name, children[i]});
+      if (!has_finite_box(children[i])) {
+        result.status = Status::failure(StatusCode::InvalidInput,
+                                        "coordinates that are not finite numbers (a NaN or infinite placement?)");
+        result.status.body = name;
+        return result;
+      }
     }
     make_names_unique(result.assembly.bodies);
   } catch (const Standard_Failure& failure) {

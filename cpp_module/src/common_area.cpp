@@ -3,11 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAlgoAPI_Common.hxx>
 #include <BRepClass_FaceClassifier.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom_Surface.hxx>
+#include <Precision.hxx>
 #include <ShapeAnalysis_Surface.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
 #include <gp_Vec.hxx>
 
 namespace contactcore {
@@ -133,10 +140,12 @@ class EdgeGrid {
 
 // Which part of `edges`' boundary lies inside `other`: by Green's theorem the
 // common area is the sum of x dy - y dx over the boundary of the intersection,
-// made of the pieces of each boundary inside the other region. A piece running
+// made of the pieces of each boundary inside the other region; each chord
+// kept adds the bulge of its curve, so arcs count exactly, not as polygons. A piece running
 // along the other boundary counts once (from the first set) when both run the
 // same way, i.e. both regions lie on the same side of it.
-double boundary_inside(const std::vector<Polygon2>& edges, const EdgeGrid& other, bool count_shared, double tol) {
+double boundary_inside(const std::vector<Polygon2>& edges, const EdgeGrid& other, bool count_shared, double tol,
+                       const Point2& origin, double& length) {
   double twice_area = 0;
   std::vector<double> cuts;
   for (const Polygon2& loop : edges) {
@@ -162,12 +171,13 @@ double boundary_inside(const std::vector<Polygon2>& edges, const EdgeGrid& other
           const double t = cross(pa, s) / denom;
           const double u = cross(pa, r) / denom;
           if (t > 0 && t < 1 && u >= -1e-12 && u <= 1 + 1e-12) cuts.push_back(t);
-        } else {
-          // Parallel: the other edge's ends cut this one where they lie on it.
-          for (const Point2& e : {a, b}) {
-            double t = 0;
-            if (distance_to_segment(e, p, q, &t) <= tol && t > 0 && t < 1) cuts.push_back(t);
-          }
+        }
+        // The other edge's ends cut this one where they lie on it (within
+        // tolerance, at any angle): where two boundaries run together, their
+        // shared pieces then end where they really part.
+        for (const Point2& e : {a, b}) {
+          double t = 0;
+          if (distance_to_segment(e, p, q, &t) <= tol && t > 0 && t < 1) cuts.push_back(t);
         }
       });
       std::sort(cuts.begin(), cuts.end());
@@ -189,7 +199,13 @@ double boundary_inside(const std::vector<Polygon2>& edges, const EdgeGrid& other
           if (sin_angle < 1e-3) shared = (s.x * r.x + s.y * r.y) > 0 ? 1 : -1;
         });
         const bool inside = shared ? (count_shared && shared > 0) : other.winding(mid) > 0;
-        if (inside) twice_area += cross(s0, s1);
+        // The chord's bulge, in proportion to the piece (a segment of a
+        // circle grows with the cube of its chord): exact on whole chords.
+        const double piece = t1 - t0;
+        if (inside) {
+          twice_area += cross(sub(s0, origin), sub(s1, origin)) + p.bulge * piece * piece * piece;
+          length += piece * std::sqrt(r_len2);
+        }
       }
     }
   }
@@ -208,22 +224,39 @@ double distance_to_line(const gp_Pnt& p, const gp_Pnt& origin, const gp_Dir& axi
 }
 
 // A point on a face (within tolerance of its surface and inside its
-// boundaries)? For samples of circle and sphere contacts.
+// boundaries)? For samples of circle contacts. The projection gives
+// parameters in the surface's natural period; the face's own range may be
+// shifted by whole turns (u in [pi, 3 pi] is common in exported bearings), so
+// periodic parameters are brought into the face's range before classifying.
 class FaceProbe {
  public:
   explicit FaceProbe(const FaceInfo& info)
-      : face_(info.face), analysis_(BRep_Tool::Surface(info.face)) {}
+      : face_(info.face), surface_(BRep_Tool::Surface(info.face)), analysis_(surface_) {
+    BRepTools::UVBounds(face_, u_min_, u_max_, v_min_, v_max_);
+  }
   bool contains(const gp_Pnt& p, double tol) {
     const gp_Pnt2d uv = analysis_.ValueOfUV(p, tol);
-    if (analysis_.Gap() > 10 * tol) return false;
-    BRepClass_FaceClassifier classifier(face_, uv, tol);
+    if (analysis_.Gap() > tol) return false;
+    const double u = into_range(uv.X(), u_min_, u_max_, surface_->IsUPeriodic() ? surface_->UPeriod() : 0);
+    const double v = into_range(uv.Y(), v_min_, v_max_, surface_->IsVPeriodic() ? surface_->VPeriod() : 0);
+    BRepClass_FaceClassifier classifier(face_, gp_Pnt2d(u, v), Precision::PConfusion());
     const TopAbs_State state = classifier.State();
     return state == TopAbs_IN || state == TopAbs_ON;
   }
 
+  // The value shifted by whole periods to lie in [low, high] when some shift
+  // does (else the one closest to the middle of the range).
+  static double into_range(double value, double low, double high, double period) {
+    if (period <= 0) return value;
+    const double middle = (low + high) / 2;
+    return value + period * std::round((middle - value) / period);
+  }
+
  private:
   TopoDS_Face face_;
+  Handle(Geom_Surface) surface_;
   ShapeAnalysis_Surface analysis_;
+  double u_min_ = 0, u_max_ = 0, v_min_ = 0, v_max_ = 0;
 };
 
 gp_Dir any_perpendicular(const gp_Dir& axis) {
@@ -293,8 +326,12 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
       if (loops_a.empty()) loops_a = outline_in(face_a, pa.location, x, y);
       std::vector<Polygon2>& loops_b = outlines_b[kb];
       if (loops_b.empty()) loops_b = outline_in(face_b, pa.location, x, y);
-      const double area = common_area(loops_a, loops_b, ctx.tol.linear);
-      if (area <= ctx.tol.linear * ctx.tol.linear) continue;
+      const CommonRegion region = common_region(loops_a, loops_b, ctx.tol.linear);
+      // A strip of width w has area w L and perimeter about 2 L: no wider than
+      // twice the tolerance, the faces meet along their edges only, whatever
+      // the sag of the chords.
+      if (region.area <= ctx.tol.linear * region.perimeter) continue;
+      const double area = region.area;
       c.area += area;
       c.faces_a.push_back(fa);
       c.faces_b.push_back(fb);
@@ -309,8 +346,73 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
   record(c, ctx, out);
 }
 
-// Cylinders (CLJ) and cones (CJU): overlap of axial ranges and angular spans,
-// face by face, in the frame of partition a.
+// ------------------------------------------------ exact common regions
+
+// The region two faces on the same surface have in common, by OCCT's Boolean
+// common of the two faces alone (fuzzy value: the linear tolerance; the
+// arguments are left untouched, so shared geometry is never modified), each
+// piece typed as a face of its own: exact area (Green on its boundary) and
+// extent. Used where the boundary of a face is not made of iso-lines of the
+// shared parametrisation, and for spheres and tori.
+std::vector<FaceInfo> boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol) {
+  TopTools_ListOfShape arguments, tools;
+  arguments.Append(a);
+  tools.Append(b);
+  BRepAlgoAPI_Common common;
+  common.SetArguments(arguments);
+  common.SetTools(tools);
+  common.SetFuzzyValue(tol.linear);
+  common.SetNonDestructive(Standard_True);
+  common.SetRunParallel(Standard_False);
+  common.Build();
+  if (!common.IsDone()) throw Standard_Failure("Boolean common of two faces failed");
+  std::vector<FaceInfo> pieces;
+  for (TopExp_Explorer faces(common.Shape(), TopAbs_FACE); faces.More(); faces.Next()) {
+    FaceInfo piece;
+    const Status typed = type_face(TopoDS::Face(faces.Current()), tol, piece);
+    if (!typed.ok()) throw Standard_Failure(typed.message.c_str());
+    pieces.push_back(std::move(piece));
+  }
+  return pieces;
+}
+
+// Is the face a rectangle in (angle, axial) about the axis: every edge either
+// a parallel (constant axial coordinate) or a meridian line (constant angle)?
+// Then its axial range and angular span describe it exactly. Samples each
+// edge at its ends and seven inner points.
+bool is_angle_axial_rectangle(const TopoDS_Face& face, const gp_Pnt& origin, const gp_Dir& axis, double tol) {
+  constexpr int kSamples = 9;
+  const gp_XYZ o = origin.XYZ(), z = axis.XYZ();
+  for (TopExp_Explorer edges(face, TopAbs_EDGE); edges.More(); edges.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(edges.Current());
+    if (BRep_Tool::Degenerated(edge)) continue;
+    const BRepAdaptor_Curve curve(edge);
+    const double t0 = curve.FirstParameter(), t1 = curve.LastParameter();
+    bool parallel_circle = true, meridian = true;
+    double h0 = 0;
+    gp_XYZ r0;
+    for (int i = 0; i < kSamples; ++i) {
+      const gp_XYZ d = curve.Value(t0 + (t1 - t0) * i / (kSamples - 1)).XYZ() - o;
+      const double h = d * z;
+      const gp_XYZ r = d - z * h;
+      if (i == 0) {
+        h0 = h, r0 = r;
+        continue;
+      }
+      parallel_circle = parallel_circle && std::abs(h - h0) <= tol;
+      const double r0_length = r0.Modulus();
+      // Distance of the point from the half-plane through the axis and r0.
+      meridian = meridian && r0_length > tol && std::abs((r0 ^ r) * z) / r0_length <= tol && r * r0 > 0;
+    }
+    if (!parallel_circle && !meridian) return false;
+  }
+  return true;
+}
+
+// Cylinders (CLJ) and cones (CJU), face by face in the frame of partition a:
+// faces bounded by parallels and meridians meet in the product of their axial
+// ranges and angular spans; any other pair (oblique ends, cross holes,
+// trimmed faces) by the exact common region of the two faces.
 void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
                     std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
@@ -333,25 +435,41 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
   c.half_angle = cone ? pa.half_angle : 0;
   std::vector<AngularInterval> common_angles;
   const gp_Dir ref = a.extent.ref_dir;
+  std::vector<signed char> rectangle_b(b.faces.size(), -1);  // unknown yet
   for (int fa : a.faces) {
     const FaceInfo& face_a = face_of(ctx.parts[ia], fa);
-    const Extent ea = revolution_extent_in(face_a, pa.location, pa.axis, ref);
-    for (int fb : b.faces) {
+    const Extent ea = revolution_extent_in(face_a, pa.location, pa.axis, ref, ctx.tol.linear);
+    signed char rectangle_a = -1;
+    for (size_t kb = 0; kb < b.faces.size(); ++kb) {
+      const int fb = b.faces[kb];
       const FaceInfo& face_b = face_of(ctx.parts[ib], fb);
       if (!boxes_meet(face_a.box, face_b.box, ctx.tol.linear)) continue;
-      const Extent eb = revolution_extent_in(face_b, pa.location, pa.axis, ref);
+      const Extent eb = revolution_extent_in(face_b, pa.location, pa.axis, ref, ctx.tol.linear);
       const double z0 = std::max(ea.axial_min, eb.axial_min);
       const double z1 = std::min(ea.axial_max, eb.axial_max);
       if (z1 - z0 <= ctx.tol.linear) continue;
       std::vector<AngularInterval> common;
       const double angle = overlap(ea.angular, eb.angular, &common);
-      if (angle <= ctx.tol.angular) continue;
-      // Cylinder: r * angle * length. Cone (z from the apex, r = z tan a, slant
-      // dz / cos a): angle * tan a / cos a * (z1^2 - z0^2) / 2.
-      const double area = cone ? angle * std::tan(pa.half_angle) / std::cos(pa.half_angle) *
-                                     (z1 * z1 - z0 * z0) / 2.0
-                                : pa.radius * angle * (z1 - z0);
-      c.area += std::abs(area);
+      if (angle <= ctx.tol.angular) continue;  // the boxes of the extents do not meet
+      if (rectangle_a < 0) rectangle_a = is_angle_axial_rectangle(face_a.face, pa.location, pa.axis, ctx.tol.linear);
+      if (rectangle_b[kb] < 0)
+        rectangle_b[kb] = is_angle_axial_rectangle(face_b.face, pa.location, pa.axis, ctx.tol.linear);
+      double area = 0;
+      if (rectangle_a && rectangle_b[kb]) {
+        // Cylinder: r * angle * length. Cone (z from the apex, r = z tan a,
+        // slant dz / cos a): angle * tan a / cos a * (z1^2 - z0^2) / 2.
+        area = std::abs(cone ? angle * std::tan(pa.half_angle) / std::cos(pa.half_angle) * (z1 * z1 - z0 * z0) / 2.0
+                             : pa.radius * angle * (z1 - z0));
+      } else {
+        common.clear();
+        for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) {
+          area += piece.area;
+          const Extent seen = revolution_extent_in(piece, pa.location, pa.axis, ref, ctx.tol.linear);
+          common.insert(common.end(), seen.angular.begin(), seen.angular.end());
+        }
+      }
+      if (area <= ctx.tol.linear * ctx.tol.linear) continue;
+      c.area += area;
       common_angles.insert(common_angles.end(), common.begin(), common.end());
       c.faces_a.push_back(fa);
       c.faces_b.push_back(fb);
@@ -365,28 +483,8 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
   record(c, ctx, out);
 }
 
-// Sample-based common area of two faces on the same sphere or torus: the
-// part of b's UV grid lying on a, scaled by b's area.
-double sampled_common_area(const FaceInfo& a, const FaceInfo& b, double tol) {
-  constexpr int kGrid = 16;
-  double u0, u1, v0, v1;
-  BRepTools::UVBounds(b.face, u0, u1, v0, v1);
-  const Handle(Geom_Surface) surface = BRep_Tool::Surface(b.face);
-  FaceProbe on_a(a);
-  int in_b = 0, in_both = 0;
-  for (int i = 0; i < kGrid; ++i) {
-    for (int j = 0; j < kGrid; ++j) {
-      const gp_Pnt2d uv(u0 + (i + 0.5) * (u1 - u0) / kGrid, v0 + (j + 0.5) * (v1 - v0) / kGrid);
-      BRepClass_FaceClassifier classifier(b.face, uv, tol);
-      if (classifier.State() != TopAbs_IN) continue;
-      ++in_b;
-      if (on_a.contains(surface->Value(uv.X(), uv.Y()), tol)) ++in_both;
-    }
-  }
-  return in_b ? b.area * in_both / in_b : 0.0;
-}
-
-// Spheres (SPF) and tori (TRF) with the same parameters: sampled common area.
+// Spheres (SPF) and tori (TRF) with the same parameters: the exact common
+// region of each face pair (the same whichever body comes first).
 void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& b,
                            const PairContext& ctx, std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
@@ -407,8 +505,9 @@ void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& 
     for (int fb : b.faces) {
       const FaceInfo& face_b = face_of(ctx.parts[ib], fb);
       if (!boxes_meet(face_a.box, face_b.box, ctx.tol.linear)) continue;
-      const double area = sampled_common_area(face_a, face_b, ctx.tol.linear);
-      if (area <= 0) continue;
+      double area = 0;
+      for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) area += piece.area;
+      if (area <= ctx.tol.linear * ctx.tol.linear) continue;
       c.area += area;
       c.faces_a.push_back(fa);
       c.faces_b.push_back(fb);
@@ -447,13 +546,16 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   c.point = ps.location;
   c.direction = circle_axis;
   c.radius = ps.radius;
+  // The circle lies on the seat within the mismatches allowed above (radius,
+  // height, distance to the tube-centre circle or the axis).
+  const double probe_tol = 3 * ctx.tol.linear;
   std::vector<AngularInterval> on_both;
   for (int fs : ball.faces) {
     FaceProbe ball_probe(face_of(ctx.parts[i_ball], fs));
     for (int fc : seat.faces) {
       FaceProbe seat_probe(face_of(ctx.parts[i_seat], fc));
       const auto hits = circle_on_faces(ps.location, circle_axis, ps.radius, {&ball_probe, &seat_probe},
-                                        ctx.tol.linear * 10);
+                                        probe_tol);
       if (hits.empty()) continue;
       on_both.insert(on_both.end(), hits.begin(), hits.end());
       c.faces_a.push_back(fs);
@@ -511,12 +613,25 @@ void test_candidate(int ia, const Partition& a, int ib, const Partition& b, cons
   }
 }
 
-double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
-  if (a.empty() || b.empty()) return 0.0;
-  if (!box_of(a).meets(box_of(b), tol)) return 0.0;
+CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
+  CommonRegion region;
+  if (a.empty() || b.empty()) return region;
+  if (!box_of(a).meets(box_of(b), tol)) return region;
   const EdgeGrid grid_a(a, tol), grid_b(b, tol);
-  const double twice = boundary_inside(a, grid_b, true, tol) + boundary_inside(b, grid_a, false, tol);
-  return std::max(0.0, twice / 2.0);
+  // Green's sums about a point of the common box: where the two boundaries
+  // part within tolerance, the round-off of the pieces does not grow with the
+  // distance to the frame's origin.
+  const Box2 box_a = box_of(a), box_b = box_of(b);
+  const Point2 origin{(std::max(box_a.xmin, box_b.xmin) + std::min(box_a.xmax, box_b.xmax)) / 2,
+                      (std::max(box_a.ymin, box_b.ymin) + std::min(box_a.ymax, box_b.ymax)) / 2};
+  const double twice = boundary_inside(a, grid_b, true, tol, origin, region.perimeter) +
+                       boundary_inside(b, grid_a, false, tol, origin, region.perimeter);
+  region.area = std::max(0.0, twice / 2.0);
+  return region;
+}
+
+double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
+  return common_region(a, b, tol).area;
 }
 
 }  // namespace contactcore

@@ -1,4 +1,5 @@
 #include "contactcore/contacts.h"
+#include "contactcore/clearances.h"
 
 #include "contactcore/common_area.h"
 #include "contactcore/instances.h"
@@ -246,6 +247,8 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     Bnd_Box model_box;
     for (const Bnd_Box& box : boxes) model_box.Add(box);
     result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
+    result.status = check_tolerances(model_box, result.tolerances);
+    if (!result.status.ok()) return result;
 
     // Each distinct shape partitioned once (partition_shape only reads the
     // shapes, so bodies sharing TShapes through instancing can run
@@ -411,6 +414,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
   }
+  if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap, result.tolerances);
   if (progress) progress->report("contacts", 1.0);
   return result;
 }

@@ -3,9 +3,13 @@
 // faces on the same surface into maximal partitions (paper, section 3).
 #include "contactcore/partitions.h"
 
+#include "outlines.h"
+#include "quadrature.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <numeric>
 #include <optional>
@@ -54,18 +58,13 @@ namespace contactcore {
 
 namespace {
 
+using detail::bounds_the_face;
+using detail::discretise_edge;
+using detail::gauss;
+using detail::integration_pieces;
+
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2 * kPi;
-
-// Largest angle between two outline points on an arc. An inscribed polygon
-// loses delta^2 / 6 of the area it approximates: 0.0236 rad (266 points on a
-// full circle) keeps a disc's outline within 0.93e-4 of its area.
-constexpr double kArcStep = 0.0236;
-
-// Plane outlines are refined (arc step halved) until their area is within
-// this of the exact face area, at most kOutlineRefinements times.
-constexpr double kOutlineAreaPrecision = 1e-4;
-constexpr int kOutlineRefinements = 4;
 
 // unite() joins angular intervals separated by less than this: faces that
 // meet on a seam or a split line must give one closed interval even when their
@@ -304,245 +303,6 @@ AngularInterval surface_interval(double u1, double u2, const gp_Dir& axis, const
                                  const gp_Dir& y_dir) {
   const double sign = y_dir.Dot(axis.Crossed(x_dir)) >= 0 ? 1.0 : -1.0;
   return interval_from(u1, u2, sign);
-}
-
-// ---------------------------------------------------------------------------
-// Quadrature.
-
-// 8-point Gauss-Legendre on [a, b].
-template <class Integrand>
-double gauss(double a, double b, Integrand f) {
-  static constexpr double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-  static constexpr double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-  const double mid = (a + b) / 2, half = (b - a) / 2;
-  double sum = 0;
-  for (int i = 0; i < 4; ++i) sum += w[i] * (f(mid - half * x[i]) + f(mid + half * x[i]));
-  return sum * half;
-}
-
-// Break points of [first, last] such that 8-point Gauss is exact to round-off
-// on each piece: lines whole, conics by eighths of a turn, B-splines span by
-// span (every knot: a C2 spline is still piecewise), rational spans halved,
-// anything else in 16 pieces.
-template <class Curve>
-void integration_pieces(const Curve& curve, double first, double last, std::vector<double>& breaks) {
-  breaks.clear();
-  auto uniform = [&](double a, double b, int pieces) {
-    for (int i = 0; i < pieces; ++i) breaks.push_back(a + (b - a) * i / pieces);
-  };
-  switch (curve.GetType()) {
-    case GeomAbs_Line: breaks.push_back(first); break;
-    case GeomAbs_Circle:
-    case GeomAbs_Ellipse:
-      uniform(first, last, std::max(1, static_cast<int>(std::ceil((last - first) / (kPi / 4))))); break;
-    case GeomAbs_BSplineCurve:
-    case GeomAbs_BezierCurve: {
-      const int spans = curve.NbIntervals(GeomAbs_CN);
-      TColStd_Array1OfReal knots(1, spans + 1);
-      curve.Intervals(knots, GeomAbs_CN);
-      const int pieces_per_span = curve.IsRational() ? 2 : 1;
-      double previous = first;
-      for (int i = 2; i <= spans + 1; ++i) {
-        const double knot = std::min(knots(i), last);
-        if (knot <= previous) continue;
-        uniform(previous, knot, pieces_per_span);
-        previous = knot;
-      }
-      if (previous < last) uniform(previous, last, pieces_per_span);
-      break;
-    }
-    default: uniform(first, last, 16); break;
-  }
-  breaks.push_back(last);
-}
-
-// ---------------------------------------------------------------------------
-// Edge discretisation and plane outlines.
-
-// Unit tangent of a curve at t; a zero vector where the derivative vanishes.
-gp_XYZ unit_tangent(const Adaptor3d_Curve& curve, double t) {
-  gp_Pnt p;
-  gp_Vec d;
-  curve.D1(t, p, d);
-  const double length = d.Magnitude();
-  return length > 0 ? d.XYZ() / length : gp_XYZ(0, 0, 0);
-}
-
-double angle_between(const gp_XYZ& a, const gp_XYZ& b) {
-  return std::atan2((a ^ b).Modulus(), a * b);
-}
-
-// Points along an edge's curve, both ends included, in the edge's direction
-// when `reversed` is false, no two consecutive ones more than `arc_step` apart
-// in tangent direction: lines give their ends, circles uniform steps (by a
-// rotation recurrence: no sin/cos per point), other curves are cut at their
-// knots and each span in four parts whose tangent turning sets their point
-// count (cheaper than GCPnts_TangentialDeflection, which minimises per segment).
-void discretise_curve(const BRepAdaptor_Curve& curve, bool reversed, std::vector<gp_Pnt>& points,
-                      double arc_step = kArcStep) {
-  const std::size_t first_index = points.size();
-  const double first = curve.FirstParameter(), last = curve.LastParameter();
-  auto uniform = [&](double a, double b, int segments) {
-    for (int i = 0; i < segments; ++i) points.push_back(curve.Value(a + (b - a) * i / segments));
-  };
-  switch (curve.GetType()) {
-    case GeomAbs_Line: points.push_back(curve.Value(first)); break;
-    case GeomAbs_Circle: {
-      const gp_Circ circle = curve.Circle();
-      const int segments = std::max(1, static_cast<int>(std::ceil((last - first) / arc_step)));
-      const double step = (last - first) / segments, cos_step = std::cos(step), sin_step = std::sin(step);
-      const gp_XYZ centre = circle.Location().XYZ();
-      const gp_XYZ x = circle.XAxis().Direction().XYZ() * circle.Radius();
-      const gp_XYZ y = circle.YAxis().Direction().XYZ() * circle.Radius();
-      double c = std::cos(first), s = std::sin(first);
-      for (int i = 0; i < segments; ++i) {
-        points.push_back(gp_Pnt(centre + x * c + y * s));
-        const double next_c = c * cos_step - s * sin_step;
-        s = s * cos_step + c * sin_step;
-        c = next_c;
-      }
-      break;
-    }
-    default: {
-      std::vector<double> knots{first};
-      if (curve.GetType() == GeomAbs_BSplineCurve || curve.GetType() == GeomAbs_BezierCurve) {
-        const int spans = curve.NbIntervals(GeomAbs_CN);
-        TColStd_Array1OfReal breaks(1, spans + 1);
-        curve.Intervals(breaks, GeomAbs_CN);
-        for (int i = 2; i <= spans; ++i)
-          if (breaks(i) > knots.back() && breaks(i) < last) knots.push_back(breaks(i));
-      } else {
-        for (int i = 1; i < 8; ++i) knots.push_back(first + (last - first) * i / 8);
-      }
-      knots.push_back(last);
-      constexpr int kParts = 4;
-      for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
-        const double a = knots[k], b = knots[k + 1];
-        gp_XYZ previous = unit_tangent(curve, a);
-        for (int part = 0; part < kParts; ++part) {
-          const double pa = a + (b - a) * part / kParts, pb = a + (b - a) * (part + 1) / kParts;
-          const gp_XYZ mid = unit_tangent(curve, (pa + pb) / 2), end = unit_tangent(curve, pb);
-          const double turning = angle_between(previous, mid) + angle_between(mid, end);
-          uniform(pa, pb, std::max(1, static_cast<int>(std::ceil(turning / arc_step))));
-          previous = end;
-        }
-      }
-      break;
-    }
-  }
-  points.push_back(curve.Value(last));
-  if (reversed) std::reverse(points.begin() + first_index, points.end());
-}
-
-void discretise_edge(const TopoDS_Edge& edge, std::vector<gp_Pnt>& points, double arc_step = kArcStep) {
-  discretise_curve(BRepAdaptor_Curve(edge), edge.Orientation() == TopAbs_REVERSED, points, arc_step);
-}
-
-double signed_area(const Polygon2& loop) {
-  double twice = 0;
-  for (std::size_t i = 0, n = loop.size(); i < n; ++i) {
-    const Point2& a = loop[i];
-    const Point2& b = loop[(i + 1) % n];
-    twice += a.x * b.y - b.x * a.y;
-  }
-  return twice / 2;
-}
-
-bool bounds_the_face(const TopoDS_Edge& edge) {
-  return edge.Orientation() == TopAbs_FORWARD || edge.Orientation() == TopAbs_REVERSED;
-}
-
-// Twice the signed area swept by a curve about `origin` in the plane (x, y):
-// the boundary integral of x dy - y dx (Green), by Gauss on `breaks`.
-double twice_swept_area(const BRepAdaptor_Curve& curve, const gp_XYZ& origin, const gp_XYZ& x_dir,
-                        const gp_XYZ& y_dir, std::vector<double>& breaks) {
-  integration_pieces(curve, curve.FirstParameter(), curve.LastParameter(), breaks);
-  double sum = 0;
-  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-    sum += gauss(breaks[i], breaks[i + 1], [&](double t) {
-      gp_Pnt p;
-      gp_Vec d;
-      curve.D1(t, p, d);
-      const gp_XYZ r = p.XYZ() - origin;
-      return (r * x_dir) * (d.XYZ() * y_dir) - (r * y_dir) * (d.XYZ() * x_dir);
-    });
-  }
-  return sum;
-}
-
-// The outline of a planar face in `frame` (x = ref, y = axis ^ ref): one loop
-// per wire, the outer loop (the largest: it encloses the others) made
-// counter-clockwise and the holes clockwise. Wires are read in their stored
-// order, which chains their edges almost always; a wire that does not chain
-// is re-read through BRepTools_WireExplorer (which builds vertex maps, and
-// OuterWire would project pcurves on planes: both avoided on the fast path).
-// With `area`, also the exact area (Green on the same curves, same pass).
-std::vector<Polygon2> plane_outline(const TopoDS_Face& face, const Frame& frame, double arc_step,
-                                    double* area = nullptr) {
-  const gp_XYZ x_dir = frame.ref, y_dir = frame.binormal();
-  std::vector<Polygon2> loops;
-  std::vector<gp_Pnt> points;
-  std::vector<double> breaks;
-  double twice_area = 0;
-  auto project = [&](const gp_Pnt& p, Polygon2& loop) {
-    const gp_XYZ d = p.XYZ() - frame.origin;
-    loop.push_back({d * x_dir, d * y_dir});
-  };
-  for (TopExp_Explorer wires(face, TopAbs_WIRE); wires.More(); wires.Next()) {
-    const TopoDS_Wire& wire = TopoDS::Wire(wires.Current());
-    Polygon2 loop;
-    bool chained = true;
-    gp_Pnt previous_end;
-    double previous_tolerance = 0;
-    // A reversed wire lists its edges backwards: walk it forward (the loop is
-    // re-oriented below) and count its orientation in the area's sign only.
-    const bool wire_reversed = wire.Orientation() == TopAbs_REVERSED;
-    for (TopoDS_Iterator it(wire.Oriented(TopAbs_FORWARD)); it.More(); it.Next()) {
-      const TopoDS_Edge& edge = TopoDS::Edge(it.Value());
-      if (BRep_Tool::Degenerated(edge) || !bounds_the_face(edge)) continue;
-      const BRepAdaptor_Curve curve(edge);
-      const bool reversed = edge.Orientation() == TopAbs_REVERSED;
-      if (area) {
-        const double swept = twice_swept_area(curve, frame.origin, x_dir, y_dir, breaks);
-        twice_area += reversed != wire_reversed ? -swept : swept;
-      }
-      if (!chained) continue;  // keep summing the area; the loop is redone below
-      points.clear();
-      discretise_curve(curve, reversed, points, arc_step);
-      const double tolerance = BRep_Tool::Tolerance(edge);
-      if (!loop.empty() &&
-          points.front().Distance(previous_end) > 2 * std::max(tolerance, previous_tolerance) + 1e-7) {
-        chained = false;
-        continue;
-      }
-      // The last point of an edge is the first of the next one.
-      for (std::size_t i = 0; i + 1 < points.size(); ++i) project(points[i], loop);
-      previous_end = points.back();
-      previous_tolerance = tolerance;
-    }
-    if (!chained) {
-      loop.clear();
-      for (BRepTools_WireExplorer edges(wire, face); edges.More(); edges.Next()) {
-        const TopoDS_Edge& edge = edges.Current();
-        if (BRep_Tool::Degenerated(edge)) continue;
-        points.clear();
-        discretise_edge(edge, points, arc_step);
-        for (std::size_t i = 0; i + 1 < points.size(); ++i) project(points[i], loop);
-      }
-    }
-    if (loop.size() >= 3) loops.push_back(std::move(loop));
-  }
-  if (area) *area = std::fabs(twice_area) / 2;
-  // Orientation: the outer loop is the one of largest area.
-  std::size_t outer = 0;
-  std::vector<double> areas(loops.size());
-  for (std::size_t i = 0; i < loops.size(); ++i) {
-    areas[i] = signed_area(loops[i]);
-    if (std::fabs(areas[i]) > std::fabs(areas[outer])) outer = i;
-  }
-  for (std::size_t i = 0; i < loops.size(); ++i)
-    if ((i == outer) != (areas[i] > 0)) std::reverse(loops[i].begin(), loops[i].end());
-  return loops;
 }
 
 // Axial range and angular coverage of a face about `frame`, from its edges:
@@ -1461,7 +1221,9 @@ double Extent::angular_span() const {
 Tolerances default_tolerances(const Bnd_Box& model_box) {
   Tolerances tol;
   const double diagonal = model_box.IsVoid() ? 0 : std::sqrt(model_box.SquareExtent());
-  tol.linear = std::clamp(1e-5 * diagonal, 1e-6, 1e-2);
+  // Relative, with no floor or ceiling: the motor scaled by 1e-6 or 1e6 must
+  // give its own contacts (an empty box keeps the plain default).
+  if (diagonal > 0 && std::isfinite(diagonal)) tol.linear = kDefaultRelativeLinear * diagonal;
   tol.angular = 1e-4;
   return tol;
 }
@@ -1472,6 +1234,33 @@ Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> li
   if (linear) tol.linear = *linear;
   if (angular) tol.angular = *angular;
   return tol;
+}
+
+Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances) {
+  const auto text = [](double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.6g", value);
+    return std::string(buffer);
+  };
+  const auto fail = [](const std::string& message) { return Status::failure(StatusCode::InvalidArgument, message); };
+  if (!std::isfinite(tolerances.linear) || !(tolerances.linear > 0))
+    return fail("linear tolerance must be a positive, finite length in mm; got " + text(tolerances.linear));
+  if (!std::isfinite(tolerances.angular) || !(tolerances.angular > 0))
+    return fail("angular tolerance must be a positive, finite angle in radians; got " + text(tolerances.angular));
+  if (tolerances.angular > kMaxAngular)
+    return fail("angular tolerance " + text(tolerances.angular) + " rad is too large (at most " + text(kMaxAngular) +
+                " rad)");
+  const double diagonal = model_box.IsVoid() ? 0 : std::sqrt(model_box.SquareExtent());
+  if (diagonal > 0 && std::isfinite(diagonal)) {
+    if (tolerances.linear > kMaxRelativeLinear * diagonal)
+      return fail("linear tolerance " + text(tolerances.linear) + " mm is too large for this model (box diagonal " +
+                  text(diagonal) + " mm; at most " + text(kMaxRelativeLinear * diagonal) + " mm)");
+    // Below this, coordinates of the model's size cannot tell points apart.
+    if (tolerances.linear < 1e-12 * diagonal)
+      return fail("linear tolerance " + text(tolerances.linear) + " mm is below the precision of coordinates of a " +
+                  text(diagonal) + " mm model");
+  }
+  return Status::success();
 }
 
 std::vector<AngularInterval> unite(std::vector<AngularInterval> intervals) {
@@ -1611,16 +1400,10 @@ Status type_face(const TopoDS_Face& face, const Tolerances& tol, FaceInfo& out) 
       }
     }
     if (out.params.kind == SurfaceKind::Plane) {
-      const Frame frame = frame_of(out.params.location, out.params.axis, out.extent.ref_dir);
-      // Free-form edges of narrow faces can need a finer outline than the arc
-      // step gives; the exact area tells when it is fine enough.
-      double arc_step = kArcStep;
-      for (int attempt = 0; attempt <= kOutlineRefinements; ++attempt, arc_step /= 2) {
-        out.extent.outline = plane_outline(face, frame, arc_step, attempt == 0 ? &out.area : nullptr);
-        double outline_area = 0;
-        for (const Polygon2& loop : out.extent.outline) outline_area += signed_area(loop);
-        if (std::fabs(outline_area - out.area) <= kOutlineAreaPrecision * out.area) break;
-      }
+      // Chords within the linear tolerance of their arcs; the bulges make the
+      // outline's area exact whatever the chords.
+      const gp_XYZ x = out.extent.ref_dir.XYZ(), y = out.params.axis.XYZ() ^ x;
+      out.extent.outline = detail::plane_outline(face, out.params.location.XYZ(), x, y, tol.linear, &out.area);
     }
     if (analytic_revolution && (out.params.kind == SurfaceKind::Torus || out.params.kind == SurfaceKind::Sphere)) {
       // u turns about the frame's direction, clockwise in an indirect frame.
@@ -1652,17 +1435,14 @@ Status type_face(const TopoDS_Face& face, const Tolerances& tol, FaceInfo& out) 
 }
 
 Extent revolution_extent_in(const FaceInfo& face, const gp_Pnt& origin, const gp_Dir& axis,
-                            const gp_Dir& ref_dir) {
+                            const gp_Dir& ref_dir, double linear) {
   const SurfaceParams& s = face.params;
   const Extent& own = face.extent;
   const double orientation = s.axis.Dot(axis);
   if (!is_revolution(s.kind)) return Extent{};
   // Sphere frames of the same sphere may have unrelated axes: re-measure the
   // face itself in the requested frame.
-  if (std::fabs(orientation) < 1 - 1e-6) {
-    const Tolerances defaults;
-    return extent_from_geometry(face.face, s, frame_of(origin, axis, ref_dir), defaults.linear);
-  }
+  if (std::fabs(orientation) < 1 - 1e-6) return extent_from_geometry(face.face, s, frame_of(origin, axis, ref_dir), linear);
   const double sign = orientation > 0 ? 1.0 : -1.0;
   Extent out;
   out.ref_dir = ref_dir;
@@ -1684,28 +1464,6 @@ Extent revolution_extent_in(const FaceInfo& face, const gp_Pnt& origin, const gp
   }
   out.angular = unite(std::move(out.angular));
   return out;
-}
-
-std::vector<Polygon2> outline_in(const FaceInfo& face, const gp_Pnt& origin, const gp_Dir& x_dir,
-                                 const gp_Dir& y_dir) {
-  const Frame own = frame_of(face.params.location, face.params.axis, face.extent.ref_dir);
-  const gp_XYZ own_y = own.binormal();
-  const gp_XYZ shift = own.origin - origin.XYZ();
-  // 2x2 map of the face's plane coordinates to the requested ones.
-  const double xx = own.ref * x_dir.XYZ(), xy = own_y * x_dir.XYZ();
-  const double yx = own.ref * y_dir.XYZ(), yy = own_y * y_dir.XYZ();
-  const double x0 = shift * x_dir.XYZ(), y0 = shift * y_dir.XYZ();
-  const bool mirrored = xx * yy - xy * yx < 0;
-  std::vector<Polygon2> loops;
-  loops.reserve(face.extent.outline.size());
-  for (const Polygon2& loop : face.extent.outline) {
-    Polygon2 mapped;
-    mapped.reserve(loop.size());
-    for (const Point2& p : loop) mapped.push_back({x0 + xx * p.x + xy * p.y, y0 + yx * p.x + yy * p.y});
-    if (mirrored) std::reverse(mapped.begin(), mapped.end());
-    loops.push_back(std::move(mapped));
-  }
-  return loops;
 }
 
 BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol) {
@@ -1809,7 +1567,7 @@ BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol)
           const FaceInfo& face = result.faces[index - 1];
           const Extent seen = index == partition.faces.front()
                                   ? face.extent
-                                  : revolution_extent_in(face, s.location, s.axis, extent.ref_dir);
+                                  : revolution_extent_in(face, s.location, s.axis, extent.ref_dir, tol.linear);
           extent.axial_min = std::min(extent.axial_min, seen.axial_min);
           extent.axial_max = std::max(extent.axial_max, seen.axial_max);
           angular.insert(angular.end(), seen.angular.begin(), seen.angular.end());

@@ -256,12 +256,34 @@ TEST(SharedFiles, DiskArmPinInSlotIsNotAContact) {
   EXPECT_EQ(result.contacts.size(), 4u);
 }
 
-TEST(SharedFiles, PressHasItsAnalyticContactsAndNoInterference) {
+TEST(SharedFiles, PressIsExactlyEightPlanarFitsAndSevenCylindricalJoints) {
   const std::string path = shared_step("R08_presse_asm.step");
   CONTACTS_REQUIRE_FILE(path);
-  auto counts = count_types(contacts_of_file(path));
-  EXPECT_GE(counts["PLF"], 8);
-  EXPECT_GE(counts["CLJ"], 7);
+  const auto result = contacts_of_file(path);
+  auto counts = count_types(result);
+  EXPECT_EQ(counts["PLF"], 8);
+  EXPECT_EQ(counts["CLJ"], 7);
+  EXPECT_EQ(result.contacts.size(), 15u);
+}
+
+// Every ball sits in both raceways: two SPT per ball, nothing else (R06's
+// ring faces have their u range shifted by a turn: u in [pi, 3 pi]).
+TEST(SharedFiles, EveryBearingBallTouchesBothRaceways) {
+  for (const auto& [name, balls] : {std::pair<const char*, int>{"R05_SKF_6004.stp", 9},
+                                    std::pair<const char*, int>{"R06_bearing_20x37x9_freecad.stp", 14}}) {
+    const std::string path = shared_step(name);
+    CONTACTS_REQUIRE_FILE(path);
+    const auto result = contacts_of_file(path);
+    std::map<int, int> per_ball;
+    for (const Contact& c : result.contacts) {
+      EXPECT_EQ(c.type, ContactType::SPT) << name;
+      const int ball = result.partitions[c.body_a].partitions.size() == 1 ? c.body_a : c.body_b;
+      ++per_ball[ball];
+    }
+    EXPECT_EQ(result.contacts.size(), static_cast<size_t>(2 * balls)) << name;
+    EXPECT_EQ(per_ball.size(), static_cast<size_t>(balls)) << name;
+    for (const auto& [ball, n] : per_ball) EXPECT_EQ(n, 2) << name << " ball body " << ball;
+  }
 }
 
 TEST(SharedFiles, ChronoPinJoint) {

@@ -50,13 +50,17 @@ struct SurfaceParams {
 //    reference direction `ref_dir` perpendicular to the axis.
 //  - Planes: the 2D outline in the plane frame (origin `location`, x = ref_dir,
 //    y = axis ^ ref_dir): closed polygons, outer loops counter-clockwise,
-//    holes clockwise.
+//    holes clockwise, each chord with the bulge of its curve (Point2).
 struct AngularInterval {
   double start = 0;  // radians in [0, 2 pi)
   double span = 0;   // radians in (0, 2 pi]
 };
 struct Point2 {
   double x = 0, y = 0;
+  // Twice the signed area between the boundary curve and the chord from this
+  // point to the next (positive where the curve swings counter-clockwise of
+  // the chord): Green's theorem on chords plus bulges gives exact areas.
+  double bulge = 0;
 };
 using Polygon2 = std::vector<Point2>;
 
@@ -95,14 +99,26 @@ struct Tolerances {
   double angular = 1e-4;  // radians
 };
 
-// Defaults that scale with the model: linear = 1e-5 of the box diagonal,
-// clamped to [1e-6, 1e-2] mm; angular 1e-4 rad. Shapes are in mm, so the same
-// assembly in inch and in mm gets the same tolerances.
+// Defaults that scale with the model: linear = 1e-5 of the box diagonal (no
+// floor or ceiling, so a model scaled by 1e-6 or 1e6 behaves the same);
+// angular 1e-4 rad. Shapes are in mm, so the same assembly in inch and in mm
+// gets the same tolerances.
+constexpr double kDefaultRelativeLinear = 1e-5;
 Tolerances default_tolerances(const Bnd_Box& model_box);
 
 // Those defaults, with whichever value the caller gives instead.
 Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> linear,
                               std::optional<double> angular);
+
+// Largest tolerances accepted, relative to the model: linear below 1 % of the
+// box diagonal (beyond it every face "touches" every other and the search
+// blows up), angular below 0.1 rad (about 6 degrees).
+constexpr double kMaxRelativeLinear = 1e-2;
+constexpr double kMaxAngular = 0.1;
+
+// InvalidArgument naming the bad value unless both tolerances are finite,
+// positive and below those bounds.
+Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances);
 
 struct BodyPartitions {
   Status status;
@@ -123,9 +139,10 @@ BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol)
 // The extent of a revolution face seen from another frame on the same axis
 // line (origin on the axis, axis of either sign, ref_dir perpendicular to it):
 // axial range measured along `axis` from `origin`, angles from `ref_dir`
-// counter-clockwise about `axis`.
+// counter-clockwise about `axis`. `linear` is the model's linear tolerance
+// (a sphere face re-measured about another axis classifies its poles with it).
 Extent revolution_extent_in(const FaceInfo& face, const gp_Pnt& origin, const gp_Dir& axis,
-                            const gp_Dir& ref_dir);
+                            const gp_Dir& ref_dir, double linear);
 
 // The outline of a planar face in another plane frame (origin, x_dir, y_dir),
 // loops re-oriented so outer loops are counter-clockwise in that frame.

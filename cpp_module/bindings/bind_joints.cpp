@@ -1,0 +1,152 @@
+// Joints, mobility, liaison graph and clearance fits.
+#include "common.h"
+
+#include <sstream>
+
+#include "contactcore/clearances.h"
+#include "contactcore/joints.h"
+
+namespace contactcore::bindings {
+
+namespace {
+
+py::list directions(const std::vector<gp_Dir>& dirs) {
+  py::list out;
+  for (const gp_Dir& d : dirs) out.append(to_tuple(d));
+  return out;
+}
+
+py::list rotations(const std::vector<FreeRotation>& axes) {
+  py::list out;
+  for (const FreeRotation& r : axes) out.append(py::make_tuple(to_tuple(r.point), to_tuple(r.direction)));
+  return out;
+}
+
+}  // namespace
+
+void bind_joints(py::module_& m) {
+  py::class_<Clearance>(m, "Clearance", "A fit with play (same surface, radii or planes a small gap apart).")
+      .def_readonly("body_a", &Clearance::body_a)
+      .def_readonly("body_b", &Clearance::body_b)
+      .def_readonly("partition_a", &Clearance::partition_a)
+      .def_readonly("partition_b", &Clearance::partition_b)
+      .def_property_readonly("kind", [](const Clearance& c) { return std::string(to_string(c.kind)); })
+      .def_readonly("gap", &Clearance::gap)
+      .def("__repr__", [](const Clearance& c) {
+        std::ostringstream out;
+        out << "<Clearance " << to_string(c.kind) << " bodies " << c.body_a << "-" << c.body_b << " gap=" << c.gap
+            << ">";
+        return out.str();
+      });
+
+  py::class_<OneSidedStop>(m, "OneSidedStop", "A unilateral contact: b may move with u . normal >= 0 at point.")
+      .def_readonly("contact", &OneSidedStop::contact)
+      .def_property_readonly("point", [](const OneSidedStop& s) { return to_tuple(s.point); })
+      .def_property_readonly("normal", [](const OneSidedStop& s) { return to_tuple(s.normal); });
+
+  py::class_<PairJoint>(m, "PairJoint", "What two bodies in contact allow each other (b relative to a).")
+      .def_readonly("body_a", &PairJoint::body_a)
+      .def_readonly("body_b", &PairJoint::body_b)
+      .def_readonly("contacts", &PairJoint::contacts)
+      .def_property_readonly("type", [](const PairJoint& j) { return std::string(to_string(j.type)); })
+      .def_readonly("dof", &PairJoint::dof)
+      .def_readonly("free_twists", &PairJoint::free_twists,
+                    "basis of free twists (wx, wy, wz, vx, vy, vz), v at the global origin")
+      .def_property_readonly("rotations", [](const PairJoint& j) { return rotations(j.rotations); },
+                             "[(point, direction)] per rotational DOF")
+      .def_property_readonly("translations", [](const PairJoint& j) { return directions(j.translations); })
+      .def_readonly("pitch", &PairJoint::pitch)
+      .def_readonly("stops", &PairJoint::stops)
+      .def_property_readonly("free_directions", [](const PairJoint& j) { return directions(j.free_directions); },
+                             "generators of the cone of directions in which b can leave a")
+      .def("__repr__", [](const PairJoint& j) {
+        return "<PairJoint " + std::to_string(j.body_a) + "-" + std::to_string(j.body_b) + " " + to_string(j.type) +
+               " dof=" + std::to_string(j.dof) + ">";
+      });
+
+  py::class_<JointsResult>(m, "JointsResult").def_readonly("joints", &JointsResult::joints);
+
+  py::class_<PassiveSpin>(m, "PassiveSpin", "A rotation a body makes alone, every neighbour held still.")
+      .def_readonly("body", &PassiveSpin::body)
+      .def_property_readonly("point", [](const PassiveSpin& s) { return to_tuple(s.axis.point); })
+      .def_property_readonly("direction", [](const PassiveSpin& s) { return to_tuple(s.axis.direction); });
+
+  py::class_<GroupMotion>(m, "GroupMotion", "A rigid group's motion relative to the ground, passive spins aside.")
+      .def_readonly("group", &GroupMotion::group)
+      .def_property_readonly("type", [](const GroupMotion& g) { return std::string(to_string(g.type)); })
+      .def_readonly("dof", &GroupMotion::dof)
+      .def_property_readonly("rotations", [](const GroupMotion& g) { return rotations(g.rotations); })
+      .def_property_readonly("translations", [](const GroupMotion& g) { return directions(g.translations); })
+      .def_readonly("pitch", &GroupMotion::pitch)
+      .def_readonly("passive_spins", &GroupMotion::passive_spins);
+
+  py::class_<MobilityResult>(m, "MobilityResult", "Degrees of freedom, rigid groups and their motions.")
+      .def_readonly("ground", &MobilityResult::ground)
+      .def_readonly("dof", &MobilityResult::dof)
+      .def_readonly("passive", &MobilityResult::passive)
+      .def_readonly("groups", &MobilityResult::groups)
+      .def_readonly("group_of_body", &MobilityResult::group_of_body)
+      .def_readonly("group_motions", &MobilityResult::group_motions)
+      .def_readonly("passive_spins", &MobilityResult::passive_spins)
+      .def_readonly("components", &MobilityResult::components);
+
+  m.def(
+      "find_joints",
+      [](const Assembly& assembly, const ContactsResult& contacts, double rank_tolerance) {
+        JointOptions options;
+        options.rank_tolerance = rank_tolerance;
+        JointsResult result;
+        raise_if_failed(guarded([&] {
+          result = find_joints(assembly, contacts, options);
+          return result.status;
+        }));
+        return result;
+      },
+      py::arg("assembly"), py::arg("contacts"), py::arg("rank_tolerance") = JointOptions{}.rank_tolerance,
+      "The joint of every body pair in contact (b relative to a).");
+
+  m.def(
+      "body_free_directions",
+      [](const ContactsResult& contacts, const JointsResult& joints, int body) {
+        return directions(body_free_directions(contacts, joints, body));
+      },
+      py::arg("contacts"), py::arg("joints"), py::arg("body"),
+      "Generators of the directions in which a body can translate out, its neighbours held still.");
+
+  m.def(
+      "assembly_mobility",
+      [](const Assembly& assembly, const ContactsResult& contacts, const JointsResult& joints, int ground) {
+        MobilityOptions options;
+        options.ground = ground;
+        MobilityResult result;
+        raise_if_failed(guarded([&] {
+          result = assembly_mobility(assembly, contacts, joints, options);
+          return result.status;
+        }));
+        return result;
+      },
+      py::arg("assembly"), py::arg("contacts"), py::arg("joints"), py::arg("ground") = -1,
+      "DOF, rigid groups and group motions with body `ground` held still (-1: the largest by volume).");
+
+  m.def(
+      "liaison_graph_dot",
+      [](const Assembly& assembly, const JointsResult& joints, const MobilityResult* mobility) {
+        return liaison_graph_dot(assembly, joints, mobility);
+      },
+      py::arg("assembly"), py::arg("joints"), py::arg("mobility") = nullptr,
+      "The liaison graph in Graphviz DOT (rigid groups as clusters when mobility is given).");
+
+  m.def(
+      "find_clearances",
+      [](const ContactsResult& contacts, double gap) {
+        std::vector<Clearance> result;
+        raise_if_failed(guarded([&] {
+          result = find_clearances(contacts.partitions, gap, contacts.tolerances);
+          return Status::success();
+        }));
+        return result;
+      },
+      py::arg("contacts"), py::arg("gap"), "Clearance fits with a gap below `gap` mm, from the contacts' partitions.");
+}
+
+}  // namespace contactcore::bindings

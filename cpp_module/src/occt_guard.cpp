@@ -1,0 +1,80 @@
+#include "contactcore/occt_guard.h"
+
+#include <csignal>
+#include <mutex>
+
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_Printer.hxx>
+#include <OSD.hxx>
+
+namespace contactcore {
+
+namespace {
+
+// Keeps warnings and failures instead of printing them.
+class CapturingPrinter : public Message_Printer {
+ public:
+  std::vector<std::string> lines;
+
+ protected:
+  void send(const TCollection_AsciiString& text, const Message_Gravity gravity) const override {
+    if (gravity < Message_Warning || lines.size() >= kMaxLines) return;
+    std::string line = text.ToCString();
+    // OCCT colours its console output: drop the escape sequences.
+    std::string clean;
+    for (size_t i = 0; i < line.size(); ++i) {
+      if (line[i] == '\x1b') {
+        while (i < line.size() && line[i] != 'm') ++i;
+        continue;
+      }
+      clean += line[i];
+    }
+    const_cast<CapturingPrinter*>(this)->lines.push_back(clean);
+  }
+
+ private:
+  static constexpr size_t kMaxLines = 200;
+};
+
+std::recursive_mutex& guard_mutex() {
+  static std::recursive_mutex mutex;
+  return mutex;
+}
+
+// The classic signals OCCT's handler takes over (1..31).
+constexpr int kLastClassicSignal = 31;
+
+}  // namespace
+
+struct OcctGuard::State {
+  std::unique_lock<std::recursive_mutex> lock{guard_mutex()};
+  struct sigaction saved[kLastClassicSignal + 1];
+  Handle(Message_Messenger) messenger = Message::DefaultMessenger();
+  Message_SequenceOfPrinters printers;
+  Handle(CapturingPrinter) capture = new CapturingPrinter;
+};
+
+OcctGuard::OcctGuard() : state_(std::make_unique<State>()) {
+  for (int s = 1; s <= kLastClassicSignal; ++s) sigaction(s, nullptr, &state_->saved[s]);
+  OSD::SetSignal(OSD_SignalMode_Set, false);
+  // OCCT's handler for SIGINT would turn Ctrl-C into an exception at a random
+  // point of the reader: keep the caller's.
+  sigaction(SIGINT, &state_->saved[SIGINT], nullptr);
+  state_->printers = state_->messenger->Printers();
+  state_->messenger->ChangePrinters().Clear();
+  state_->messenger->AddPrinter(state_->capture);
+}
+
+OcctGuard::~OcctGuard() {
+  state_->messenger->ChangePrinters().Clear();
+  for (const Handle(Message_Printer)& printer : state_->printers) state_->messenger->AddPrinter(printer);
+  for (int s = 1; s <= kLastClassicSignal; ++s) {
+    if (s == SIGKILL || s == SIGSTOP) continue;
+    sigaction(s, &state_->saved[s], nullptr);
+  }
+}
+
+std::vector<std::string> OcctGuard::messages() const { return state_->capture->lines; }
+
+}  // namespace contactcore

@@ -1,0 +1,124 @@
+#include "contactcore/step_check.h"
+
+#include <unordered_map>
+
+#include <Interface_Check.hxx>
+#include <Interface_ReportEntity.hxx>
+#include <StepBasic_ProductDefinition.hxx>
+#include <StepData_UndefinedEntity.hxx>
+#include <StepRepr_AssemblyComponentUsage.hxx>
+#include <TCollection_HAsciiString.hxx>
+
+namespace contactcore {
+
+namespace {
+
+constexpr size_t kMaxDamagedListed = 5;
+
+std::string entity_label(const Handle(StepData_StepModel)& model, const Handle(Standard_Transient)& entity) {
+  return "#" + std::to_string(model->IdentLabel(entity));
+}
+
+void find_damaged(const Handle(StepData_StepModel)& model, StepModelCheck& out) {
+  for (Standard_Integer num = 1; num <= model->NbEntities(); ++num) {
+    const bool unknown = model->IsUnknownEntity(num);
+    const bool error = model->IsErrorEntity(num);
+    if (!unknown && !error) continue;
+    ++out.damaged_count;
+    if (out.damaged.size() >= kMaxDamagedListed) continue;
+    const Handle(Standard_Transient) entity = model->Value(num);
+    std::string text = entity_label(model, entity) + ": ";
+    Handle(StepData_UndefinedEntity) undefined = Handle(StepData_UndefinedEntity)::DownCast(entity);
+    if (undefined.IsNull()) {
+      const Handle(Interface_ReportEntity) report = model->ReportEntity(num);
+      if (!report.IsNull()) undefined = Handle(StepData_UndefinedEntity)::DownCast(report->Content());
+    }
+    if (unknown && !undefined.IsNull() && undefined->StepType()) {
+      text += std::string("unknown entity type ") + undefined->StepType();
+    } else {
+      text += "unreadable entity";
+      const Handle(Interface_ReportEntity) report = model->ReportEntity(num);
+      if (!report.IsNull() && !report->Check().IsNull() && report->Check()->NbFails() > 0) {
+        text += " (" + std::string(report->Check()->Fail(1)->ToCString()) + ")";
+      }
+    }
+    out.damaged.push_back(text);
+  }
+}
+
+// Longest path and cycles in the graph "assembly product definition ->
+// component product definition", iteratively (the tree can be very deep).
+void check_assembly_graph(const Handle(StepData_StepModel)& model, StepModelCheck& out) {
+  std::unordered_map<int, std::vector<int>> children;  // entity numbers
+  for (Standard_Integer num = 1; num <= model->NbEntities(); ++num) {
+    const Handle(StepRepr_AssemblyComponentUsage) usage =
+        Handle(StepRepr_AssemblyComponentUsage)::DownCast(model->Value(num));
+    if (usage.IsNull()) continue;
+    const Handle(StepBasic_ProductDefinition) parent = usage->RelatingProductDefinition();
+    const Handle(StepBasic_ProductDefinition) child = usage->RelatedProductDefinition();
+    if (parent.IsNull() || child.IsNull()) continue;
+    children[model->Number(parent)].push_back(model->Number(child));
+  }
+  if (children.empty()) return;
+  enum Mark : char { Unseen = 0, Open, Done };
+  std::unordered_map<int, char> mark;
+  std::unordered_map<int, int> height;  // levels below a node, itself included
+  struct Frame {
+    int node;
+    size_t next;
+  };
+  for (const auto& entry : children) {
+    if (mark[entry.first] != Unseen) continue;
+    std::vector<Frame> stack{{entry.first, 0}};
+    mark[entry.first] = Open;
+    while (!stack.empty()) {
+      Frame& frame = stack.back();
+      const auto found = children.find(frame.node);
+      const std::vector<int>* kids = found == children.end() ? nullptr : &found->second;
+      if (kids && frame.next < kids->size()) {
+        const int kid = (*kids)[frame.next++];
+        if (mark[kid] == Open) {
+          std::string cycle = entity_label(model, model->Value(kid));
+          size_t start = stack.size();
+          while (start > 0 && stack[start - 1].node != kid) --start;
+          for (size_t i = start; i < stack.size(); ++i)
+            cycle += " -> " + entity_label(model, model->Value(stack[i].node));
+          out.cycle = cycle + " -> " + entity_label(model, model->Value(kid));
+          return;
+        }
+        if (mark[kid] == Unseen) {
+          mark[kid] = Open;
+          stack.push_back({kid, 0});
+        }
+        continue;
+      }
+      int levels = 1;
+      if (kids)
+        for (int kid : *kids) levels = std::max(levels, 1 + height[kid]);
+      height[frame.node] = levels;
+      mark[frame.node] = Done;
+      out.assembly_depth = std::max(out.assembly_depth, levels);
+      stack.pop_back();
+    }
+  }
+}
+
+}  // namespace
+
+StepModelCheck check_step_model(const Handle(StepData_StepModel)& model) {
+  StepModelCheck out;
+  if (model.IsNull()) return out;
+  find_damaged(model, out);
+  check_assembly_graph(model, out);
+  return out;
+}
+
+std::string describe_damaged(const StepModelCheck& check) {
+  std::string text;
+  for (const std::string& item : check.damaged) text += (text.empty() ? "" : "; ") + item;
+  const int more = check.damaged_count - static_cast<int>(check.damaged.size());
+  if (more > 0) text += " and " + std::to_string(more) + " more";
+  return text;
+}
+
+}  // namespace contactcore

@@ -1,0 +1,258 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRep_Builder.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS_Compound.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Quaternion.hxx>
+#include <gp_Trsf.hxx>
+
+#include "contactcore/collision.h"
+#include "contactcore/meshes.h"
+
+using namespace contactcore;
+
+namespace {
+
+struct Body {
+  TopoDS_Shape shape;
+  BodyPartitions partitions;
+  TaggedMesh mesh;
+  CollisionModelPtr model;
+};
+
+Body make_body(const TopoDS_Shape& shape, double deflection = 0.01) {
+  Body body;
+  body.shape = shape;
+  body.partitions = partition_shape(shape, Tolerances{});
+  MeshOptions options;
+  options.deflection = deflection;
+  const MeshResult meshed = mesh_body(shape, body.partitions, options);
+  EXPECT_TRUE(meshed.status.ok()) << meshed.status.describe();
+  body.mesh = meshed.mesh;
+  const CollisionModelResult built = build_collision_model(body.mesh);
+  EXPECT_TRUE(built.status.ok()) << built.status.describe();
+  body.model = built.model;
+  return body;
+}
+
+gp_Trsf to_gp(const RigidTransform& t) {
+  gp_Trsf trsf;
+  const auto& r = t.rotation;
+  trsf.SetValues(r[0], r[1], r[2], t.translation[0], r[3], r[4], r[5], t.translation[1], r[6], r[7], r[8],
+                 t.translation[2]);
+  return trsf;
+}
+
+RigidTransform random_placement(std::mt19937& rng, double spread) {
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(-spread, spread);
+  gp_Quaternion q(normal(rng), normal(rng), normal(rng), normal(rng));
+  q.Normalize();
+  const gp_Mat m = q.GetMatrix();
+  RigidTransform t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) t.rotation[i * 3 + j] = m.Value(i + 1, j + 1);
+  t.translation = {uniform(rng), uniform(rng), uniform(rng)};
+  return t;
+}
+
+TopoDS_Shape placed(const TopoDS_Shape& shape, const RigidTransform& t) {
+  return BRepBuilderAPI_Transform(shape, to_gp(t), true).Shape();
+}
+
+double exact_distance(const TopoDS_Shape& a, const TopoDS_Shape& b) {
+  BRepExtrema_DistShapeShape dist(a, b);
+  EXPECT_TRUE(dist.IsDone());
+  return dist.Value();
+}
+
+TopoDS_Shape faces_of(const TopoDS_Shape& solid) {
+  BRep_Builder builder;
+  TopoDS_Compound faces;
+  builder.MakeCompound(faces);
+  for (TopExp_Explorer explorer(solid, TopAbs_FACE); explorer.More(); explorer.Next())
+    builder.Add(faces, explorer.Current());
+  return faces;
+}
+
+// Independent depth: the deepest mesh vertex of one body inside the other's
+// exact solid, measured to its exact boundary.
+double reference_depth(const Body& a, const RigidTransform& ta, const Body& b, const RigidTransform& tb) {
+  const TopoDS_Shape sa = placed(a.shape, ta), sb = placed(b.shape, tb);
+  double depth = 0;
+  auto scan = [&](const Body& from, const RigidTransform& t, const TopoDS_Shape& into) {
+    const gp_Trsf trsf = to_gp(t);
+    BRepClass3d_SolidClassifier classifier(into);
+    // Distance to the boundary: measured to the solid itself, a point inside is at 0.
+    const TopoDS_Shape boundary = faces_of(into);
+    for (const auto& v : from.mesh.vertices) {
+      const gp_Pnt p = gp_Pnt(v[0], v[1], v[2]).Transformed(trsf);
+      classifier.Perform(p, 1e-7);
+      if (classifier.State() != TopAbs_IN) continue;
+      depth = std::max(depth, exact_distance(BRepBuilderAPI_MakeVertex(p).Shape(), boundary));
+    }
+  };
+  scan(a, ta, sb);
+  scan(b, tb, sa);
+  return depth;
+}
+
+double length(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+}  // namespace
+
+TEST(Collision, BoxesApartGiveTheGapAndClosestPoints) {
+  const Body a = make_body(BRepPrimAPI_MakeBox(10, 10, 10).Shape());
+  const Body b = make_body(BRepPrimAPI_MakeBox(4, 4, 4).Shape());
+  CollisionPair pair(a.model, b.model);
+  QueryResult result;
+  pair.query(RigidTransform::identity(), RigidTransform::translated(12.5, 3, 3), QueryKind::Distance, result);
+  EXPECT_FALSE(result.intersecting);
+  EXPECT_NEAR(result.distance, 2.5, 1e-9);
+  EXPECT_NEAR(result.point_a[0], 10, 1e-9);
+  EXPECT_NEAR(result.point_b[0], 12.5, 1e-9);
+  EXPECT_NEAR(result.point_b[1], result.point_a[1], 1e-9);
+  // The closest faces: A's x = 10 side and B's x = 0 side.
+  EXPECT_EQ(a.partitions.faces[result.face_a - 1].params.axis.X(), 1.0);
+  EXPECT_EQ(b.partitions.faces[result.face_b - 1].params.axis.X(), -1.0);
+  EXPECT_EQ(result.partition_a, a.mesh.triangle_partition[result.triangle_a]);
+}
+
+TEST(Collision, OverlappingBoxesGiveDepthAndDirection) {
+  const Body a = make_body(BRepPrimAPI_MakeBox(10, 10, 10).Shape());
+  const Body b = make_body(BRepPrimAPI_MakeBox(4, 4, 4).Shape());
+  CollisionPair pair(a.model, b.model);
+  QueryResult result;
+  // B spans x in [8.5, 12.5]: its four corners at x = 8.5 are 1.5 deep in A.
+  pair.query(RigidTransform::identity(), RigidTransform::translated(8.5, 3, 3), QueryKind::Penetration, result);
+  EXPECT_TRUE(result.intersecting);
+  EXPECT_EQ(result.distance, 0);
+  EXPECT_NEAR(result.depth, 1.5, 1e-9);
+  EXPECT_NEAR(result.direction[0], -1, 1e-9);  // A leaves towards -x
+  // A's x = 10 side meets B's four sides around x.
+  ASSERT_EQ(result.partitions_a.size(), 1u);
+  EXPECT_EQ(result.partitions_b.size(), 4u);
+  pair.query(RigidTransform::identity(), RigidTransform::translated(8.5, 3, 3), QueryKind::Intersect, result);
+  EXPECT_TRUE(result.intersecting);
+  // B wholly beside A: no intersection.
+  pair.query(RigidTransform::identity(), RigidTransform::translated(10.001, 3, 3), QueryKind::Intersect, result);
+  EXPECT_FALSE(result.intersecting);
+}
+
+TEST(Collision, DistancesMatchTheExactBRepDistanceOnSampledPlacements) {
+  const Body cylinder = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 10).Shape());
+  const Body holed = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -4), 12, 12, 8).Shape(),
+                                               BRepPrimAPI_MakeSphere(4.5).Shape())
+                                   .Shape());
+  CollisionPair pair(cylinder.model, holed.model);
+  std::mt19937 rng(7);
+  QueryResult result;
+  int apart = 0, near = 0, intersecting = 0, contained = 0, deep = 0;
+  for (int sample = 0; sample < 40; ++sample) {
+    const RigidTransform ta = random_placement(rng, 6), tb = random_placement(rng, 6);
+    pair.query(ta, tb, QueryKind::Penetration, result);
+    const TopoDS_Shape sa = placed(cylinder.shape, ta), sb = placed(holed.shape, tb);
+    const double exact = exact_distance(sa, sb);
+    // Meshes are within the deflection (0.01) of the exact surfaces: each side may err by it.
+    if (exact > 0.05) {
+      ++apart;
+      EXPECT_FALSE(result.intersecting) << sample;
+      EXPECT_NEAR(result.distance, exact, 0.021) << sample;
+      EXPECT_NEAR(length({result.point_a[0] - result.point_b[0], result.point_a[1] - result.point_b[1],
+                          result.point_a[2] - result.point_b[2]}),
+                  result.distance, 1e-9);
+    } else if (exact > 0) {
+      // Within twice the deflection: the meshes may cross, else their gap is the exact one.
+      ++near;
+      if (!result.intersecting) EXPECT_NEAR(result.distance, exact, 0.021) << sample;
+    } else if (result.intersecting) {
+      ++intersecting;
+      EXPECT_NEAR(result.depth, reference_depth(cylinder, ta, holed, tb), 0.021) << sample;
+      if (result.depth > 0) {
+        ++deep;
+        EXPECT_NEAR(length(result.direction), 1.0, 1e-9);
+      }
+    } else {
+      // Surfaces apart, material overlapping: one body wholly inside the other (not an intersection of
+      // the meshes); the B-rep says which.
+      ++contained;
+      BRepClass3d_SolidClassifier in_b(sb, gp_Pnt(ta.translation[0], ta.translation[1], ta.translation[2]), 1e-7);
+      EXPECT_EQ(in_b.State(), TopAbs_IN) << sample;
+    }
+  }
+  // Counts fixed by the seed and the exact B-rep distance.
+  EXPECT_EQ(apart, 5);
+  EXPECT_EQ(near, 1);
+  EXPECT_EQ(apart + near + intersecting + contained, 40);
+  EXPECT_GT(deep, 0);
+}
+
+TEST(Collision, SwitchedOffPartitionsAreIgnored) {
+  // A shaft in a bore of its radius: the cylinders coincide (the paper's Fig. 4c).
+  const Body block = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, 0), 20, 20, 10).Shape(),
+                                               BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp::DZ()), 3, 12).Shape())
+                                   .Shape());
+  const Body shaft = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 20).Shape());
+  auto cylinder_partition = [](const Body& body) {
+    for (const Partition& p : body.partitions.partitions)
+      if (p.params.kind == SurfaceKind::Cylinder) return p.id;
+    return -1;
+  };
+  CollisionPair pair(block.model, shaft.model);
+  QueryResult result;
+  // Turned by a few degrees about its own axis, the shaft's facets cut the bore's.
+  const double angle = 0.05;
+  RigidTransform turned;
+  turned.rotation = {std::cos(angle), -std::sin(angle), 0, std::sin(angle), std::cos(angle), 0, 0, 0, 1};
+  pair.query(RigidTransform::identity(), turned, QueryKind::Intersect, result);
+  EXPECT_TRUE(result.intersecting);
+  // The bore, and the block's top and bottom along the bore's rims.
+  EXPECT_EQ(result.partitions_a.size(), 3u);
+  EXPECT_EQ(std::count(result.partitions_a.begin(), result.partitions_a.end(), cylinder_partition(block)), 1);
+  ASSERT_EQ(result.partitions_b.size(), 1u);
+  EXPECT_EQ(result.partitions_b[0], cylinder_partition(shaft));
+  pair.set_partition_enabled(0, cylinder_partition(block), false);
+  pair.set_partition_enabled(1, cylinder_partition(shaft), false);
+  EXPECT_FALSE(pair.partition_enabled(0, cylinder_partition(block)));
+  pair.query(RigidTransform::identity(), turned, QueryKind::Penetration, result);
+  EXPECT_FALSE(result.intersecting);
+  // What is left: the shaft's end discs (z = -5, 15) against the block's faces (z = 0, 10): 5 apart.
+  EXPECT_NEAR(result.distance, 5.0, 1e-9);
+  // Moved sideways the shaft end discs still clear the block, but its side would hit the block's top: the
+  // bore is off, the block's top is not.
+  pair.enable_all();
+  pair.query(RigidTransform::identity(), RigidTransform::translated(2, 0, 0), QueryKind::Intersect, result);
+  EXPECT_TRUE(result.intersecting);
+}
+
+TEST(Collision, EverythingSwitchedOffIsInfinitelyFar) {
+  const Body a = make_body(BRepPrimAPI_MakeBox(1, 1, 1).Shape());
+  CollisionPair pair(a.model, a.model);
+  for (int p = 0; p < 6; ++p) pair.set_partition_enabled(0, p, false);
+  QueryResult result;
+  pair.query(RigidTransform::identity(), RigidTransform::identity(), QueryKind::Penetration, result);
+  EXPECT_FALSE(result.intersecting);
+  EXPECT_TRUE(std::isinf(result.distance));
+}
+
+TEST(Collision, BadMeshIsAnError) {
+  EXPECT_FALSE(build_collision_model(TaggedMesh{}).status.ok());
+  TaggedMesh mesh;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}};
+  mesh.triangles = {{0, 1, 2}};
+  mesh.triangle_face = {1};
+  mesh.triangle_partition = {0};
+  EXPECT_FALSE(build_collision_model(mesh).status.ok());
+}
