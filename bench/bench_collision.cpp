@@ -87,6 +87,7 @@ Assembly cube_grid(int side) {
 int main(int argc, char** argv) {
   const std::string motor_path = argc > 1 ? argv[1] : "Resources/samples/motor.step";
   const int grid_side = argc > 2 ? std::atoi(argv[2]) : 10;
+  std::setvbuf(stdout, nullptr, _IONBF, 0);  // each section shows as soon as it is measured
   std::printf("{\n");
 
   // 1. Two spheres of radius 20, about 100,000 triangles each, near contact.
@@ -100,7 +101,7 @@ int main(int argc, char** argv) {
   std::mt19937 rng(1);
   std::uniform_real_distribution<double> gap(-0.05, 0.2), wobble(-0.5, 0.5);
   std::vector<RigidTransform> placements;
-  for (int i = 0; i < 20000; ++i) {
+  for (int i = 0; i < 5000; ++i) {
     // B beside A along a random-ish direction near +x, surfaces between 0.05 mm inside and 0.2 mm apart.
     const double d = 40 + gap(rng);
     double dx = 1, dy = 0.1 * wobble(rng), dz = 0.1 * wobble(rng);
