@@ -27,6 +27,7 @@ def _progress_printer(stream):
 # `contacts NAME ...` runs another tool: NAME -> module with main(argv) -> exit code.
 SUBCOMMANDS = {
     "mesh": "contactwb.cli_mesh",
+    "trial": "contactwb.cli_trial",
 }
 
 

@@ -13,6 +13,9 @@ void bind_joints(py::module_& m);
 void bind_meshes(py::module_& m);
 void bind_collision(py::module_& m);
 void bind_disassembly(py::module_& m);
+#ifdef CONTACTS_WITH_HAPTICS
+void bind_haptics(py::module_& m);
+#endif
 }  // namespace contactcore::bindings
 
 PYBIND11_MODULE(contactcore, m) {
@@ -26,4 +29,7 @@ PYBIND11_MODULE(contactcore, m) {
   bind_meshes(m);
   bind_collision(m);
   bind_disassembly(m);
+#ifdef CONTACTS_WITH_HAPTICS
+  bind_haptics(m);
+#endif
 }
