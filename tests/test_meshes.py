@@ -1,0 +1,129 @@
+"""`contacts mesh` and `contacts FILE --disassembly`: the PLY files read back
+with a parser of our own (shared vertices, every edge in two triangles, tags
+equal to the partitions contactcore gives each face, volume of the closed
+mesh against the body's), meshes.json, the removal sequence's JSON."""
+import json
+import os
+from collections import Counter
+
+import pytest
+
+from contactwb import cli, core, meshes
+
+from conftest import SAMPLES
+
+MOTOR = os.path.join(SAMPLES, "motor.step")
+
+
+def read_ply(path):
+    """(vertices, [(i, j, k, face, partition)]) of an ASCII PLY written by write_ply."""
+    with open(path) as stream:
+        lines = stream.read().splitlines()
+    end = lines.index("end_header")
+    header = lines[:end]
+    vertex_count = int(next(l for l in header if l.startswith("element vertex")).split()[2])
+    face_count = int(next(l for l in header if l.startswith("element face")).split()[2])
+    assert header[-3:] == ["property list uchar int vertex_indices", "property int face", "property int partition"]
+    body = lines[end + 1:]
+    vertices = [tuple(map(float, l.split())) for l in body[:vertex_count]]
+    triangles = []
+    for line in body[vertex_count:vertex_count + face_count]:
+        n, i, j, k, face, partition = map(int, line.split())
+        assert n == 3
+        triangles.append((i, j, k, face, partition))
+    assert len(body) == vertex_count + face_count
+    return vertices, triangles
+
+
+def signed_volume(vertices, triangles):
+    total = 0.0
+    for i, j, k, *_ in triangles:
+        (ax, ay, az), (bx, by, bz), (cx, cy, cz) = vertices[i], vertices[j], vertices[k]
+        total += (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx)) / 6
+    return total
+
+
+def test_mesh_command_writes_watertight_tagged_ply_per_body(tmp_path, capsys):
+    out = tmp_path / "motor"
+    assert cli.main(["mesh", MOTOR, "--out", str(out), "--deflection", "0.05", "--max-edge", "4"]) == 0
+    printed = capsys.readouterr().out
+    document = json.loads((out / "meshes.json").read_text())
+    assembly = core.contactcore.read_step(MOTOR)
+    assert [b["name"] for b in document["bodies"]] == [b.name for b in assembly.bodies]
+    assert len(document["bodies"]) == 18
+    for entry, body in zip(document["bodies"], assembly.bodies):
+        vertices, triangles = read_ply(out / entry["file"])
+        assert entry["triangles"] == len(triangles)
+        edges = Counter()
+        for i, j, k, *_ in triangles:
+            for a, b in ((i, j), (j, k), (k, i)):
+                edges[(min(a, b), max(a, b))] += 1
+        assert set(edges.values()) == {2}, body.name  # watertight, read from the file
+        assert entry["watertight"] is True
+        # Every triangle carries its face and that face's partition.
+        partitions = core.contactcore.partition_brep(body.brep)
+        face_partition = {f: p.id for p in partitions.partitions for f in p.faces}
+        assert {t[3] for t in triangles} == set(face_partition), body.name  # every face meshed
+        assert all(face_partition[face] == partition for *_, face, partition in triangles), body.name
+        assert entry["partitions"] == len(partitions.partitions)
+        # Closed and outward: the mesh holds the body's volume (chords cut a little off curved faces).
+        assert signed_volume(vertices, triangles) == pytest.approx(body.volume, rel=0.01), body.name
+        longest = max(
+            sum((p - q) ** 2 for p, q in zip(vertices[a], vertices[b])) ** 0.5 for a, b in edges)
+        assert longest <= 4.0 + 1e-9
+        assert entry["max_edge_length"] == pytest.approx(longest)
+        assert 1.0 <= entry["aspect_ratio"]["p50"] <= entry["aspect_ratio"]["p99"] <= entry["aspect_ratio"]["max"]
+        assert 0 < entry["min_angle"] <= 60
+        assert f"{body.name}: {len(triangles)} triangles, watertight" in printed
+
+
+def test_mesh_command_refuses_bad_input(tmp_path, capsys):
+    assert cli.main(["mesh", str(tmp_path / "missing.step"), "--out", str(tmp_path / "o")]) == 1
+    assert "missing.step" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        cli.main(["mesh", MOTOR, "--out", str(tmp_path / "o"), "--deflection", "0"])
+
+
+def test_disassembly_json_of_the_taper_pin(capsys):
+    # The pin sits in a conical hole narrowing downwards: it can only leave upwards, along its axis;
+    # the block stays.
+    path = os.path.join(SAMPLES, "cases", "taper_pin.step")
+    assert cli.main([path, "--disassembly", "--json"]) == 0
+    document = json.loads(capsys.readouterr().out)
+    assert document["disassembly"] == [{"parts": ["Taper-pin"], "direction": [0.0, 0.0, 1.0]}]
+    assert document["base"] == "Block"
+    assert document["complete"] is True
+
+
+def test_disassembly_of_a_ball_bearing_reports_the_interlock(capsys):
+    # Balls held between the rings' grooves: nothing can leave without deforming a part.
+    path = os.path.join(SAMPLES, "cases", "ball_bearing.step")
+    assert cli.main([path, "--disassembly"]) == 2
+    text = capsys.readouterr().out
+    assert "Stopped: no part or group of the remaining parts" in text
+    assert "Inner-ring" in text and "Outer-ring" in text
+
+
+def test_collision_query_from_python_matches_hand_values():
+    assembly = core.contactcore.read_step(os.path.join(SAMPLES, "cases", "taper_pin.step"))
+    results = meshes.mesh_assembly(assembly, deflection=0.05)
+    block = core.contactcore.build_collision_model(results[0].mesh)
+    pin = core.contactcore.build_collision_model(results[1].mesh)
+    pair = core.contactcore.CollisionPair(block, pin)
+    identity = ((1, 0, 0, 0, 1, 0, 0, 0, 1), (0, 0, 0))
+    # In place the cone faces coincide: the meshes cross. Lifted, the gap is FreeCAD's exact B-rep
+    # distance (distToShape), within the two meshes' chordal deviations.
+    assert pair.query(None, identity, "intersect").intersecting
+    shapes = [core.shape_from_brep(body.brep) for body in assembly.bodies]
+    import FreeCAD
+    for lift in (3.0, 40.0, 500.0):
+        moved = shapes[1].copy()
+        moved.translate(FreeCAD.Vector(0, 0, lift))
+        exact = shapes[0].distToShape(moved)[0]
+        result = pair.query(None, ((1, 0, 0, 0, 1, 0, 0, 0, 1), (0, 0, lift)), "distance")
+        assert not result.intersecting
+        assert result.distance == pytest.approx(exact, abs=0.1)
+        gap = sum((a - b) ** 2 for a, b in zip(result.point_a, result.point_b)) ** 0.5
+        assert gap == pytest.approx(result.distance, abs=1e-9)
+    with pytest.raises(ValueError):
+        pair.query(None, None, "sideways")
