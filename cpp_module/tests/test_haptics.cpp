@@ -588,3 +588,25 @@ TEST(Trial, MotorAxisInsertionEndsSeated) {
   for (const auto& j : r.joints_engaged) with.insert(j.with);
   EXPECT_EQ(with, (std::set<std::string>{"Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"}));
 }
+
+TEST(Trial, MotorTicksAllocateNothing) {
+  // The whole tick on the motor: finder (real-time contacts), the collision
+  // stage's queries with the joint's partitions switched off, the hand.
+  TrialScene& scene = *motor_scene().scene;
+  const Vec3 c = scene.centre();
+  const Pose start = offset_pose(Vec3(0.2, 0.1, 30), Vec3(rad(0.3), 0, 0), c);
+  SimulatedHand hand(HandScript({{0.0, start}, {1.0, offset_pose(Vec3(0, 0, 0), Vec3::Zero(), c)}}),
+                     HandParameters{}, c, start);
+  ServoConfig config;
+  config.lockstep = true;
+  config.centre = c;
+  ServoLoop loop(hand, config, start);
+  loop.set_joint_finder(&scene.finder());
+  loop.set_collision(&scene.collision());
+  for (int i = 0; i < 50; ++i) loop.step_lockstep();
+  ASSERT_TRUE(loop.last().engaged);
+  const long before = g_allocations.load();
+  for (int i = 0; i < 1500; ++i) loop.step_lockstep();
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_LT((loop.proxy() * c - c).norm(), 0.05);
+}
