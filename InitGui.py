@@ -14,14 +14,23 @@ class ContactsWorkbench(FreeCADGui.Workbench):
         self.__class__.Icon = contactwb.icon_path("ContactsWorkbench")
 
     def Initialize(self):
-        from contactwb.gui import commands
-        names = commands.register()
+        from contactwb.gui import commands, preferences
+        # One entry per command module: each registers its commands and
+        # returns their names in toolbar order.
+        names = []
+        names += commands.register()
         self.appendToolbar("Contacts", names)
         self.appendMenu("&Contacts", names)
         from contactwb.gui import haptic_panel
         haptic = haptic_panel.register()
         self.appendToolbar("Contacts haptics", haptic)
         self.appendMenu("&Contacts", haptic)
+        FreeCADGui.addPreferencePage(preferences.PreferencesPage, "Contacts")
+
+    def ContextMenu(self, recipient):
+        if recipient == "View":
+            from contactwb.gui import commands
+            self.appendContextMenu("Contacts", commands.CONTEXT_COMMANDS)
 
     def Activated(self):
         pass

@@ -47,20 +47,82 @@ def _global_shape(root, subname):
     return Part.getShape(root, subname, needSubElement=False, transform=True)
 
 
+RECENT_FILES = "User parameter:BaseApp/Preferences/RecentFiles"
+STEP_EXTENSIONS = (".step", ".stp")
+
+
+def _label_stem(label):
+    """"motor001" -> "motor": FreeCAD numbers an imported compound's label."""
+    return label.rstrip("0123456789").rstrip("._- ").lower() or label.lower()
+
+
+def _step_candidates(obj):
+    """STEP files the object may come from: FreeCAD's recent files (File >
+    Open and Import record them) and the document's folder, whose name
+    matches the object's label."""
+    import os
+    import FreeCAD
+    params = FreeCAD.ParamGet(RECENT_FILES)
+    paths = [params.GetString(f"MRU{k}", "") for k in range(max(params.GetInt("RecentFiles", 4), 12))]
+    folder = os.path.dirname(getattr(obj.Document, "FileName", "") or "")
+    if folder and os.path.isdir(folder):
+        paths += [os.path.join(folder, f) for f in sorted(os.listdir(folder))]
+    stem = _label_stem(obj.Label)
+    found = []
+    for path in paths:
+        base, extension = os.path.splitext(os.path.basename(path))
+        if extension.lower() in STEP_EXTENSIONS and base.lower() == stem and os.path.isfile(path) \
+                and path not in found:
+            found.append(path)
+    return found
+
+
+def _product_names(obj, solids):
+    """Names of a compound's solids (FreeCAD's compound import keeps one
+    object named after the file): the STEP file's product names, matched by
+    volume and centre of mass, when the file can be found and every solid
+    matches; else None."""
+    from contactwb import core
+    for path in _step_candidates(obj):
+        try:
+            assembly = core.contactcore.read_step(path)
+        except Exception:
+            continue
+        products = [(b.name, b.volume, b.center) for b in assembly.bodies]
+        names, used = [], set()
+        for solid in solids:
+            volume, centre = solid.Volume, solid.CenterOfMass
+            size = max(solid.BoundBox.DiagonalLength, 1e-9)
+            match = next((k for k, (_, v, c) in enumerate(products) if k not in used
+                          and abs(v - volume) <= 1e-4 * max(abs(volume), 1e-9)
+                          and max(abs(c[0] - centre.x), abs(c[1] - centre.y), abs(c[2] - centre.z)) <= 1e-4 * size),
+                         None)
+            if match is None:
+                break
+            used.add(match)
+            names.append(products[match][0])
+        if len(names) == len(solids):
+            return names
+    return None
+
+
 def _split_solids(name, obj, root, subname, shape, containers):
     solids = shape.Solids
     if len(solids) <= 1:
         return [DocumentBody(name, obj, root, subname, solids[0] if solids else shape,
                              containers=containers)]
     object_faces = shape.Faces
+    products = _product_names(obj, solids) if not subname else None
     bodies = []
     for k, solid in enumerate(solids, start=1):
         face_map = []
         for face in solid.Faces:
             index = next(i for i, f in enumerate(object_faces, start=1) if f.isSame(face))
             face_map.append(index)
-        label = name if k == 1 else f"{name}.{k}"
-        bodies.append(DocumentBody(label, obj, root, subname, solid, face_map, containers))
+        label = products[k - 1] if products else name if k == 1 else f"{name}.{k}"
+        body = DocumentBody(label, obj, root, subname, solid, face_map, containers)
+        body.product = bool(products)
+        bodies.append(body)
     return bodies
 
 
@@ -119,6 +181,8 @@ def _name_after_containers(bodies):
         for container in body.containers:
             count[id(container)] = count.get(id(container), 0) + 1
     for body in bodies:
+        if getattr(body, "product", False):
+            continue
         for container in reversed(body.containers):
             if count[id(container)] == 1:
                 body.name = container.Label + body.name[len(body.obj.Label):]
@@ -130,6 +194,62 @@ def _make_names_unique(bodies):
     from contactwb import core
     for body, name in zip(bodies, core.contactcore.unique_names([b.name for b in bodies])):
         body.name = name
+
+
+def _object_path(subname):
+    """The object part of a selection subname ("Part.Link.Face3" -> "Part.Link.")."""
+    if not subname or subname.endswith("."):
+        return subname or ""
+    prefix = subname.rpartition(".")[0]
+    return prefix + "." if prefix else ""
+
+
+def _element_face(subname):
+    """N of a trailing "FaceN" in a selection subname, else None."""
+    element = (subname or "").rpartition(".")[2]
+    if element.startswith("Face") and element[4:].isdigit():
+        return int(element[4:])
+    return None
+
+
+def _body_matches(body, root, subname):
+    """Whether a selection (root object, subname) picks or contains this body."""
+    path = _object_path(subname)
+    if body.root is root:
+        if not (body.subname.startswith(path) or path.startswith(body.subname)):
+            return False
+    elif root is not body.obj and root not in body.containers \
+            and body.obj.getLinkedObject(True) is not root:
+        return False
+    face = _element_face(subname)
+    if face is not None and body.face_map is not None and path == body.subname:
+        return face in body.face_map  # a face of one solid of a multi-solid feature
+    return True
+
+
+def bodies_of_selection(bodies, entries):
+    """The bodies (of `bodies`, named for the whole document) that the
+    selection entries pick: (object, [subnames]) pairs as the 3D view and the
+    tree give them unresolved (top-level object, "Part.Link.Body.Pad.Face3"),
+    or plain objects. A face or an inner feature picks its body (with the
+    link's placement), a container all the bodies inside it. Contact analyses
+    and contacts are ignored."""
+    selected = []
+    for entry in entries:
+        root, subnames = entry if isinstance(entry, tuple) else (entry, [""])
+        if _is_analysis_object(root):
+            continue
+        for subname in (subnames or [""]):
+            target = root.getSubObject(subname, retType=1) if subname else root
+            if not _is_analysis_object(target):
+                selected.append((root, subname))
+    # in document order, as the whole document's analysis lists them
+    return [body for body in bodies if any(_body_matches(body, root, sub) for root, sub in selected)]
+
+
+def body_link(body):
+    """XLinkSub entry of a body: its top-level object and its path."""
+    return (body.root, [body.subname])
 
 
 def assembly_from_document(doc, objects=None, messages=None):

@@ -1,39 +1,144 @@
 """Workbench commands (one class each, FreeCAD Assembly style)."""
+import math
+
 import FreeCAD
 import FreeCADGui
 
 import contactwb
 
 
-class ProgressDialog:
-    """A cancellable progress dialog fed by the core's progress callback."""
-
-    def __init__(self, title):
-        from PySide2 import QtCore, QtWidgets
-        self._qt = QtWidgets
-        self.dialog = QtWidgets.QProgressDialog(title, "Cancel", 0, 1000, FreeCADGui.getMainWindow())
-        self.dialog.setWindowModality(QtCore.Qt.WindowModal)
-        self.dialog.setMinimumDuration(300)
-
-    def __call__(self, stage, fraction):
-        self.dialog.setLabelText(f"{stage.capitalize()}...")
-        self.dialog.setValue(int(fraction * 1000))
-        self._qt.QApplication.processEvents()
-        return not self.dialog.wasCanceled()
-
-    def close(self):
-        self.dialog.reset()
-
-
 class Contacts_FindContacts:
-    """Finds the contacts of the selected objects, or of every visible solid."""
+    """Opens the Find contacts task panel (scope, tolerances, types); with an
+    analysis selected, finds its contacts again in place."""
 
     def GetResources(self):
         return {
             "Pixmap": contactwb.icon_path("Contacts_FindContacts"),
-            "MenuText": "Find contacts",
+            "MenuText": "Find contacts...",
             "ToolTip": "Find the functional contacts (planar fits, cylindrical joints, cones, spheres, "
-                       "balls in bores and grooves) between the selected parts, or all visible parts",
+                       "balls in bores and grooves) of the whole document, the selected parts, or one "
+                       "part against the rest; with an analysis selected, find its contacts again",
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None and not FreeCADGui.Control.activeDialog()
+
+    def Activated(self):
+        from contactwb.gui import task_panel
+        doc = FreeCAD.ActiveDocument
+        task_panel.open_panel(doc, task_panel.selected_analysis(doc))
+
+
+def _selected_contact():
+    from contactwb.objects.contact_objects import is_contact
+    doc = FreeCAD.ActiveDocument
+    if doc is None:
+        return None
+    return next((o for o in FreeCADGui.Selection.getSelection(doc.Name) if is_contact(o)), None)
+
+
+def _in_transaction(doc, name, action):
+    """Runs action() as one undoable step."""
+    doc.openTransaction(name)
+    try:
+        action()
+    except Exception:
+        doc.abortTransaction()
+        raise
+    doc.commitTransaction()
+
+
+class Contacts_ShowContactTable:
+    """Shows the contact table dock."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_ShowContactTable"),
+            "MenuText": "Contact table",
+            "ToolTip": "List every contact in a table: sort and filter by type, part, area or "
+                       "partial; a row selects, zooms to or isolates its contact; the counts per "
+                       "type and per pair below",
+        }
+
+    def IsActive(self):
+        return FreeCAD.ActiveDocument is not None
+
+    def Activated(self):
+        from contactwb.gui import contact_table
+        contact_table.show()
+
+
+class Contacts_IsolateContact:
+    """Shows only the selected contact and its two parts."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_IsolateContact"),
+            "MenuText": "Isolate contact",
+            "ToolTip": "Show only the selected contact with its two parts, and zoom to it",
+        }
+
+    def IsActive(self):
+        return _selected_contact() is not None
+
+    def Activated(self):
+        from contactwb.gui import actions
+        contact = _selected_contact()
+        _in_transaction(contact.Document, "Isolate contact", lambda: actions.isolate(contact))
+        actions.zoom_to(contact)
+
+
+class Contacts_ShowAll:
+    """Undoes isolation and ghosting."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_ShowAll"),
+            "MenuText": "Show all",
+            "ToolTip": "Show again the parts and contacts an isolation hid, and undo ghosting",
+        }
+
+    def IsActive(self):
+        from contactwb import export
+        return bool(export.analyses(FreeCAD.ActiveDocument))
+
+    def Activated(self):
+        from contactwb.gui import actions
+        doc = FreeCAD.ActiveDocument
+        _in_transaction(doc, "Show all", lambda: actions.show_all(doc))
+
+
+class Contacts_GhostBodies:
+    """Makes the parts see-through around the painted contacts (toggles)."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_GhostBodies"),
+            "MenuText": "Ghost parts",
+            "ToolTip": "Make the parts' geometry see-through, so the painted contacts (also those "
+                       "inside the assembly) stand out (again: make them solid)",
+        }
+
+    def IsActive(self):
+        from contactwb import export
+        return bool(export.analyses(FreeCAD.ActiveDocument))
+
+    def Activated(self):
+        from contactwb.gui import actions
+        doc = FreeCAD.ActiveDocument
+        ghosted = not actions.is_ghosted(doc)
+        _in_transaction(doc, "Ghost parts", lambda: actions.set_ghosted(doc, ghosted))
+
+
+class Contacts_ShowPartitions:
+    """Colours the partitions of the selected parts by surface type (toggles)."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_ShowPartitions"),
+            "MenuText": "Show partitions",
+            "ToolTip": "Colour every partition (adjacent faces on one surface) of the selected parts, "
+                       "or of all visible parts, by surface type, with a legend (again: hide them)",
         }
 
     def IsActive(self):
@@ -41,28 +146,108 @@ class Contacts_FindContacts:
 
     def Activated(self):
         from contactwb import core
-        from contactwb.make import make_contact_analysis
+        from contactwb.gui import partitions_view, task_panel
         doc = FreeCAD.ActiveDocument
-        selection = FreeCADGui.Selection.getSelection(doc.Name) or None
-        progress = ProgressDialog("Finding contacts")
-        doc.openTransaction("Find contacts")
-        try:
-            group = make_contact_analysis(doc, selection, progress=progress)
-        except core.Cancelled:
-            doc.abortTransaction()
-            FreeCAD.Console.PrintWarning("Contacts: cancelled\n")
+        if partitions_view.is_shown(doc):
+            partitions_view.hide(doc)
             return
+        try:
+            partitions_view.show(doc, task_panel.selection_entries(doc))
+        except core.ContactsError as error:
+            _show_error(str(error))
+
+
+def _analysis_for_joints():
+    """The selected analysis (or the one holding a selected contact or
+    joint), else the document's only one."""
+    from contactwb import export
+    from contactwb.objects.contact_objects import is_contact, is_contact_analysis, is_joint
+    doc = FreeCAD.ActiveDocument
+    if doc is None:
+        return None
+    for obj in FreeCADGui.Selection.getSelection(doc.Name):
+        if is_contact_analysis(obj):
+            return obj
+        if is_contact(obj) or is_joint(obj):
+            return next((p for p in obj.InList if is_contact_analysis(p)), None)
+    found = export.analyses(doc)
+    return found[0] if len(found) == 1 else None
+
+
+class Contacts_DeriveJoints:
+    """Derives the joints of an analysis (Joint objects drawn as axis glyphs)."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_DeriveJoints"),
+            "MenuText": "Derive joints",
+            "ToolTip": "Derive the kinematic joint each body pair's contacts allow (type, degrees of "
+                       "freedom, axes, free directions) as Joint objects of the selected analysis, "
+                       "drawn as axis glyphs; kept up to date with the contacts",
+        }
+
+    def IsActive(self):
+        return _analysis_for_joints() is not None
+
+    def Activated(self):
+        from contactwb import core
+        from contactwb.make import make_contact_analysis
+        group = _analysis_for_joints()
+        doc = group.Document
+        doc.openTransaction("Derive joints")
+        try:
+            make_contact_analysis(doc, list(group.Sources) or None, group.LinearToleranceSetting.Value or None,
+                                  math.radians(group.AngularToleranceSetting.Value) or None, scope=group.Scope, types=list(group.ContactTypes) or None,
+                                  clearance_gap=group.ClearanceGap.Value, group=group, derive_joints=True)
         except (core.ContactsError, ValueError) as error:
             doc.abortTransaction()
             _show_error(str(error))
             return
-        finally:
-            progress.close()
         doc.commitTransaction()
-        doc.recompute()
-        FreeCAD.Console.PrintMessage(
-            f"Contacts: {len(group.Group)} contacts between {group.BodyCount} bodies "
-            f"({', '.join(group.Summary) or 'none'})\n")
+        FreeCAD.Console.PrintMessage(f"Contacts: {'; '.join(group.Mobility[:2])}\n")
+        from contactwb.gui import joint_view
+        joint_view.open_joints_panel(group)
+
+
+class Contacts_ShowJoints:
+    """The mobility, rigid groups and liaison graph of an analysis, in a panel."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_ShowJoints"),
+            "MenuText": "Joints and liaison graph",
+            "ToolTip": "Show the assembly's degrees of freedom, its rigid groups and the liaison graph "
+                       "of the selected analysis (after Derive joints)",
+        }
+
+    def IsActive(self):
+        group = _analysis_for_joints()
+        return group is not None and bool(getattr(group, "LiaisonGraph", ""))
+
+    def Activated(self):
+        from contactwb.gui import joint_view
+        joint_view.open_joints_panel(_analysis_for_joints())
+
+
+class Contacts_OpenSample:
+    """Opens the bundled motor."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_OpenSample"),
+            "MenuText": "Open sample motor",
+            "ToolTip": "Open the bundled 18-part electric motor (the paper's example) to try the workbench",
+        }
+
+    def IsActive(self):
+        return True
+
+    def Activated(self):
+        import os
+        doc = FreeCAD.openDocument(os.path.join(contactwb.SAMPLES_DIR, "motor.FCStd"))
+        FreeCADGui.activeDocument().activeView().viewIsometric()
+        FreeCADGui.SendMsgToActiveView("ViewFit")
+        return doc
 
 
 def _show_error(message):
@@ -76,10 +261,13 @@ def _analysis_to_export(doc):
     """The selected ContactAnalysis (or the one holding a selected contact),
     else the document's only one; None when that is ambiguous."""
     from contactwb import export
-    from contactwb.objects.contact_objects import is_contact_analysis
+    from contactwb.objects.contact_objects import is_contact, is_contact_analysis
     chosen = []
     for obj in FreeCADGui.Selection.getSelection(doc.Name):
-        for candidate in [obj] + list(obj.InList):
+        # the analysis itself, or the one holding a selected contact (a
+        # selected part is linked by analyses but chooses none)
+        candidates = [obj] if is_contact_analysis(obj) else list(obj.InList) if is_contact(obj) else []
+        for candidate in candidates:
             if is_contact_analysis(candidate) and candidate not in chosen:
                 chosen.append(candidate)
     if not chosen:
@@ -130,10 +318,23 @@ class Contacts_ExportContacts:
         FreeCAD.Console.PrintMessage(f"Contacts: {count} {noun} of '{group.Label}' written to {path}\n")
 
 
+# Toolbar and menu order (other command modules register their own).
 COMMANDS = {
     "Contacts_FindContacts": Contacts_FindContacts,
+    "Contacts_ShowContactTable": Contacts_ShowContactTable,
+    "Contacts_IsolateContact": Contacts_IsolateContact,
+    "Contacts_ShowAll": Contacts_ShowAll,
+    "Contacts_GhostBodies": Contacts_GhostBodies,
+    "Contacts_ShowPartitions": Contacts_ShowPartitions,
+    "Contacts_DeriveJoints": Contacts_DeriveJoints,
+    "Contacts_ShowJoints": Contacts_ShowJoints,
     "Contacts_ExportContacts": Contacts_ExportContacts,
+    "Contacts_OpenSample": Contacts_OpenSample,
 }
+
+# In the 3D view's context menu (a contact's own menu: its view provider).
+CONTEXT_COMMANDS = ["Contacts_FindContacts", "Contacts_IsolateContact", "Contacts_ShowAll",
+                    "Contacts_ShowContactTable"]
 
 
 def register():

@@ -27,16 +27,20 @@ from pivy import coin
 import contactwb
 from contactwb.objects.contact_objects import is_contact
 
-# The legend: one colour per contact type (also the tree icons' colour).
+# The legend: one colour per contact type (also the tree icons' colour). None
+# is near FreeCAD's selection green or preselection yellow (legend_colours
+# also keeps user-chosen colours away from them).
 TYPE_COLOURS = {
     "PLF": "#ff8c1a",  # orange
     "CLJ": "#1f5fff",  # blue
     "CJU": "#9b30ff",  # purple
-    "SPF": "#1fbf3a",  # green
+    "SPF": "#d7263d",  # red
     "LAF": "#00d2e6",  # cyan
     "SPT": "#ff2fd2",  # magenta
-    "TRF": "#ffe01a",  # yellow
+    "TRF": "#8b5a2b",  # brown
 }
+PREFERENCES = "User parameter:BaseApp/Preferences/Mod/Contacts"
+MIN_COLOUR_DISTANCE = 0.25  # per channel (0..1): what still reads as another colour
 UNKNOWN_COLOUR = "#808080"
 CIRCLE_TYPES = ("LAF", "SPT")  # contact along a circle: area 0
 PARTIAL_LIGHTEN = 0.45         # partial contacts: this far towards white
@@ -50,8 +54,48 @@ def rgb(colour):
     return tuple(int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
 
 
-def type_colour(kind, partial=False):
-    r, g, b = rgb(TYPE_COLOURS.get(kind, UNKNOWN_COLOUR))
+def hex_colour(colour):
+    return "#" + "".join(f"{round(max(0.0, min(1.0, c)) * 255):02x}" for c in colour)
+
+
+def _distance(a, b):
+    return max(abs(x - y) for x, y in zip(a, b))
+
+
+def highlight_colours():
+    """FreeCAD's selection and preselection colours (preferences)."""
+    view = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/View")
+    return [tuple(((view.GetUnsigned(name, default) >> shift) & 0xFF) / 255 for shift in (24, 16, 8))
+            for name, default in (("SelectionColor", 0x1CAD1C00), ("HighlightColor", 0xE1E11400))]
+
+
+def legend_colours():
+    """{type: "#rrggbb"}: the preferences' colours (default TYPE_COLOURS),
+    each moved away from the selection and preselection colours when it is
+    too near one of them (a selected contact must stand out)."""
+    params = FreeCAD.ParamGet(PREFERENCES)
+    avoid = highlight_colours()
+    colours = {}
+    for kind, default in TYPE_COLOURS.items():
+        colour = rgb(params.GetString(f"Colour{kind}", default) or default)
+        for _ in range(4):
+            near = [c for c in avoid if _distance(colour, c) < MIN_COLOUR_DISTANCE]
+            if not near:
+                break
+            # push every channel away from the colour it resembles
+            colour = tuple(x - 0.4 if x >= c else x + 0.4 for x, c in zip(colour, near[0]))
+            colour = tuple(max(0.0, min(1.0, x)) for x in colour)
+        colours[kind] = hex_colour(colour)
+    return colours
+
+
+def paint_style():
+    """"Common area" (default) or "Whole faces" (preferences)."""
+    return FreeCAD.ParamGet(PREFERENCES).GetString("PaintStyle", "Common area") or "Common area"
+
+
+def type_colour(kind, partial=False, colours=None):
+    r, g, b = rgb((colours or legend_colours()).get(kind, UNKNOWN_COLOUR))
     if partial:
         r, g, b = (c + (1 - c) * PARTIAL_LIGHTEN for c in (r, g, b))
     return r, g, b
@@ -117,6 +161,46 @@ def _set_stripe_period(coordinates, period):
     """One light and one dark stripe every `period` mm along (1, 1, 1)."""
     step = 1.0 / (period * math.sqrt(3.0))
     coordinates.directionS.setValue(step, step, step)
+
+
+TYPE_NAMES = {
+    "PLF": "planar fit", "CLJ": "cylindrical joint", "CJU": "cone", "SPF": "spherical fit",
+    "LAF": "ball in bore", "SPT": "ball in groove", "TRF": "torus fit",
+}
+
+
+def legend_node(entries, name="ContactsLegend"):
+    """A legend drawn over the view's top-left corner: one line of text per
+    (text, (r, g, b)) entry, in its colour. An annotation with its own
+    camera, so it stays put whatever the view's camera does; unpickable."""
+    legend = coin.SoAnnotation()
+    legend.setName(name)
+    pick = coin.SoPickStyle()
+    pick.style.setValue(coin.SoPickStyle.UNPICKABLE)
+    camera = coin.SoOrthographicCamera()
+    camera.viewportMapping.setValue(coin.SoCamera.LEAVE_ALONE)  # x, y in -1..1 across the view
+    camera.height.setValue(2.0)
+    camera.position.setValue(0, 0, 5)
+    light = coin.SoLightModel()
+    light.model.setValue(coin.SoLightModel.BASE_COLOR)
+    font = coin.SoFont()
+    font.size.setValue(16)
+    font.name.setValue("sans:bold")
+    for node in (pick, camera, light, font):
+        legend.addChild(node)
+    start = coin.SoTranslation()
+    start.translation.setValue(-0.96, 0.9, 0)
+    legend.addChild(start)
+    for text, colour in entries:
+        base = coin.SoBaseColor()
+        base.rgb.setValue(*colour)
+        label = coin.SoText2()
+        label.string.setValue(text)
+        step = coin.SoTranslation()
+        step.translation.setValue(0, -0.055, 0)
+        for node in (base, label, step):
+            legend.addChild(node)
+    return legend
 
 
 def _circle_points(centre, axis, radius, segments=CIRCLE_SEGMENTS):
@@ -188,6 +272,47 @@ class FaceSource:
         self._meshes[key] = mesh
         return mesh
 
+    def _face(self, root, subname):
+        prefix, _, element = subname.rpartition(".")
+        prefix = prefix + "." if prefix else ""
+        shape, deflection = self._object_shape(root, prefix)
+        return shape.getElement(element), deflection
+
+    def common_meshes(self, contact, fuzzy):
+        """[(key, mesh) of side A, (key, mesh) of side B]: the area the two
+        sides' faces share (Boolean common with a fuzzy value, for drawing
+        only), pushed out of each side's body; None when there is none to
+        be had (then the whole faces are drawn)."""
+        try:
+            sides = []
+            for links in (contact.FacesA, contact.FacesB):
+                sides.append([self._face(root, subname) for root, subnames in links for subname in subnames])
+            pieces = []
+            for face_a, deflection in sides[0]:
+                for face_b, _ in sides[1]:
+                    if not face_a.BoundBox.intersect(face_b.BoundBox):
+                        continue
+                    common = face_a.common(face_b, fuzzy)
+                    pieces.extend((piece, deflection) for piece in common.Faces if piece.Area > 0)
+            if not pieces:
+                return None
+            meshes = ([], [])
+            for k, (piece, deflection) in enumerate(pieces):
+                points, triangles = piece.tessellate(deflection)
+                if not triangles:
+                    continue
+                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
+                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
+                # the common face keeps side A's orientation: out of A is into B
+                for side, sign in ((0, 1.0), (1, -1.0)):
+                    meshes[side].append(((contact.Name, side, k),
+                                         (_pushed_out(points, triangles, sign * deflection), triangles,
+                                          piece.BoundBox)))
+            return meshes if meshes[0] else None
+        except Exception as error:  # drawing only: fall back to the whole faces
+            self.failures.append(f"{contact.Label}: common area: {error}")
+            return None
+
 
 def _pushed_out(points, triangles, distance):
     """Points moved by `distance` along their vertex normals (the area-weighted
@@ -208,18 +333,18 @@ class _TypeLayer:
     """The faces of one (type, partial) kind: one material and one coordinate
     node shared by the face sets of all contacts of that kind."""
 
-    def __init__(self, kind, partial):
+    def __init__(self, kind, partial, colours=None):
         self.kind, self.partial = kind, partial
         self.node = coin.SoSeparator()
         self.node.setName(f"Contacts_{kind}{'_partial' if partial else ''}")
         transparency = CIRCLE_FACE_TRANSPARENCY if kind in CIRCLE_TYPES else 0.0
-        self.node.addChild(_material(type_colour(kind, partial), transparency))
+        self.node.addChild(_material(type_colour(kind, partial, colours), transparency))
         self.stripe_nodes = _stripes() if partial else []
         for node in self.stripe_nodes:
             self.node.addChild(node)
         self.coordinates = coin.SoCoordinate3()
         self.node.addChild(self.coordinates)
-        self.circle_material = _line_material(type_colour(kind, partial))
+        self.circle_material = _line_material(type_colour(kind, partial, colours))
         self.points = []   # point arrays, in coordinate order
         self.count = 0     # points so far
         self.face_rows = {}  # face key -> its triangles' rows of coordIndex (m, 4)
@@ -287,10 +412,19 @@ class ContactOverlay:
         self.triangles = 0
         self.faces = 0
         self.circles = 0
+        self.common_contacts = 0  # contacts drawn as their common area
+        self.colours = dict(TYPE_COLOURS)
+        self.legend = None
         self.failures = []
 
-    def build(self, contacts):
-        """(Re)builds the drawing of `contacts` (Contact document objects)."""
+    def build(self, contacts, common_area=None, fuzzy=1e-3):
+        """(Re)builds the drawing of `contacts` (Contact document objects):
+        the area each contact's sides share (common_area, default the
+        preferences' paint style) or their whole faces."""
+        if common_area is None:
+            common_area = paint_style() == "Common area"
+        self.colours = legend_colours()
+        self.common_contacts = 0
         self.root.removeAllChildren()
         self.switches, self.sides, self.face_keys, self.visible = {}, {}, {}, {}
         self.highlighted, self.bodies, self.path_names = set(), {}, set()
@@ -317,23 +451,33 @@ class ContactOverlay:
             kind = contact.ContactType
             key = (kind, bool(contact.Partial))
             if key not in layers:
-                layers[key] = _TypeLayer(*key)
+                layers[key] = _TypeLayer(*key, colours=self.colours)
             layer = layers[key]
             sides, face_keys = [], set()
-            for links in (contact.FacesA, contact.FacesB):
+            common = None
+            if common_area and kind not in CIRCLE_TYPES:
+                common = source.common_meshes(contact, fuzzy)
+                if common is not None:
+                    self.common_contacts += 1
+            for side_index, links in enumerate((contact.FacesA, contact.FacesB)):
                 side, bodies = coin.SoSwitch(), set()
                 rows = []
                 for root, subnames in links:
                     for subname in subnames:
                         bodies.add(self._body(root, subname))
+                        face_keys.add((root.Name, subname))
+                        if common is not None:
+                            continue
                         mesh = source.mesh(root, subname)
                         if mesh is None:
                             continue
                         face_key = (root.Document.Name, root.Name, subname)
-                        face_keys.add(face_key[1:])
                         if face_key not in layer.face_rows:
                             self.faces += 1
                         rows.append(layer.add_face(face_key, mesh))
+                for key, mesh in (common[side_index] if common is not None else []):
+                    self.faces += 1
+                    rows.append(layer.add_face(key, mesh))
                 if rows:
                     indices = numpy.vstack(rows).ravel()
                     face_set = coin.SoIndexedFaceSet()
@@ -373,6 +517,11 @@ class ContactOverlay:
         for key in sorted(layers):
             layers[key].finish()
             self.root.addChild(layers[key].node)
+        kinds = [k for k in TYPE_COLOURS if any(key[0] == k for key in layers)]
+        counts = {k: sum(1 for c in contacts if c.ContactType == k) for k in kinds}
+        self.legend = legend_node([(f"{k} {TYPE_NAMES[k]} ({counts[k]})", type_colour(k, False, self.colours))
+                                   for k in kinds])
+        self.root.addChild(self.legend)
         self.names = tuple(c.Name for c in contacts)
         self.failures = source.failures
         self.update_bodies()
@@ -493,15 +642,33 @@ class ViewProviderContactAnalysis(_ViewProvider):
         self.schedule_rebuild()
 
     def onChanged(self, vobj, prop):
-        if prop == "Visibility" and getattr(self, "switch", None) is not None:
-            self.switch.whichChild.setValue(coin.SO_SWITCH_ALL if vobj.Visibility else coin.SO_SWITCH_NONE)
+        if prop == "Visibility":
+            self.update_switch()
+
+    def is_stale(self):
+        """Whether the analysis waits for a recompute after its bodies
+        changed: its paint would show contacts that may no longer exist."""
+        obj = getattr(self, "Object", None)
+        try:
+            return bool(getattr(obj, "UpdateOnRecompute", False)) and "Touched" in obj.State
+        except Exception:
+            return False
+
+    def update_switch(self):
+        switch = getattr(self, "switch", None)
+        if switch is None:
+            return
+        shown = self.Object.ViewObject.Visibility and not self.is_stale()
+        switch.whichChild.setValue(coin.SO_SWITCH_ALL if shown else coin.SO_SWITCH_NONE)
 
     def updateData(self, obj, prop):
-        # Contacts deleted or added: redraw (only then: Group is also announced
-        # after every attach).
+        # Contacts deleted, added or found again (Bodies is set by every run):
+        # redraw. (Group alone is also announced after every attach.)
         overlay = getattr(self, "overlay", None)
-        if prop == "Group" and overlay is not None and \
-                tuple(c.Name for c in obj.Group) != overlay.names:
+        if overlay is None:
+            return
+        if prop == "Bodies" or (prop == "Group" and
+                                tuple(c.Name for c in obj.Group if is_contact(c)) != overlay.names):
             self.schedule_rebuild()
 
     def schedule_rebuild(self):
@@ -518,7 +685,7 @@ class ViewProviderContactAnalysis(_ViewProvider):
         if not self._stale:
             return
         try:
-            self.Object.Document  # raises once the group is deleted
+            self.Object.ViewObject.Visibility  # raises once the group is deleted
         except Exception:
             return
         self.rebuild()
@@ -526,9 +693,11 @@ class ViewProviderContactAnalysis(_ViewProvider):
     def rebuild(self):
         """Draws the group's contacts now."""
         self._stale = False
-        contacts = [c for c in self.Object.Group if is_contact(c)]
+        contacts = [c for c in self.Object.Group if is_contact(c) and c.FacesA and c.FacesB]
+        self.update_switch()
+        fuzzy = max(10 * self.Object.LinearTolerance.Value, 1e-4)
         try:
-            self.overlay.build(contacts)
+            self.overlay.build(contacts, fuzzy=fuzzy)
         except Exception as error:  # a drawing problem must not break the document
             FreeCAD.Console.PrintError(f"Contacts: cannot draw '{self.Object.Label}': {error}\n")
             return
@@ -540,6 +709,28 @@ class ViewProviderContactAnalysis(_ViewProvider):
 
     def claimChildren(self):
         return self.Object.Group
+
+    def setEdit(self, vobj, mode=0):
+        """Double-click or Edit: the task panel, to find the contacts again."""
+        if mode != 0:
+            return None
+        from contactwb.gui import task_panel
+        task_panel.open_panel(vobj.Object.Document, vobj.Object)
+        return True
+
+    def unsetEdit(self, vobj, mode=0):
+        return None
+
+    def doubleClicked(self, vobj):
+        from contactwb.gui import task_panel
+        task_panel.open_panel(vobj.Object.Document, vobj.Object)
+        return True
+
+    def setupContextMenu(self, vobj, menu):
+        group = vobj.Object
+        _add_action(menu, "Find contacts again...", lambda: _open_panel(group))
+        _add_action(menu, "Contact table", lambda: FreeCADGui.runCommand("Contacts_ShowContactTable"))
+        _add_action(menu, "Export contacts...", lambda: _export(group))
 
 
 class ViewProviderContact(_ViewProvider):
@@ -568,11 +759,44 @@ class ViewProviderContact(_ViewProvider):
         select_contact_faces(vobj.Object)
         return True
 
+    def setupContextMenu(self, vobj, menu):
+        from contactwb.gui import actions
+        contact = vobj.Object
+        _add_action(menu, "Select faces", lambda: select_contact_faces(contact))
+        _add_action(menu, "Zoom to contact", lambda: actions.zoom_to(contact))
+        _add_action(menu, "Isolate with its parts", lambda: _isolate(contact))
+        _add_action(menu, "Export contacts...", lambda: _export(actions.analysis_of(contact)))
+
     def onChanged(self, vobj, prop):
         if prop != "Visibility":
             return
         for overlay in _overlays_of(vobj.Object):
             overlay.set_visible(vobj.Object.Name, vobj.Visibility)
+
+
+def _add_action(menu, text, slot):
+    action = menu.addAction(text)
+    action.triggered.connect(slot)
+    return action
+
+
+def _open_panel(group):
+    from contactwb.gui import task_panel
+    task_panel.open_panel(group.Document, group)
+
+
+def _isolate(contact):
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(contact)
+    FreeCADGui.runCommand("Contacts_IsolateContact")
+
+
+def _export(group):
+    if group is None:
+        return
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    FreeCADGui.runCommand("Contacts_ExportContacts")
 
 
 def _overlays_of(contact):
@@ -633,6 +857,18 @@ class _Watcher:
         for name in [doc] if doc else FreeCAD.listDocuments():
             self._selection_changed(name)
 
+    def slotDeletedObject(self, obj):
+        # a body deleted: its contacts lose their links; redraw without them
+        try:
+            for overlay in list(self.overlays):
+                if overlay.doc_name == obj.Document.Name and obj.Name in overlay.path_names:
+                    method = overlay.on_body_changed
+                    rebuild = method() if method is not None else None
+                    if rebuild is not None:
+                        rebuild()
+        except Exception as error:
+            FreeCAD.Console.PrintWarning(f"Contacts: cannot follow the bodies: {error}\n")
+
     def slotChangedObject(self, obj, prop):
         if prop not in ("Visibility", "Placement", "Shape") or not self.overlays:
             return
@@ -664,7 +900,10 @@ def select_contact_faces(contact):
 def attach(group):
     """Gives a ContactAnalysis group and its contacts their view providers,
     and draws the contacts."""
-    provider = ViewProviderContactAnalysis(group.ViewObject)
+    provider = group.ViewObject.Proxy
+    if not isinstance(provider, ViewProviderContactAnalysis):
+        provider = ViewProviderContactAnalysis(group.ViewObject)
     for child in group.Group:
-        ViewProviderContact(child.ViewObject)
+        if is_contact(child) and not isinstance(child.ViewObject.Proxy, ViewProviderContact):
+            ViewProviderContact(child.ViewObject)
     provider.rebuild()

@@ -1,7 +1,16 @@
 """Proxies of the contact analysis (a group) and of each contact (a child).
 
 Saved files refer to `contactwb.objects.contact_objects.ContactAnalysis` and
-`...Contact`: these names are permanent."""
+`...Contact`: these names are permanent.
+
+An analysis is live: it links every body it analysed (hidden `Bodies`), so it
+is recomputed after they move or change shape, and `execute` finds the
+contacts again, updating its Contact children in place. A document observer
+marks it touched as soon as one of its bodies moves, changes or is deleted,
+so the tree shows it out of date before the recompute."""
+
+SCOPES = ["Document", "Selection", "PartAgainstRest"]
+CONTACT_TYPES = ["PLF", "CLJ", "CJU", "SPF", "LAF", "SPT", "TRF"]
 
 
 def is_contact_analysis(obj):
@@ -14,31 +23,112 @@ def is_contact(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == "Contact"
 
 
+def _add(obj, kind, name, group, doc, mode=None):
+    """Adds a property unless the object has it (files saved by older versions)."""
+    if name not in obj.PropertiesList:
+        obj.addProperty(kind, name, group, doc)
+    if mode is not None:
+        obj.setEditorMode(name, mode)
+
+
+# Inputs the user sets (task panel or property editor), results shown read-only.
+ANALYSIS_RESULTS = ("LinearTolerance", "AngularTolerance", "BodyCount", "Summary", "Messages")
+
+
+def _analysis_properties(obj):
+    if "Sources" in obj.PropertiesList and obj.getTypeIdOfProperty("Sources") == "App::PropertyLinkList":
+        # 0.1 files: a local-scope link list, which refused objects inside App::Part (bug 5)
+        old = list(obj.Sources)
+        obj.removeProperty("Sources")
+        obj.addProperty("App::PropertyXLinkSubList", "Sources", "Contacts", "")
+        obj.Sources = [(o, [""]) for o in old]
+    _add(obj, "App::PropertyXLinkSubList", "Sources", "Contacts",
+         "Parts analysed, with their path in the document (Scope Selection or PartAgainstRest)")
+    _add(obj, "App::PropertyEnumeration", "Scope", "Contacts",
+         "Document: every visible solid; Selection: the Sources only; "
+         "PartAgainstRest: the Sources against every other visible solid")
+    if not obj.Scope:
+        obj.Scope = SCOPES
+        obj.Scope = "Selection" if obj.Sources else "Document"
+    _add(obj, "App::PropertyLength", "LinearToleranceSetting", "Contacts",
+         "Linear tolerance to use (0: scaled to the model)")
+    _add(obj, "App::PropertyAngle", "AngularToleranceSetting", "Contacts",
+         "Angular tolerance to use (0: the default)")
+    _add(obj, "App::PropertyStringList", "ContactTypes", "Contacts",
+         "Contact types to look for (empty: all)")
+    _add(obj, "App::PropertyLength", "ClearanceGap", "Contacts",
+         "Also report clearance fits whose radii differ by less than this (0: none)")
+    _add(obj, "App::PropertyBool", "UpdateOnRecompute", "Contacts",
+         "Find the contacts again when the bodies move or change (off: a snapshot that "
+         "follows the moved faces)")
+    _add(obj, "App::PropertyLength", "LinearTolerance", "Contacts", "Linear tolerance used", 1)
+    _add(obj, "App::PropertyAngle", "AngularTolerance", "Contacts", "Angular tolerance used", 1)
+    _add(obj, "App::PropertyInteger", "BodyCount", "Contacts", "Bodies analysed", 1)
+    _add(obj, "App::PropertyStringList", "Summary", "Contacts", "Counts by contact type", 1)
+    _add(obj, "App::PropertyStringList", "PairSummary", "Contacts", "Counts by body pair", 1)
+    _add(obj, "App::PropertyStringList", "Messages", "Contacts", "What was skipped and why", 1)
+    _add(obj, "App::PropertyStringList", "Clearances", "Contacts", "Clearance fits found", 1)
+    # Hidden: what the analysis depends on, and the CLI's body table (export)
+    _add(obj, "App::PropertyXLinkSubList", "Bodies", "Contacts", "Bodies analysed (their paths)", 2)
+    _add(obj, "App::PropertyString", "BodyTable", "Contacts", "Bodies as JSON (name, path, volume, center)", 2)
+    _add(obj, "App::PropertyInteger", "NumberBase", "Contacts", "Contact numbers start after this", 2)
+    # Joints (stage 4): derived from the contacts when DeriveJoints is on
+    _add(obj, "App::PropertyBool", "DeriveJoints", "Joints",
+         "Also derive the joints each body pair's contacts allow, and the assembly's mobility")
+    _add(obj, "App::PropertyString", "Ground", "Joints", "Body held still (empty: the largest by volume)")
+    _add(obj, "App::PropertyStringList", "Mobility", "Joints", "Degrees of freedom and rigid groups", 1)
+    _add(obj, "App::PropertyString", "LiaisonGraph", "Joints", "The liaison graph (Graphviz DOT)", 2)
+
+
 class ContactAnalysis:
-    """A group holding the contacts found among some objects (a snapshot:
-    run Contacts_FindContacts again after moving parts)."""
+    """A group holding the contacts found among some objects; recomputing it
+    finds them again (in place) when its bodies moved or changed."""
 
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = "ContactAnalysis"
-        obj.addProperty("App::PropertyLinkList", "Sources", "Contacts",
-                        "Objects analysed (empty: every visible solid of the document)")
-        obj.addProperty("App::PropertyLength", "LinearTolerance", "Contacts", "Linear tolerance used")
-        obj.addProperty("App::PropertyAngle", "AngularTolerance", "Contacts", "Angular tolerance used")
-        obj.addProperty("App::PropertyInteger", "BodyCount", "Contacts", "Bodies analysed")
-        obj.addProperty("App::PropertyStringList", "Summary", "Contacts", "Counts by contact type")
-        obj.addProperty("App::PropertyStringList", "Messages", "Contacts", "What was skipped and why")
-        for name in ("LinearTolerance", "AngularTolerance", "BodyCount", "Summary", "Messages"):
-            obj.setEditorMode(name, 1)  # read-only: results, not inputs
+        _analysis_properties(obj)
+        obj.UpdateOnRecompute = True
+        watch_document(obj.Document)
 
     def onDocumentRestored(self, obj):
         obj.Proxy = self
+        fresh = "UpdateOnRecompute" not in obj.PropertiesList
+        _analysis_properties(obj)
+        if fresh:
+            obj.UpdateOnRecompute = True
+        watch_document(obj.Document)
+
+    def execute(self, obj):
+        if not obj.UpdateOnRecompute:
+            return
+        from contactwb.make.make_contact_analysis import update_contact_analysis
+        update_contact_analysis(obj)
 
     def dumps(self):
         return None
 
     def loads(self, state):
         self.Type = "ContactAnalysis"
+
+
+def _contact_properties(obj):
+    _add(obj, "App::PropertyString", "ContactType", "Contact", "PLF, CLJ, CJU, SPF, LAF, SPT or TRF")
+    _add(obj, "App::PropertyInteger", "Number", "Contact", "Number of the contact in its label")
+    _add(obj, "App::PropertyString", "BodyA", "Contact", "First body")
+    _add(obj, "App::PropertyString", "BodyB", "Contact", "Second body")
+    _add(obj, "App::PropertyXLinkSubList", "FacesA", "Contact", "Faces of the first body in contact")
+    _add(obj, "App::PropertyXLinkSubList", "FacesB", "Contact", "Faces of the second body in contact")
+    _add(obj, "App::PropertyArea", "Area", "Contact", "Common area (0 for circle contacts)")
+    _add(obj, "App::PropertyBool", "Partial", "Contact", "Revolution contact spanning under 180 degrees")
+    _add(obj, "App::PropertyAngle", "Span", "Contact", "Common angular span")
+    _add(obj, "App::PropertyLength", "Radius", "Contact", "Radius (cylinder, sphere, ball)")
+    _add(obj, "App::PropertyAngle", "HalfAngle", "Contact", "Half-angle of the cone (CJU)")
+    _add(obj, "App::PropertyVector", "Point", "Contact", "A point of the contact (axis point, centre)")
+    _add(obj, "App::PropertyVector", "Direction", "Contact", "Normal of the first body, or axis")
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == "Contact":
+            obj.setEditorMode(name, 1)
 
 
 class Contact:
@@ -47,26 +137,139 @@ class Contact:
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = "Contact"
-        obj.addProperty("App::PropertyString", "ContactType", "Contact", "PLF, CLJ, CJU, SPF, LAF, SPT or TRF")
-        obj.addProperty("App::PropertyString", "BodyA", "Contact", "First body")
-        obj.addProperty("App::PropertyString", "BodyB", "Contact", "Second body")
-        obj.addProperty("App::PropertyXLinkSubList", "FacesA", "Contact", "Faces of the first body in contact")
-        obj.addProperty("App::PropertyXLinkSubList", "FacesB", "Contact", "Faces of the second body in contact")
-        obj.addProperty("App::PropertyArea", "Area", "Contact", "Common area (0 for circle contacts)")
-        obj.addProperty("App::PropertyBool", "Partial", "Contact", "Revolution contact spanning under 180 degrees")
-        obj.addProperty("App::PropertyAngle", "Span", "Contact", "Common angular span")
-        obj.addProperty("App::PropertyLength", "Radius", "Contact", "Radius (cylinder, sphere, ball)")
-        obj.addProperty("App::PropertyVector", "Point", "Contact", "A point of the contact (axis point, centre)")
-        obj.addProperty("App::PropertyVector", "Direction", "Contact", "Normal of the first body, or axis")
-        for name in obj.PropertiesList:
-            if obj.getGroupOfProperty(name) == "Contact":
-                obj.setEditorMode(name, 1)
+        _contact_properties(obj)
 
     def onDocumentRestored(self, obj):
         obj.Proxy = self
+        _contact_properties(obj)
 
     def dumps(self):
         return None
 
     def loads(self, state):
         self.Type = "Contact"
+
+
+class _BodyWatcher:
+    """Marks an analysis touched when a body it depends on moves, changes
+    shape or is deleted (FreeCAD itself only recomputes it, silently)."""
+
+    WATCHED = ("Placement", "Shape", "LinkPlacement", "LinkedObject", "Group")
+
+    def __init__(self):
+        self.documents = set()
+        self.pending = {}  # document name -> contacts to remove once its recompute is over
+
+    @staticmethod
+    def _analyses(doc):
+        return [o for o in doc.Objects
+                if o.TypeId == "App::DocumentObjectGroupPython" and is_contact_analysis(o)]
+
+    def _touch_dependents(self, obj, deleted=False):
+        doc = obj.Document
+        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj):
+            return
+        for group in self._analyses(doc):
+            if not getattr(group, "UpdateOnRecompute", False):
+                continue
+            if group.Name == obj.Name or "Touched" in group.State:
+                continue
+            if obj in group.OutListRecursive:
+                group.touch()
+
+    def slotChangedObject(self, obj, prop):
+        if prop not in self.WATCHED:
+            return
+        try:
+            self._touch_dependents(obj)
+        except Exception:  # an observer must never break an edit
+            pass
+
+    def slotCreatedObject(self, obj):
+        # a new part (or one brought back by an undo): the document-wide
+        # analyses may have missed its contacts
+        try:
+            doc = obj.Document
+            if doc.Recomputing or doc.Name not in self.documents:
+                return
+            if not (hasattr(obj, "Shape") or obj.isDerivedFrom("App::Link") or obj.isDerivedFrom("App::Part")):
+                return
+            for group in self._analyses(doc):
+                if group.UpdateOnRecompute and group.Scope != "Selection":
+                    group.touch()
+        except Exception:
+            pass
+
+    def slotRecomputedDocument(self, doc):
+        names = self.pending.pop(doc.Name, [])
+        for name in names:
+            if doc.getObject(name) is not None:
+                doc.removeObject(name)
+
+    def slotDeletedObject(self, obj):
+        try:
+            self._touch_dependents(obj, deleted=True)
+        except Exception:
+            pass
+
+
+_watcher = None
+
+
+def watch_document(doc):
+    """Installs (once) the observer marking this document's analyses touched."""
+    global _watcher
+    import FreeCAD
+    if _watcher is None:
+        _watcher = _BodyWatcher()
+        FreeCAD.addDocumentObserver(_watcher)
+    _watcher.documents.add(doc.Name)
+
+
+def pending_removal(doc, names):
+    """Contacts to remove once the document's recompute is over."""
+    watch_document(doc)
+    _watcher.pending.setdefault(doc.Name, []).extend(names)
+
+
+def is_joint(obj):
+    """Whether a document object is one Joint of an analysis."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None) == "Joint"
+
+
+def _joint_properties(obj):
+    _add(obj, "App::PropertyString", "JointType", "Joint",
+         "ISO 3952 name: rigid, revolute, prismatic, helical, cylindrical, spherical, planar, ...")
+    _add(obj, "App::PropertyInteger", "DOF", "Joint", "Degrees of freedom of body B relative to body A")
+    _add(obj, "App::PropertyString", "BodyA", "Joint", "First body")
+    _add(obj, "App::PropertyString", "BodyB", "Joint", "Second body (moving relative to the first)")
+    _add(obj, "App::PropertyVectorList", "AxisPoints", "Joint", "A point of each rotation axis (mm)")
+    _add(obj, "App::PropertyVectorList", "AxisDirections", "Joint", "Direction of each rotation axis")
+    _add(obj, "App::PropertyVectorList", "Translations", "Joint", "Directions of free translation")
+    _add(obj, "App::PropertyVectorList", "FreeDirections", "Joint",
+         "Generators of the cone of directions in which B can leave A")
+    _add(obj, "App::PropertyVector", "Centre", "Joint", "Centre of the pair's contacts (where glyphs are drawn)")
+    _add(obj, "App::PropertyLength", "GlyphLength", "Joint", "Length of the axis glyphs")
+    _add(obj, "App::PropertyLinkListHidden", "Contacts", "Joint", "The contacts making this joint")
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == "Joint":
+            obj.setEditorMode(name, 1)
+
+
+class Joint:
+    """The kinematic joint two bodies' contacts allow (contactcore.find_joints)."""
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.Type = "Joint"
+        _joint_properties(obj)
+
+    def onDocumentRestored(self, obj):
+        obj.Proxy = self
+        _joint_properties(obj)
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        self.Type = "Joint"

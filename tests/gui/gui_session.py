@@ -61,6 +61,7 @@ def overlay_report(group):
                          if n.getName().getString().startswith("Contacts_")),
         "proxy_triangles": proxy.overlay.triangles,
         "proxy_faces": proxy.overlay.faces,
+        "common_contacts": proxy.overlay.common_contacts,
         "contacts_drawn": len(proxy.overlay.names),
         # counted from the document: the faces the drawing must hold
         "contact_faces": len({(root.Name, subname) for c in group.Group for links in (c.FacesA, c.FacesB)
@@ -170,6 +171,7 @@ def check_exploded(doc, group):
     """Moving the bodies redraws their contact faces where they now are; the
     picture (neutral bodies, contact colours) is the README's overview."""
     report["z_range_assembled"] = overlay_z_range(group)
+    group.UpdateOnRecompute = False  # a snapshot: its paint follows the moved faces
     for obj in doc.Objects:
         if obj.TypeId != "Part::Feature":
             continue
@@ -216,7 +218,11 @@ def run():
     FreeCADGui.activeDocument().activeView().viewIsometric()
     from contactwb.gui import commands
     report["export_active_before"] = commands.Contacts_ExportContacts().IsActive()
-    FreeCADGui.runCommand("Contacts_FindContacts")
+    FreeCADGui.runCommand("Contacts_FindContacts")  # the task panel, whole document
+    FreeCADGui.updateGui()
+    from contactwb.gui import task_panel
+    report["panel_scope"] = task_panel.current.scope_value()
+    task_panel.current.accept()
     FreeCADGui.updateGui()
     groups = [o for o in doc.Objects if is_contact_analysis(o)]
     report["analyses"] = len(groups)

@@ -59,10 +59,13 @@ def test_workbench_is_listed_and_activates(gui_report):
 
 def test_toolbar_shows_only_working_commands(gui_report):
     assert gui_report["toolbar_visible"]
-    assert gui_report["toolbar_actions"] == ["Find contacts", "Export contacts..."]
+    assert gui_report["toolbar_actions"] == [
+        "Find contacts...", "Contact table", "Isolate contact", "Show all", "Ghost parts",
+        "Show partitions", "Derive joints", "Joints and liaison graph", "Export contacts...", "Open sample motor"]
 
 
 def test_find_contacts_command_fills_the_tree(gui_report):
+    assert gui_report["panel_scope"] == "Document"
     assert gui_report["analyses"] == 1
     assert gui_report["contacts"] == 35
     assert sorted(gui_report["summary"]) == ["CLJ: 21", "PLF: 14"]
@@ -91,7 +94,8 @@ def test_overlay_draws_every_contact_face(gui_report):
     assert overlay["contacts_drawn"] == MOTOR_CONTACTS
     assert overlay["layers"] == ["Contacts_CLJ", "Contacts_PLF"]  # one per type present, no partial
     assert overlay["face_sets"] == 2 * MOTOR_CONTACTS           # both sides of every contact
-    assert overlay["proxy_faces"] == overlay["contact_faces"]   # each contact face tessellated once
+    # every contact painted as the area its two sides share (bug 7: not whole faces)
+    assert overlay["common_contacts"] == MOTOR_CONTACTS
     assert overlay["triangles"] == overlay["proxy_triangles"] > 1000
     assert overlay["line_sets"] == 0  # contact circles only for LAF and SPT
 

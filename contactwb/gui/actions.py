@@ -1,0 +1,152 @@
+"""What the commands, the contact table and the context menus do to the view:
+select a contact's faces, zoom to it, isolate it with its two parts, ghost the
+geometry that touches nothing, show everything again."""
+import FreeCADGui
+
+from contactwb.objects.contact_objects import is_contact, is_contact_analysis
+
+GHOST_TRANSPARENCY = 85
+
+
+def analysis_of(contact):
+    return next((p for p in contact.InList if is_contact_analysis(p)), None)
+
+
+def contact_bodies(contact):
+    """[(root, object path)] of the contact's two bodies."""
+    paths = []
+    for links in (contact.FacesA, contact.FacesB):
+        for root, subnames in links:
+            for subname in subnames:
+                prefix = subname.rpartition(".")[0]
+                path = (root, prefix + "." if prefix else "")
+                if path not in paths:
+                    paths.append(path)
+    return paths
+
+
+def select_contact(contact, faces=False):
+    """Selects the contact in the tree (faces=False) or its faces in the view."""
+    from contactwb.gui import view_providers
+    if faces:
+        view_providers.select_contact_faces(contact)
+    else:
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(contact)
+
+
+def contact_box(contact):
+    """Bounding box of the contact: of its smaller side's faces (the common
+    area lies within both sides, and a shaft's whole face is long)."""
+    import FreeCAD
+    boxes = []
+    for links in (contact.FacesA, contact.FacesB):
+        box = FreeCAD.BoundBox()
+        for root, subnames in links:
+            for subname in subnames:
+                face = root.getSubObject(subname)
+                if face is not None:
+                    box.add(face.BoundBox)
+        if box.isValid():
+            boxes.append(box)
+    return min(boxes, key=lambda b: b.DiagonalLength) if boxes else FreeCAD.BoundBox()
+
+
+def zoom_to(contact, margin=4.0):
+    """Centres the view on the contact, its faces filling about 1/margin of it."""
+    box = contact_box(contact)
+    if not box.isValid():
+        return
+    view = FreeCADGui.activeDocument().activeView()
+    camera = view.getCameraNode()
+    direction = view.getViewDirection()
+    size = max(box.DiagonalLength, 1e-3)
+    centre = box.Center
+    distance = max(camera.focalDistance.getValue(), 10 * size)
+    position = centre - direction * distance
+    camera.position.setValue(position.x, position.y, position.z)
+    camera.focalDistance.setValue(distance)
+    if hasattr(camera, "height"):
+        camera.height.setValue(size * margin)
+    else:
+        camera.heightAngle.setValue(0.8)
+
+
+def _body_objects(doc):
+    """Every leaf object shown as a body, with the containers above it."""
+    from contactwb import bodies
+    return bodies.document_bodies(doc)
+
+
+_isolated = {}  # document name -> bodies isolate() hid, for show_all()
+
+
+def isolate(contact):
+    """Shows only the contact's two parts and the contact itself."""
+    doc = contact.Document
+    keep = contact_bodies(contact)
+    hidden = _isolated.setdefault(doc.Name, [])
+    for body in _body_objects(doc):
+        if not any(body.root is root and body.subname.startswith(path) for root, path in keep):
+            _set_body_visibility(body, False)
+            hidden.append(body)
+    group = analysis_of(contact)
+    if group is not None:
+        for other in group.Group:
+            if is_contact(other):
+                other.ViewObject.Visibility = other is contact
+
+
+def _set_body_visibility(body, shown):
+    if body.subname:
+        parent_path, _, name = body.subname[:-1].rpartition(".")
+        parent = body.root.getSubObject(parent_path + ".", retType=1) if parent_path else body.root
+        if hasattr(parent, "setElementVisible") and parent.isElementVisible(name) >= 0:
+            parent.setElementVisible(name, shown)
+            return
+    body.obj.ViewObject.Visibility = shown
+
+
+def show_all(doc):
+    """The bodies isolate() hid and every contact shown again, ghosting undone."""
+    from contactwb import export
+    for body in _isolated.pop(doc.Name, []):
+        try:
+            _set_body_visibility(body, True)
+        except Exception:  # deleted since
+            pass
+    for group in export.analyses(doc):
+        for contact in group.Group:
+            if is_contact(contact):
+                contact.ViewObject.Visibility = True
+    set_ghosted(doc, False)
+
+
+def ghosted_objects(doc):
+    """The bodies that ghosting makes see-through: all of them, so that
+    only the contacts' paint (drawn opaque) stands out."""
+    return _body_objects(doc)
+
+
+_ghosted = {}  # document name -> {object name: transparency before ghosting}
+
+
+def set_ghosted(doc, ghosted):
+    """Makes the bodies see-through around the painted contacts (or restores them)."""
+    saved = _ghosted.setdefault(doc.Name, {})
+    if ghosted:
+        for body in ghosted_objects(doc):
+            vobj = getattr(body.obj.getLinkedObject(True), "ViewObject", None)
+            if vobj is None or not hasattr(vobj, "Transparency"):
+                continue
+            saved.setdefault(vobj.Object.Name, vobj.Transparency)
+            vobj.Transparency = GHOST_TRANSPARENCY
+        return
+    for name, transparency in _ghosted.pop(doc.Name, {}).items():
+        obj = doc.getObject(name)
+        if obj is not None:
+            obj.ViewObject.Transparency = transparency
+
+
+def is_ghosted(doc):
+    return bool(_ghosted.get(doc.Name))

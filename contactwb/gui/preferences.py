@@ -1,0 +1,71 @@
+"""The workbench's page in FreeCAD's Preferences: default tolerances, the
+contact colours and the paint style (stored under
+User parameter:BaseApp/Preferences/Mod/Contacts)."""
+import FreeCAD
+from PySide2 import QtGui, QtWidgets
+
+from contactwb.gui import view_providers
+
+PAINT_STYLES = ["Common area", "Whole faces"]
+
+
+class PreferencesPage:
+    """FreeCAD calls loadSettings when the dialog opens, saveSettings on OK."""
+
+    def __init__(self, parent=None):
+        self.form = QtWidgets.QWidget(parent)
+        self.form.setObjectName("ContactsPreferences")
+        self.form.setWindowTitle("Contacts")
+        layout = QtWidgets.QFormLayout(self.form)
+        self.linear = QtWidgets.QDoubleSpinBox()
+        self.linear.setRange(0, 10)
+        self.linear.setDecimals(7)
+        self.linear.setSuffix(" mm")
+        self.linear.setSpecialValueText("scaled to the model")
+        self.angular = QtWidgets.QDoubleSpinBox()
+        self.angular.setRange(0, 10)
+        self.angular.setDecimals(5)
+        self.angular.setSuffix(" \u00b0")
+        self.angular.setSpecialValueText("default")
+        self.paint = QtWidgets.QComboBox()
+        self.paint.addItems(PAINT_STYLES)
+        layout.addRow("Default linear tolerance:", self.linear)
+        layout.addRow("Default angular tolerance:", self.angular)
+        layout.addRow("Paint contacts as:", self.paint)
+        self.colours = {}
+        for kind in view_providers.TYPE_COLOURS:
+            button = QtWidgets.QPushButton()
+            button.clicked.connect(lambda checked=False, k=kind: self._pick(k))
+            self.colours[kind] = button
+            layout.addRow(f"{kind} ({view_providers.TYPE_NAMES[kind]}):", button)
+        note = QtWidgets.QLabel("Colours too near the selection or preselection colour are moved away "
+                                "from it when drawn.")
+        note.setWordWrap(True)
+        layout.addRow(note)
+
+    def _set_colour(self, kind, colour):
+        button = self.colours[kind]
+        button.setText(colour)
+        button.setStyleSheet(f"background-color: {colour}")
+
+    def _pick(self, kind):
+        chosen = QtWidgets.QColorDialog.getColor(QtGui.QColor(self.colours[kind].text()), self.form)
+        if chosen.isValid():
+            self._set_colour(kind, chosen.name())
+
+    def loadSettings(self):
+        params = FreeCAD.ParamGet(view_providers.PREFERENCES)
+        self.linear.setValue(params.GetFloat("LinearTolerance", 0.0))
+        self.angular.setValue(params.GetFloat("AngularTolerance", 0.0))
+        self.paint.setCurrentIndex(max(0, PAINT_STYLES.index(view_providers.paint_style())
+                                       if view_providers.paint_style() in PAINT_STYLES else 0))
+        for kind, default in view_providers.TYPE_COLOURS.items():
+            self._set_colour(kind, params.GetString(f"Colour{kind}", default) or default)
+
+    def saveSettings(self):
+        params = FreeCAD.ParamGet(view_providers.PREFERENCES)
+        params.SetFloat("LinearTolerance", self.linear.value())
+        params.SetFloat("AngularTolerance", self.angular.value())
+        params.SetString("PaintStyle", self.paint.currentText())
+        for kind, button in self.colours.items():
+            params.SetString(f"Colour{kind}", button.text())
