@@ -7,6 +7,9 @@
 #include <new>
 #include <set>
 
+#include <BRepBndLib.hxx>
+#include <Bnd_Box.hxx>
+
 #include "contactcore/haptics/servo_loop.h"
 #include "contactcore/haptics/simulated.h"
 #include "contactcore/haptics/spacemouse.h"
@@ -587,4 +590,76 @@ TEST(Trial, MotorAxisInsertionEndsSeated) {
   std::set<std::string> with;
   for (const auto& j : r.joints_engaged) with.insert(j.with);
   EXPECT_EQ(with, (std::set<std::string>{"Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"}));
+}
+
+TEST(Trial, MotorTicksAllocateNothing) {
+  // The whole tick on the motor: finder (real-time contacts), the collision
+  // stage's queries with the joint's partitions switched off, the hand.
+  TrialScene& scene = *motor_scene().scene;
+  const Vec3 c = scene.centre();
+  const Pose start = offset_pose(Vec3(0.2, 0.1, 30), Vec3(rad(0.3), 0, 0), c);
+  SimulatedHand hand(HandScript({{0.0, start}, {1.0, offset_pose(Vec3(0, 0, 0), Vec3::Zero(), c)}}),
+                     HandParameters{}, c, start);
+  ServoConfig config;
+  config.lockstep = true;
+  config.centre = c;
+  ServoLoop loop(hand, config, start);
+  loop.set_joint_finder(&scene.finder());
+  loop.set_collision(&scene.collision());
+  for (int i = 0; i < 50; ++i) loop.step_lockstep();
+  ASSERT_TRUE(loop.last().engaged);
+  const long before = g_allocations.load();
+  for (int i = 0; i < 1500; ++i) loop.step_lockstep();
+  EXPECT_EQ(g_allocations.load() - before, 0);
+  EXPECT_LT((loop.proxy() * c - c).norm(), 0.05);
+}
+
+// ---- the joints stage through the adapter
+
+#include "contactcore/haptics/joint_adapter.h"
+
+TEST(JointAdapter, BearingHeldToItsAssembledJointStopsOnTheCover) {
+  MotorScene& motor = motor_scene();
+  const auto& a = motor.assembly;
+  const contactcore::ContactsResult contacts = contactcore::find_contacts(a, contactcore::ContactOptions{});
+  const contactcore::JointsResult joints = contactcore::find_joints(a, contacts);
+  auto id = [&](const std::string& name) { return body_index(*motor.scene, name); };
+  const int bearing = id("Bearing-back"), cover = id("Back-cover");
+  const auto it = std::find_if(joints.joints.begin(), joints.joints.end(), [&](const contactcore::PairJoint& p) {
+    return std::min(bearing, cover) == p.body_a && std::max(bearing, cover) == p.body_b;
+  });
+  ASSERT_NE(it, joints.joints.end());
+  // Bore and seat (CLJ + PLF): revolute in the joints stage, the seat a one-sided stop.
+  ASSERT_EQ(it->type, contactcore::JointType::Revolute);
+  ASSERT_FALSE(it->stops.empty());
+  const contactcore::MassProperties mp = contactcore::mass_properties(a.bodies[bearing].shape);
+  const Vec3 c(mp.centre.X(), mp.centre.Y(), mp.centre.Z());
+  Bnd_Box bb;
+  BRepBndLib::Add(a.bodies[bearing].shape, bb, false);
+  double x0, y0, z0, x1, y1, z1;
+  bb.Get(x0, y0, z0, x1, y1, z1);
+  JointState joint;
+  ASSERT_TRUE(joint_state_from_pair(*it, bearing, c, Eigen::AlignedBox3d(Vec3(x0, y0, z0), Vec3(x1, y1, z1)), joint));
+  EXPECT_EQ(joint.kind, JointKind::Cylindrical);
+  EXPECT_NEAR(std::abs(joint.axis.z()), 1.0, 1e-9);
+  ASSERT_EQ(joint.stop_count, 1);
+  EXPECT_NEAR(joint.stops[0].normal.z(), -1.0, 1e-9);  // it cannot go down into the cover
+  // Pushed down by the hand, it stays seated; pulled up, it follows.
+  for (double dz : {-3.0, 4.0}) {
+    SimulatedHand hand(HandScript({{0.0, Pose::Identity()}, {0.5, offset_pose(Vec3(0.2, 0, dz), Vec3::Zero(), c)}}),
+                       HandParameters{}, c, Pose::Identity());
+    ServoConfig config;
+    config.lockstep = true;
+    config.centre = c;
+    ServoLoop loop(hand, config, Pose::Identity());
+    loop.hold_to(joint);
+    double lowest = 0;
+    for (int i = 0; i < 1500; ++i) {
+      loop.step_lockstep();
+      lowest = std::min(lowest, loop.proxy().translation().z());
+    }
+    EXPECT_GE(lowest, -1e-12);
+    EXPECT_NEAR(loop.proxy().translation().z(), dz < 0 ? 0.0 : dz, 0.02);
+    EXPECT_LT(loop.proxy().translation().head<2>().norm(), 1e-9);
+  }
 }

@@ -83,6 +83,8 @@ def run():
     report["readouts"] = {k: v.text() for k, v in panel.readouts.items()}
     samples = panel.stop_recording()
     report["samples"] = len(samples)
+    report["recorded_span_s"] = samples[-1]["t"] - samples[0]["t"] if samples else 0.0
+    report["recorded_times_increase"] = all(a["t"] <= b["t"] for a, b in zip(samples, samples[1:]))
     report["max_penetration"] = max(s["penetration"] for s in samples)
     report["engaged_all"] = all(s["engaged"] for s in samples[1:])
     report["z_first"] = samples[0]["translate"][2]

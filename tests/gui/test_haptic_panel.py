@@ -54,7 +54,10 @@ def test_scripted_insertion_moves_the_axis_in_the_view(haptic_report):
     assert haptic_report["mid_joint"].startswith("Cylindrical with")
     assert haptic_report["engaged_all"]
     assert haptic_report["max_penetration"] <= 0.05
-    assert haptic_report["samples"] > 60
+    # Recorded at display rate (fewer frames on a loaded machine): the whole script and settling.
+    assert haptic_report["samples"] >= 10
+    assert haptic_report["recorded_times_increase"]
+    assert haptic_report["recorded_span_s"] >= 3.0
 
 
 def test_ok_commits_one_undoable_placement(haptic_report):

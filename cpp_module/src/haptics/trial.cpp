@@ -49,15 +49,31 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
     scene->groups_ = collision_groups(*scene->contacts_);
     scene->finder_ = std::make_unique<ContactJointFinder>(*scene->contacts_, scene->groups_.moving_group,
                                                           scene->centre_);
-    std::vector<TriangleMesh> meshes(n);
+    // Triangle models of the collision stage (meshes.h, collision.h).
+    std::vector<CollisionModelPtr> models(n);
+    MeshOptions mesh_options;
+    mesh_options.deflection = options.deflection;
+    mesh_options.angle = options.angle;
     for (std::size_t i = 0; i < n; ++i) {
-      meshes[i] = tessellate(assembly.bodies[i].shape, scene->partitions_[i], options.deflection, options.angle);
+      const MeshResult mesh = mesh_body(assembly.bodies[i].shape, scene->partitions_[i], mesh_options);
+      if (!mesh.status.ok()) {
+        status = mesh.status;
+        status.body = assembly.bodies[i].name;
+        return nullptr;
+      }
+      CollisionModelResult model = build_collision_model(mesh.mesh);
+      if (!model.status.ok()) {
+        status = model.status;
+        status.body = assembly.bodies[i].name;
+        return nullptr;
+      }
+      models[i] = model.model;
       if (progress && !progress->report("collision models", double(i + 1) / n)) {
         status = Status::failure(StatusCode::Cancelled, "cancelled");
         return nullptr;
       }
     }
-    scene->collision_ = std::make_unique<MeshCollision>(meshes, moving, scene->groups_);
+    scene->collision_ = std::make_unique<StageCollision>(models, moving, scene->groups_);
   } catch (const Standard_Failure& failure) {
     status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
     status.body = part;

@@ -3,7 +3,7 @@
 // joint captures the part (engagement), and whether a pose collides with the
 // neighbours (the joint's own partitions switched off). The trial fills them
 // from the contacts (realtime_contacts.h) and the triangle models
-// (mesh_collision.h); tests fill them by hand.
+// (stage_collision.h, on the collision stage); tests fill them by hand.
 #pragma once
 
 #include <array>

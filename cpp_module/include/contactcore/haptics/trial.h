@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "contactcore/bodies.h"
-#include "contactcore/haptics/mesh_collision.h"
+#include "contactcore/haptics/stage_collision.h"
 #include "contactcore/haptics/realtime_contacts.h"
 #include "contactcore/haptics/servo_loop.h"
 #include "contactcore/haptics/simulated.h"
@@ -33,7 +33,7 @@ class TrialScene {
   const Vec3& centre() const { return centre_; }
   RealtimeContacts& contacts() { return *contacts_; }
   ContactJointFinder& finder() { return *finder_; }
-  MeshCollision& collision() { return *collision_; }
+  StageCollision& collision() { return *collision_; }
   const std::vector<std::string>& body_names() const { return names_; }
   double setup_seconds() const { return setup_seconds_; }
 
@@ -47,7 +47,7 @@ class TrialScene {
   std::unique_ptr<RealtimeContacts> contacts_;
   CollisionGroups groups_;
   std::unique_ptr<ContactJointFinder> finder_;
-  std::unique_ptr<MeshCollision> collision_;
+  std::unique_ptr<StageCollision> collision_;
   double setup_seconds_ = 0;
 };
 

@@ -1,0 +1,80 @@
+#include "contactcore/haptics/joint_adapter.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactcore::haptics {
+
+namespace {
+Vec3 vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
+Vec3 vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
+}  // namespace
+
+bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre,
+                           const Eigen::AlignedBox3d& part_box, JointState& out) {
+  if (moving != pair.body_a && moving != pair.body_b) return false;
+  JointState j;
+  switch (pair.type) {
+    case JointType::Rigid:
+      j.kind = JointKind::Fixed;
+      j.point = centre;
+      break;
+    case JointType::Revolute:
+    case JointType::Cylindrical:
+      if (pair.rotations.empty()) return false;
+      j.kind = pair.type == JointType::Revolute ? JointKind::Revolute : JointKind::Cylindrical;
+      j.point = vec(pair.rotations[0].point);
+      j.axis = vec(pair.rotations[0].direction);
+      break;
+    case JointType::Prismatic:
+      if (pair.translations.empty()) return false;
+      j.kind = JointKind::Prismatic;
+      j.point = centre;
+      j.axis = vec(pair.translations[0]);
+      break;
+    case JointType::Spherical:
+      if (pair.rotations.empty()) return false;
+      j.kind = JointKind::Spherical;
+      j.point = vec(pair.rotations[0].point);
+      break;
+    default:
+      return false;
+  }
+  // The joints stage counts one-sided contacts as holding both ways (a bearing
+  // seated in its bore is Revolute); the loop lets the part leave through them:
+  // an axial stop on a revolute joint makes it cylindrical with that stop.
+  if (j.kind == JointKind::Revolute)
+    for (const OneSidedStop& stop : pair.stops)
+      if (std::abs(vec(stop.normal).dot(j.axis)) > 1 - 1e-6) j.kind = JointKind::Cylindrical;
+  // Assembled: the part's own axis is the joint's.
+  j.part_point = j.point;
+  j.part_axis = j.axis;
+  double lo = 0, hi = 0;
+  if (!part_box.isEmpty()) {
+    lo = 1e300;
+    hi = -1e300;
+    for (int i = 0; i < 8; ++i) {
+      const double s = (part_box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)) - j.point).dot(j.axis);
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+    }
+  }
+  j.part_axial_min = lo;
+  j.part_axial_max = hi;
+  // Stops: b may move with u . n >= 0 at the stop; the moving part's reference
+  // point keeps normal . c <= limit, written at the assembled placement.
+  for (const OneSidedStop& stop : pair.stops) {
+    const Vec3 n = vec(stop.normal);
+    const Vec3 blocked = moving == pair.body_b ? Vec3(-n) : n;
+    bool merged = false;
+    for (int k = 0; k < j.stop_count; ++k) merged |= j.stops[k].normal.dot(blocked) > 1 - 1e-9;
+    if (!merged) j.add_stop(blocked, blocked.dot(centre));
+  }
+  j.bodies[0] = moving == pair.body_a ? pair.body_b : pair.body_a;
+  j.body_count = 1;
+  j.contact_type = static_cast<int>(pair.type == JointType::Spherical ? ContactType::SPF : ContactType::CLJ);
+  out = j;
+  return true;
+}
+
+}  // namespace contactcore::haptics
