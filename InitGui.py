@@ -21,6 +21,10 @@ class ContactsWorkbench(FreeCADGui.Workbench):
         names += commands.register()
         self.appendToolbar("Contacts", names)
         self.appendMenu("&Contacts", names)
+        from contactwb.gui import haptic_panel
+        haptic = haptic_panel.register()
+        self.appendToolbar("Contacts haptics", haptic)
+        self.appendMenu("&Contacts", haptic)
         FreeCADGui.addPreferencePage(preferences.PreferencesPage, "Contacts")
 
     def ContextMenu(self, recipient):

@@ -20,7 +20,7 @@ DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   libocct-visualization-dev libcoin-dev libhidapi-dev pybind11-dev python3-pybind11 \
   python3-dev python3-pytest cmake make g++ googletest libgtest-dev libbenchmark-dev \
   libtbb-dev python3-pil xvfb xauth \
-  libeigen3-dev graphviz libfcl-dev
+  libeigen3-dev graphviz libfcl-dev pkg-config
 
 .PHONY: run test deps build install uninstall samples bench test-cpp test-python test-gui clean
 

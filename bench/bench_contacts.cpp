@@ -75,6 +75,14 @@ int bare_read(const std::string& path) {
   return 0;
 }
 
+// Asks to stop at a given moment (the user's click): the latency is from
+// that moment to find_contacts returning.
+struct CancelAt : Progress {
+  explicit CancelAt(double at) : at(at) {}
+  bool report(const char*, double) override { return now() < at; }
+  double at;
+};
+
 int pipeline(const std::string& path, int threads) {
   const double start = now();
   const AssemblyResult read = read_step(path);
@@ -93,17 +101,25 @@ int pipeline(const std::string& path, int threads) {
                 json_escape(result.status.describe()).c_str());
     return 1;
   }
+  const double peak = peak_rss_mb();  // before the second run below
+  // Cancelled halfway through a second run.
+  const double after_read = total - read_seconds;
+  CancelAt cancel(0);
+  const double cancel_start = now();
+  cancel.at = cancel_start + after_read / 2;
+  const ContactsResult stopped = find_contacts(read.assembly, options, &cancel);
+  const double cancel_latency = stopped.status.code == StatusCode::Cancelled ? now() - cancel.at : -1;
   size_t faces = 0;
   for (const BodyPartitions& body : result.partitions) faces += body.faces.size();
   std::printf(
       "{\"file\": \"%s\", \"run\": \"ours\", \"bodies\": %zu, \"faces\": %zu, \"contacts\": %zu, "
       "\"body_pairs\": %zu, \"candidates\": %zu, \"skipped\": %zu, \"read\": %.6f, \"partitions\": %.6f, "
       "\"broad_phase\": %.6f, \"candidates_time\": %.6f, \"area\": %.6f, \"after_read\": %.6f, "
-      "\"total\": %.6f, \"peak_rss_mb\": %.1f}\n",
+      "\"total\": %.6f, \"cancel_latency\": %.6f, \"peak_rss_mb\": %.1f}\n",
       json_escape(path).c_str(), read.assembly.bodies.size(), faces, result.contacts.size(),
       result.body_pairs.size(), result.candidates, result.skipped.size(), read_seconds,
       result.times.partitions, result.times.broad_phase, result.times.candidates, result.times.area,
-      total - read_seconds, total, peak_rss_mb());
+      after_read, total, cancel_latency, peak);
   return 0;
 }
 

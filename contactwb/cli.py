@@ -25,7 +25,10 @@ def _progress_printer(stream):
 
 
 # `contacts NAME ...` runs another tool: NAME -> module with main(argv) -> exit code.
-SUBCOMMANDS = {}
+SUBCOMMANDS = {
+    "mesh": "contactwb.cli_mesh",
+    "trial": "contactwb.cli_trial",
+}
 
 
 def main(argv=None):
@@ -48,7 +51,12 @@ def main(argv=None):
     parser.add_argument("--ground", metavar="NAME", help="body held still (default: the largest by volume)")
     parser.add_argument("--clearance-gap", type=float, default=0.0, metavar="MM",
                         help="with --joints: also list clearance fits with a gap below MM")
+    parser.add_argument("--disassembly", action="store_true",
+                        help="print the removal sequence (with --json: {\"disassembly\": [{\"parts\", \"direction\"}]})")
     args = parser.parse_args(argv)
+    if args.disassembly:
+        from contactwb import cli_mesh
+        return cli_mesh.print_disassembly(args.file, args.json, args.linear, args.angular)
 
     from contactwb import analysis, core
     from contactwb import joints as joints_api

@@ -32,6 +32,8 @@ def _load():
 contactcore = _load()
 ContactsError = contactcore.ContactsError
 Cancelled = contactcore.Cancelled
+InputError = contactcore.InputError        # a file or shape that cannot be read or used (a ContactsError)
+ArgumentError = contactcore.ArgumentError  # an option out of range (a ContactsError and a ValueError)
 
 
 def shape_to_brep(shape):

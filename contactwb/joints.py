@@ -66,7 +66,8 @@ class Joints:
     clearances: List[dict] = field(default_factory=list)
     interferences: List[dict] = field(default_factory=list)
     clearance_gap: float = 0.0
-    raw: Optional[object] = None               # (contactcore.JointsResult, contactcore.MobilityResult)
+    raw: Optional[object] = None  # (contactcore.ContactsResult, .JointsResult, .MobilityResult)
+    _body_index: dict = field(default_factory=dict, repr=False)
 
     def to_json(self):
         """The CLI's --joints --json additions."""
@@ -111,6 +112,15 @@ class Joints:
                 lines.append(f"  {i['a']:<{width}}  <->  {i['b']:<{width}}  {i['volume']:.4g} mm3")
         return "\n".join(lines)
 
+    def free_directions_of(self, body):
+        """Directions in which `body` (a name) can translate out, every part it
+        touches held still: generators of that cone, [] when it cannot."""
+        raw, found, _ = self.raw
+        if body not in self._body_index:
+            raise core.ContactsError(f"no body named '{body}'")
+        index = self._body_index[body]
+        return [_vec(d) for d in core.contactcore.body_free_directions(raw, found, index)]
+
     def write_graph(self, path):
         """Writes the liaison graph: .dot as text, .svg or .png rendered by Graphviz `dot`."""
         extension = os.path.splitext(path)[1].lower()
@@ -135,24 +145,27 @@ def _fmt(values):
     return "(" + ", ".join(f"{v:.4g}" if abs(v) > 1e-12 else "0" for v in values) + ")"
 
 
-def _ground_index(result, ground):
-    names = [b.name for b in result.bodies]
+def _ground_index(names, ground):
     if ground is None:
-        return max(range(len(names)), key=lambda i: result.bodies[i].volume) if names else -1
+        return -1  # the core picks the largest by volume
     if ground not in names:
         raise core.ContactsError(f"no body named '{ground}' to ground; bodies: {', '.join(names)}")
     return names.index(ground)
 
 
-def joints_of_analysis(assembly, result, ground=None, clearance_gap=0.0):
-    """Joints, mobility and liaison graph of an analysis.Analysis found on the
-    contactcore.Assembly `assembly`. `ground`: a body name (default: the
+def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None, face_name=None,
+                       ground=None, clearance_gap=0.0, max_pairs=None):
+    """(analysis.Analysis, Joints) of a contactcore.Assembly: contacts, then
+    joints, mobility and liaison graph. `ground`: a body name (default: the
     largest by volume). `clearance_gap` > 0 also lists clearance fits."""
     cc = core.contactcore
-    raw = result.raw
-    names = [b.name for b in result.bodies]
+    names = [b.name for b in assembly.bodies]
+    ground_index = _ground_index(names, ground)
+    raw = cc.find_contacts(assembly, linear=linear, angular=angular, progress=progress, max_pairs=max_pairs,
+                           clearance_gap=clearance_gap)
+    result = analysis._analysis(source, assembly, raw, face_name)
     found = cc.find_joints(assembly, raw)
-    mobility = cc.assembly_mobility(assembly, raw, found, _ground_index(result, ground))
+    mobility = cc.assembly_mobility(assembly, raw, found, ground_index)
     records = [JointRecord(
         a=names[j.body_a], b=names[j.body_b], type=j.type, dof=j.dof, rotations=_rotations(j.rotations),
         translations=[{"direction": _vec(d)} for d in j.translations],
@@ -169,13 +182,12 @@ def joints_of_analysis(assembly, result, ground=None, clearance_gap=0.0):
     record = Mobility(ground=names[mobility.ground] if mobility.ground >= 0 else "", dof=mobility.dof,
                       passive=mobility.passive, groups=[[names[i] for i in g] for g in mobility.groups],
                       group_joints=group_joints)
-    clearances = []
-    if clearance_gap > 0:
-        clearances = [{"a": names[c.body_a], "b": names[c.body_b], "kind": c.kind, "gap": c.gap}
-                      for c in cc.find_clearances(raw, clearance_gap)]
-    return Joints(source=result.source, joints=records, mobility=record,
-                  dot=cc.liaison_graph_dot(assembly, found, mobility), clearances=clearances,
-                  interferences=interferences_of(raw, names), clearance_gap=clearance_gap, raw=(found, mobility))
+    clearances = [{"a": names[c.body_a], "b": names[c.body_b], "kind": c.kind, "gap": c.gap}
+                  for c in raw.clearances]
+    return result, Joints(source=source, joints=records, mobility=record,
+                          dot=cc.liaison_graph_dot(assembly, found, mobility), clearances=clearances,
+                          interferences=interferences_of(raw, names), clearance_gap=clearance_gap,
+                          raw=(raw, found, mobility), _body_index={name: i for i, name in enumerate(names)})
 
 
 def interferences_of(raw, names):
@@ -191,20 +203,18 @@ def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, 
         raise core.ContactsError(f"no such file: '{path}'")
     assembly = core.contactcore.read_step(os.path.abspath(path))
     try:
-        result = analysis.find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
-                                                    max_pairs=max_pairs)
+        return joints_in_assembly(assembly, os.path.basename(path), linear, angular, progress, ground=ground,
+                                  clearance_gap=clearance_gap, max_pairs=max_pairs)
     except core.Cancelled:
         raise
     except core.ContactsError as error:
         raise core.ContactsError(f"{error} in file '{path}'") from error
-    return result, joints_of_analysis(assembly, result, ground, clearance_gap)
 
 
 def joints_in_shapes(named_shapes, source="shapes", linear=None, angular=None, ground=None, clearance_gap=0.0):
     """(analysis.Analysis, Joints) of (name, Part.Shape) pairs placed globally."""
-    assembly = core.assembly_from_shapes(named_shapes)
-    result = analysis.find_contacts_in_assembly(assembly, source, linear, angular)
-    return result, joints_of_analysis(assembly, result, ground, clearance_gap)
+    return joints_in_assembly(core.assembly_from_shapes(named_shapes), source, linear, angular, ground=ground,
+                              clearance_gap=clearance_gap)
 
 
 def joints_in_document(doc, objects=None, linear=None, angular=None, progress=None, ground=None,
@@ -213,8 +223,9 @@ def joints_in_document(doc, objects=None, linear=None, angular=None, progress=No
     from contactwb import bodies as document_bodies
     messages = []
     assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
-    result = analysis.find_contacts_in_assembly(
+    result, found = joints_in_assembly(
         assembly, doc.Label, linear, angular, progress,
-        face_name=lambda body, index: bodies[body].object_face_name(index), max_pairs=max_pairs)
+        face_name=lambda body, index: bodies[body].object_face_name(index), ground=ground,
+        clearance_gap=clearance_gap, max_pairs=max_pairs)
     result.messages.extend(messages)
-    return result, joints_of_analysis(assembly, result, ground, clearance_gap), bodies
+    return result, found, bodies

@@ -26,9 +26,9 @@ run_suite() {  # name, command...
 echo "== GoogleTest (ctest)"
 run_suite cpp bash -c "cd '$build_dir' && ctest --output-on-failure"
 echo "== pytest (headless, FreeCAD as a library)"
-run_suite python /usr/bin/python3 -m pytest -q -p no:cacheprovider tests --ignore=tests/gui
+run_suite python /usr/bin/python3 -m pytest -q -rs -p no:cacheprovider tests --ignore=tests/gui
 echo "== pytest (FreeCAD GUI under Xvfb)"
-run_suite gui /usr/bin/python3 -m pytest -q -p no:cacheprovider tests/gui
+run_suite gui /usr/bin/python3 -m pytest -q -rs -p no:cacheprovider tests/gui
 
 # Totals: ctest prints "N tests failed out of M"; pytest "N passed, N failed, N skipped".
 count() {  # pattern file
@@ -37,10 +37,19 @@ count() {  # pattern file
 ctest_total=$(grep -oE 'tests failed out of [0-9]+' "$logs/cpp.log" | grep -oE '[0-9]+$' || echo 0)
 ctest_failed=$(count '[0-9]+ tests failed' "$logs/cpp.log")
 passed=$((ctest_total - ctest_failed)) failed=$ctest_failed skipped=0
+# A suite whose tests were all skipped is not "ok": it says so, and why
+# (pytest -rs lists "SKIPPED [n] file:line: reason").
 for suite in python gui; do
-  passed=$((passed + $(count '[0-9]+ passed' "$logs/$suite.log")))
+  suite_passed=$(count '[0-9]+ passed' "$logs/$suite.log")
+  suite_skipped=$(count '[0-9]+ skipped' "$logs/$suite.log")
+  passed=$((passed + suite_passed))
   failed=$((failed + $(count '[0-9]+ failed' "$logs/$suite.log") + $(count '[0-9]+ error' "$logs/$suite.log")))
-  skipped=$((skipped + $(count '[0-9]+ skipped' "$logs/$suite.log")))
+  skipped=$((skipped + suite_skipped))
+  if [ "$suite_skipped" -gt 0 ]; then
+    reasons=$(grep -E '^SKIPPED \[' "$logs/$suite.log" | sed -E 's/^SKIPPED \[[0-9]+\] [^ ]*: //' | sort -u | head -3 | paste -sd ';' -)
+    if [ "${result[$suite]}" = ok ] && [ "$suite_passed" -eq 0 ]; then result[$suite]="not run"; fi
+    result[$suite]="${result[$suite]} ($suite_skipped skipped: $reasons)"
+  fi
 done
 
 echo "Summary: C++ ${result[cpp]}, Python ${result[python]}, GUI ${result[gui]}"

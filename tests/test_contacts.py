@@ -51,15 +51,23 @@ def test_motor_gives_exactly_the_papers_contacts(sample):
     ("D03_asm4_tuto2_disk_arm.step", {"PLF": 3, "CLJ": 1}),
     ("R09_chrono_assembly.stp", {"PLF": 1, "CLJ": 1}),
     ("R10_wrenchnut.stp", {}),
+    ("R08_presse_asm.step", {"PLF": 8, "CLJ": 7}),
+    ("R05_SKF_6004.stp", {"SPT": 18}),
+    ("R06_bearing_20x37x9_freecad.stp", {"SPT": 28}),
 ])
 def test_shared_files_exact_counts(shared_step, name, expected):
     result = analysis.find_contacts_in_step(shared_step(name))
     assert dict(result.counts()) == expected
 
 
-def test_press_has_at_least_its_analytic_contacts(shared_step):
-    counts = analysis.find_contacts_in_step(shared_step("R08_presse_asm.step")).counts()
-    assert counts["PLF"] >= 8 and counts["CLJ"] >= 7
+@pytest.mark.parametrize("name, balls", [("R05_SKF_6004.stp", 9), ("R06_bearing_20x37x9_freecad.stp", 14)])
+def test_every_bearing_ball_touches_both_raceways(shared_step, name, balls):
+    # R06's raceway faces have their u range shifted by a turn (u in [pi, 3 pi]).
+    result = analysis.find_contacts_in_step(shared_step(name))
+    per_body = Counter(n for c in result.contacts for n in (c.a, c.b))
+    rings = [n for n, k in per_body.items() if k == balls]
+    assert len(rings) == 2, per_body
+    assert sorted(k for n, k in per_body.items() if n not in rings) == [2] * balls
 
 
 def test_chrono_is_one_body_pair(shared_step):

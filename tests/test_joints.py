@@ -101,6 +101,20 @@ def test_motor_joints_groups_and_mobility(sample):
         assert joint_between(found, f"Magnet-{k}", "Rotor-back").type == "planar"
     for part in ("Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"):
         assert joint_between(found, "Axis", part).type == "cylindrical"
+    # Ways out with every neighbour held: a screw up its axis only (head first),
+    # the stator off the body's shoulder towards the front (+z) only (nothing
+    # else touches it), the rotor-front none (planes on both sides, the shaft across).
+    assert found.free_directions_of("Screw-3") == [pytest.approx([0, 0, 1], abs=1e-9)]
+    assert found.free_directions_of("Stator") == [pytest.approx([0, 0, 1], abs=1e-9)]
+    assert found.free_directions_of("Rotor-front") == []
+
+
+def test_motor_document_gives_the_same_mobility(sample):
+    done = run_cli(sample("motor.FCStd"), "--joints", "--json")
+    assert done.returncode == 0, done.stderr
+    mobility = json.loads(done.stdout)["mobility"]
+    assert (mobility["ground"], mobility["dof"], mobility["passive"]) == ("Body", 26, 9)
+    assert set(mobility["groups"][0]) == MOTOR_GROUND_GROUP
 
 
 def test_motor_answers_do_not_depend_on_body_order(sample):
@@ -186,3 +200,18 @@ def test_interferences_are_printed_when_present():
     assert "Interferences (overlapping material, not contacts): 1" in table
     assert "Column" in table and "12.5 mm3" in table
     assert joints.interferences_of(SimpleNamespace(), ["A"]) == []
+
+
+def test_shaft_in_a_120_degree_cradle_lifts_out_within_30_degrees_of_vertical(sample):
+    # The cradle (below) holds the shaft (axis x) over 120 deg centred on -z. By
+    # hand: as a joint, cylindrical about the axis; one-sided, its normals at the
+    # span's ends are (0, -/+sin 60, cos 60), so the shaft leaves along the axis
+    # (both ways) or upwards within 90 - 60 = 30 deg of +z: generators
+    # (0, -/+sin 30, cos 30).
+    _, found = joints.joints_in_step(sample("cases/cradle_120.step"))
+    j = joint_between(found, "Cradle", "Shaft")
+    assert (j.type, j.dof, j.one_sided) == ("cylindrical", 2, 2)
+    assert parallel(j.rotations[0]["direction"], (1, 0, 0)) and parallel(j.translations[0]["direction"], (1, 0, 0))
+    generators = sorted(tuple(round(x, 9) + 0.0 for x in d) for d in j.free_directions)
+    assert generators == [(-1.0, 0.0, 0.0), (0.0, -0.5, round(3 ** 0.5 / 2, 9)), (0.0, 0.5, round(3 ** 0.5 / 2, 9)),
+                          (1.0, 0.0, 0.0)]

@@ -106,6 +106,14 @@ void bind_joints(py::module_& m) {
       "The joint of every body pair in contact (b relative to a).");
 
   m.def(
+      "body_free_directions",
+      [](const ContactsResult& contacts, const JointsResult& joints, int body) {
+        return directions(body_free_directions(contacts, joints, body));
+      },
+      py::arg("contacts"), py::arg("joints"), py::arg("body"),
+      "Generators of the directions in which a body can translate out, its neighbours held still.");
+
+  m.def(
       "assembly_mobility",
       [](const Assembly& assembly, const ContactsResult& contacts, const JointsResult& joints, int ground) {
         MobilityOptions options;

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -49,10 +50,15 @@ Status guarded(Work&& work) {
   try {
     return work();
   } catch (const Standard_Failure& failure) {
-    return Status::failure(StatusCode::GeometryError,
-                           std::string("OCCT: ") + failure.GetMessageString());
+    // Some OCCT exceptions carry no message: name their type then.
+    const char* text = failure.GetMessageString();
+    return Status::failure(StatusCode::GeometryError, std::string("OCCT ") + failure.DynamicType()->Name() +
+                                                          (text && *text ? std::string(": ") + text : ""));
+  } catch (const std::bad_alloc&) {
+    return Status::failure(StatusCode::GeometryError, "out of memory");
   } catch (const std::exception& error) {
-    return Status::failure(StatusCode::GeometryError, error.what());
+    return Status::failure(StatusCode::GeometryError,
+                           *error.what() ? error.what() : "C++ exception without a message");
   }
 }
 

@@ -10,6 +10,12 @@ void bind_bodies(py::module_& m);
 void bind_partitions(py::module_& m);
 void bind_contacts(py::module_& m);
 void bind_joints(py::module_& m);
+void bind_meshes(py::module_& m);
+void bind_collision(py::module_& m);
+void bind_disassembly(py::module_& m);
+#ifdef CONTACTS_WITH_HAPTICS
+void bind_haptics(py::module_& m);
+#endif
 }  // namespace contactcore::bindings
 
 PYBIND11_MODULE(contactcore, m) {
@@ -20,4 +26,10 @@ PYBIND11_MODULE(contactcore, m) {
   bind_partitions(m);
   bind_contacts(m);
   bind_joints(m);
+  bind_meshes(m);
+  bind_collision(m);
+  bind_disassembly(m);
+#ifdef CONTACTS_WITH_HAPTICS
+  bind_haptics(m);
+#endif
 }

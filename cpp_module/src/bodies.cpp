@@ -7,6 +7,7 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -15,7 +16,9 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
+#include <Bnd_Box.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <BRepTools.hxx>
@@ -92,6 +95,18 @@ std::string skipped_message(const std::string& name, const SolidHarvest& h) {
   return msg.str();
 }
 
+// False for a shape with NaN or infinite coordinates (a broken placement).
+bool has_finite_box(const TopoDS_Shape& shape) {
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box, false);
+  if (box.IsVoid()) return true;
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  for (double v : {x0, y0, z0, x1, y1, z1})
+    if (!std::isfinite(v) || std::abs(v) >= 1e100) return false;
+  return true;
+}
+
 class StepTreeWalker {
  public:
   StepTreeWalker(Handle(XCAFDoc_ShapeTool) tool, Assembly& out, Progress* progress)
@@ -126,7 +141,11 @@ class StepTreeWalker {
     const SolidHarvest harvest = harvest_solids(shape);
     if (harvest.open_shells || harvest.loose_faces) out_.messages.push_back(skipped_message(path, harvest));
     for (const TopoDS_Shape& solid : harvest.solids) {
-      out_.bodies.push_back(Body{name, path, solid.Moved(location)});
+      const TopoDS_Shape placed = solid.Moved(location);
+      if (has_finite_box(placed))
+        out_.bodies.push_back(Body{name, path, placed});
+      else
+        out_.messages.push_back("skipped '" + path + "': coordinates that are not finite numbers");
     }
     return true;
   }
@@ -408,6 +427,12 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
         result.assembly.messages.push_back(skipped_message(name, harvest));
       // One body per child: FreeCAD face names (FaceN) index the child's faces.
       result.assembly.bodies.push_back(Body{name, name, children[i]});
+      if (!has_finite_box(children[i])) {
+        result.status = Status::failure(StatusCode::InvalidInput,
+                                        "coordinates that are not finite numbers (a NaN or infinite placement?)");
+        result.status.body = name;
+        return result;
+      }
     }
     make_names_unique(result.assembly.bodies);
   } catch (const Standard_Failure& failure) {

@@ -22,6 +22,7 @@ namespace {
 using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
 constexpr std::size_t kMaxContactsPerPair = 512;  // intersecting triangle pairs kept per partition pair
 constexpr std::size_t kMaxFloodVertices = 4096;   // vertices tested for depth per side and query
+constexpr double kTouching = 1e-12;               // mm: triangles this close intersect
 }  // namespace
 
 struct CollisionModel::Impl {
@@ -299,7 +300,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
     const Eigen::Matrix3d rotation = s.transform[side].linear();
     const Eigen::Matrix3d abs_rotation = rotation.cwiseAbs();
     for (std::size_t p = 0; p < subs.size(); ++p) {
-      if (!s.enabled[side][p] || !subs[p].bvh) continue;
+      if (!subs[p].bvh) continue;  // every partition: the inside tests below use the whole surface
       s.box_center[side][p] = rotation * subs[p].center + s.transform[side].translation();
       s.box_half[side][p] = abs_rotation * subs[p].half;
     }
@@ -348,6 +349,12 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       fcl::collide(subs_a[c.a].bvh.get(), s.transform[0], subs_b[c.b].bvh.get(), s.transform[1],
                    want_all ? s.collide_all : s.collide_first, s.collide_result);
       if (!s.collide_result.isCollision()) continue;
+      // FCL's triangle-triangle test reports some nearly parallel, merely nearby triangles as
+      // intersecting; its exact triangle distance decides.
+      s.distance_result.clear();
+      fcl::distance(subs_a[c.a].bvh.get(), s.transform[0], subs_b[c.b].bvh.get(), s.transform[1],
+                    s.distance_request, s.distance_result);
+      if (s.distance_result.min_distance > kTouching) continue;
       any_hit = true;
       s.partition_hit[0][c.a] = s.partition_hit[1][c.b] = 1;
       if (out.partition_a < 0) {
@@ -406,7 +413,9 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   }
 
   // Penetration: flood from the seeds through the vertices inside the other body.
-  // Closest enabled point of `side`'s surface to world point p (distance, point, triangle).
+  // Inside and depth are judged against the other body's whole surface, its
+  // switched-off partitions included: without them it would not be closed.
+  // Closest point of `side`'s surface to world point p (distance, point, triangle).
   auto closest_on = [&](int side, const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local,
                         int& triangle) {
     const auto& subs = s.impl(side).subs;
@@ -415,7 +424,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
     fcl::Transform3d at = fcl::Transform3d::Identity();
     at.translation() = p;
     for (std::size_t q = 0; q < subs.size(); ++q) {
-      if (!s.enabled[side][q] || !subs[q].bvh) continue;
+      if (!subs[q].bvh) continue;
       const double bound = box_gap(p, Eigen::Vector3d::Zero(), s.box_center[side][q], s.box_half[side][q]);
       if (bound >= best) continue;
       s.distance_result.clear();

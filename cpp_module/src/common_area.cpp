@@ -145,7 +145,7 @@ class EdgeGrid {
 // along the other boundary counts once (from the first set) when both run the
 // same way, i.e. both regions lie on the same side of it.
 double boundary_inside(const std::vector<Polygon2>& edges, const EdgeGrid& other, bool count_shared, double tol,
-                       const Point2& origin) {
+                       const Point2& origin, double& length) {
   double twice_area = 0;
   std::vector<double> cuts;
   for (const Polygon2& loop : edges) {
@@ -202,7 +202,10 @@ double boundary_inside(const std::vector<Polygon2>& edges, const EdgeGrid& other
         // The chord's bulge, in proportion to the piece (a segment of a
         // circle grows with the cube of its chord): exact on whole chords.
         const double piece = t1 - t0;
-        if (inside) twice_area += cross(sub(s0, origin), sub(s1, origin)) + p.bulge * piece * piece * piece;
+        if (inside) {
+          twice_area += cross(sub(s0, origin), sub(s1, origin)) + p.bulge * piece * piece * piece;
+          length += piece * std::sqrt(r_len2);
+        }
       }
     }
   }
@@ -323,8 +326,12 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
       if (loops_a.empty()) loops_a = outline_in(face_a, pa.location, x, y);
       std::vector<Polygon2>& loops_b = outlines_b[kb];
       if (loops_b.empty()) loops_b = outline_in(face_b, pa.location, x, y);
-      const double area = common_area(loops_a, loops_b, ctx.tol.linear);
-      if (area <= ctx.tol.linear * ctx.tol.linear) continue;
+      const CommonRegion region = common_region(loops_a, loops_b, ctx.tol.linear);
+      // A strip of width w has area w L and perimeter about 2 L: no wider than
+      // twice the tolerance, the faces meet along their edges only, whatever
+      // the sag of the chords.
+      if (region.area <= ctx.tol.linear * region.perimeter) continue;
+      const double area = region.area;
       c.area += area;
       c.faces_a.push_back(fa);
       c.faces_b.push_back(fb);
@@ -606,9 +613,10 @@ void test_candidate(int ia, const Partition& a, int ib, const Partition& b, cons
   }
 }
 
-double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
-  if (a.empty() || b.empty()) return 0.0;
-  if (!box_of(a).meets(box_of(b), tol)) return 0.0;
+CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
+  CommonRegion region;
+  if (a.empty() || b.empty()) return region;
+  if (!box_of(a).meets(box_of(b), tol)) return region;
   const EdgeGrid grid_a(a, tol), grid_b(b, tol);
   // Green's sums about a point of the common box: where the two boundaries
   // part within tolerance, the round-off of the pieces does not grow with the
@@ -616,9 +624,14 @@ double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& 
   const Box2 box_a = box_of(a), box_b = box_of(b);
   const Point2 origin{(std::max(box_a.xmin, box_b.xmin) + std::min(box_a.xmax, box_b.xmax)) / 2,
                       (std::max(box_a.ymin, box_b.ymin) + std::min(box_a.ymax, box_b.ymax)) / 2};
-  const double twice =
-      boundary_inside(a, grid_b, true, tol, origin) + boundary_inside(b, grid_a, false, tol, origin);
-  return std::max(0.0, twice / 2.0);
+  const double twice = boundary_inside(a, grid_b, true, tol, origin, region.perimeter) +
+                       boundary_inside(b, grid_a, false, tol, origin, region.perimeter);
+  region.area = std::max(0.0, twice / 2.0);
+  return region;
+}
+
+double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
+  return common_region(a, b, tol).area;
 }
 
 }  // namespace contactcore

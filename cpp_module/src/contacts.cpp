@@ -224,11 +224,26 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   const int threads = options.threads;
   auto start = Clock::now();
   try {
+    // Bodies that instance one shape (a TShape placed by rigid motions).
+    std::vector<int> sources(n);
+    if (options.reuse_instances) {
+      sources = instance_sources(assembly.bodies);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) sources[i] = static_cast<int>(i);
+    }
+
+    // The model's box, for the tolerances: instances take their source's
+    // box moved (exact for translations, a little larger when turned).
     std::vector<Bnd_Box> boxes(n);
     if (!parallel_for(n, threads, progress, "partitions", [&](std::size_t i) {
-          BRepBndLib::Add(assembly.bodies[i].shape, boxes[i], false);
+          if (sources[i] == static_cast<int>(i)) BRepBndLib::Add(assembly.bodies[i].shape, boxes[i], false);
         }, 16))
       return cancelled();
+    for (std::size_t i = 0; i < n; ++i) {
+      const int source = sources[i];
+      if (source != static_cast<int>(i) && !boxes[source].IsVoid())
+        boxes[i] = boxes[source].Transformed(relative_motion(assembly.bodies[source], assembly.bodies[i]));
+    }
     Bnd_Box model_box;
     for (const Bnd_Box& box : boxes) model_box.Add(box);
     result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
@@ -238,12 +253,6 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     // Each distinct shape partitioned once (partition_shape only reads the
     // shapes, so bodies sharing TShapes through instancing can run
     // concurrently), then moved to the other placements of that shape.
-    std::vector<int> sources(n);
-    if (options.reuse_instances) {
-      sources = instance_sources(assembly.bodies);
-    } else {
-      for (std::size_t i = 0; i < n; ++i) sources[i] = static_cast<int>(i);
-    }
     const auto partition_body = [&](std::size_t i) {
       BodyPartitions& body = result.partitions[i];
       try {
@@ -255,6 +264,8 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       }
     };
     result.partitions.resize(n);
+    result.instance_of.resize(n);
+    for (std::size_t i = 0; i < n; ++i) result.instance_of[i] = static_cast<int>(i);
     std::vector<std::vector<CandidateKey>> keys(n);
     if (!parallel_for(n, threads, progress, "partitions", [&](std::size_t i) {
           if (sources[i] == static_cast<int>(i)) partition_body(i);
@@ -265,10 +276,14 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
           if (source != static_cast<int>(i)) {
             const BodyPartitions& original = result.partitions[source];
             if (original.status.ok()) {
-              result.partitions[i] = moved_partitions(
-                  original, relative_motion(assembly.bodies[source], assembly.bodies[i]), assembly.bodies[i].shape);
+              result.partitions[i] = moved_partitions(original, relative_motion(assembly.bodies[source], assembly.bodies[i]),
+                                                      assembly.bodies[i].shape, false);
             }
-            if (!original.status.ok() || !result.partitions[i].status.ok()) partition_body(i);
+            if (!original.status.ok() || !result.partitions[i].status.ok()) {
+              partition_body(i);
+            } else {
+              result.instance_of[i] = source;
+            }
           }
           if (result.partitions[i].status.ok()) keys[i] = candidate_keys(result.partitions[i]);
         }, 8))
@@ -312,6 +327,18 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     std::vector<std::size_t> tested;  // the pairs whose candidates are tested, in order
     for (std::size_t k = 0; k < pairs.size(); ++k)
       if (representative[k] == k) tested.push_back(k);
+    // Instances tested lend their source's outlines for the while.
+    std::vector<int> lent;
+    {
+      std::vector<char> needs(n, 0);
+      for (std::size_t k : tested) needs[pairs[k].first] = needs[pairs[k].second] = 1;
+      for (std::size_t i = 0; i < n; ++i)
+        if (needs[i] && result.instance_of[i] != static_cast<int>(i)) lent.push_back(static_cast<int>(i));
+    }
+    if (!parallel_for(lent.size(), threads, progress, "candidates", [&](std::size_t t) {
+          copy_outlines(result.partitions[result.instance_of[lent[t]]], result.partitions[lent[t]]);
+        }, 16))
+      return cancelled();
 
     start = Clock::now();
     std::vector<std::vector<Candidate>> pair_candidates_of(pairs.size());
@@ -356,6 +383,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
           std::vector<Candidate>().swap(pair_candidates_of[k]);
         }, 4))
       return cancelled();
+    for (int i : lent) drop_outlines(result.partitions[i]);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const std::size_t r = representative[k];
       const auto [ia, ib] = pairs[k];

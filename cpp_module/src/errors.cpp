@@ -9,6 +9,7 @@ const char* to_string(StatusCode code) {
     case StatusCode::ReadError: return "read error";
     case StatusCode::GeometryError: return "geometry error";
     case StatusCode::Cancelled: return "cancelled";
+    case StatusCode::InvalidArgument: return "invalid argument";
   }
   return "unknown";
 }

@@ -283,6 +283,23 @@ PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
   return joint;
 }
 
+std::vector<gp_Dir> body_free_directions(const ContactsResult& contacts, const JointsResult& joints, int body,
+                                         const JointOptions& options) {
+  std::vector<Vec3> bilateral, normals;
+  const Frame frame;  // only the force directions are used
+  for (const PairJoint& joint : joints.joints) {
+    if (joint.body_a != body && joint.body_b != body) continue;
+    // Stops are written for b moving away from a: a moves away along -n.
+    const double sign = joint.body_b == body ? 1.0 : -1.0;
+    for (int i : joint.contacts) {
+      const ContactConstraints cc = constraints_of(contacts, i, frame, options);
+      bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
+      for (const OneSidedStop& stop : cc.stops) normals.push_back(sign * vec(stop.normal));
+    }
+  }
+  return free_direction_cone(bilateral, normals);
+}
+
 JointsResult find_joints(const Assembly& assembly, const ContactsResult& contacts, const JointOptions& options) {
   JointsResult out;
   if (contacts.partitions.size() != assembly.bodies.size()) {

@@ -310,6 +310,13 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
     }
   }
   out.ground = ground;
+  for (const PairJoint& j : joints.joints)
+    if (j.body_a < 0 || j.body_b >= n || j.body_a >= j.body_b) {
+      out.status = Status::failure(StatusCode::InvalidInput,
+                                   "assembly_mobility: a joint names bodies " + std::to_string(j.body_a) + " and " +
+                                       std::to_string(j.body_b) + ", not of this assembly's " + std::to_string(n));
+      return out;
+    }
   if (progress && !progress->report("mobility", 0.0)) {
     out.status = Status::failure(StatusCode::Cancelled, "cancelled");
     return out;

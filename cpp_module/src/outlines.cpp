@@ -102,6 +102,74 @@ struct PlaneFrame {
   }
 };
 
+int circle_segments(double radius, double sag) {
+  const double max_step = 2 * std::acos(std::max(-1.0, 1 - sag / radius));
+  int segments = kMinCircleSegments;
+  while (kTwoPi / segments > max_step && segments < (1 << 20)) segments *= 2;
+  return segments;
+}
+
+// A free-form edge that is a circular arc within a tenth of `sag` (B-spline
+// circles are common in exported files): its centre, radius and the points
+// of its outline, cut on the same canonical grid as true circles so that it
+// meets a circle or another such arc of another face point for point. The
+// points run in the face's direction, all but the last; false when the curve
+// is no such arc.
+bool outline_circular_arc(const BRepAdaptor_Curve& curve, bool reversed, const PlaneFrame& frame, double sag,
+                          const Point2& grid_ref, Polygon2& loop) {
+  constexpr int kSamples = 17;
+  const double first = curve.FirstParameter(), last = curve.LastParameter();
+  std::vector<Point2> p(kSamples);
+  for (int i = 0; i < kSamples; ++i) {
+    const double t = reversed ? last - (last - first) * i / (kSamples - 1) : first + (last - first) * i / (kSamples - 1);
+    p[i] = frame.project(curve.Value(t).XYZ());
+  }
+  // Circumcentre of the ends and the middle (of the first half for a closed curve).
+  const Point2 a = p[0], b = p[kSamples / 4], c = p[kSamples / 2];
+  const double d = 2 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  const double ab = (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y);
+  const double ac = (c.x - a.x) * (c.x - a.x) + (c.y - a.y) * (c.y - a.y);
+  if (std::fabs(d) <= 1e-12 * (ab + ac)) return false;
+  const Point2 centre{a.x + ((c.y - a.y) * ab - (b.y - a.y) * ac) / d, a.y + ((b.x - a.x) * ac - (c.x - a.x) * ab) / d};
+  const double radius = std::hypot(a.x - centre.x, a.y - centre.y);
+  double sweep = 0, previous = std::atan2(a.y - centre.y, a.x - centre.x);
+  const double start = previous;
+  for (int i = 0; i < kSamples; ++i) {
+    if (std::fabs(std::hypot(p[i].x - centre.x, p[i].y - centre.y) - radius) > 0.1 * sag) return false;
+    if (i == 0) continue;
+    const double angle = std::atan2(p[i].y - centre.y, p[i].x - centre.x);
+    const double step = std::remainder(angle - previous, kTwoPi);
+    if (sweep != 0 && step * sweep < 0) return false;  // turns back: not an arc
+    sweep += step;
+    previous = angle;
+  }
+  const double step = kTwoPi / circle_segments(radius, sag);
+  const double phase = std::atan2(grid_ref.y, grid_ref.x);
+  std::vector<double> angles{start};
+  const double end = start + sweep, margin = 1e-6 * step;
+  if (sweep > 0) {
+    for (double k = std::floor((start - phase) / step) + 1;; ++k) {
+      const double u = phase + k * step;
+      if (u >= end - margin) break;
+      if (u > start + margin) angles.push_back(u);
+    }
+  } else {
+    for (double k = std::ceil((start - phase) / step) - 1;; --k) {
+      const double u = phase + k * step;
+      if (u <= end + margin) break;
+      if (u < start - margin) angles.push_back(u);
+    }
+  }
+  angles.push_back(end);
+  for (std::size_t i = 0; i + 1 < angles.size(); ++i) {
+    const double delta = angles[i + 1] - angles[i];
+    Point2 q = i == 0 ? a : Point2{centre.x + radius * std::cos(angles[i]), centre.y + radius * std::sin(angles[i])};
+    q.bulge = radius * radius * (delta - std::sin(delta));
+    loop.push_back(q);
+  }
+  return true;
+}
+
 // Appends an edge's outline points (all but its last one, which the next
 // edge starts with) in the direction the face runs along it, each with the
 // bulge of the curve beyond the chord to the next point: twice the signed
@@ -119,10 +187,7 @@ void outline_edge(const TopoDS_Edge& edge, const PlaneFrame& frame, double sag, 
     case GeomAbs_Circle: {
       const gp_Circ circle = curve.Circle();
       const double r = circle.Radius();
-      const double max_step = 2 * std::acos(std::max(-1.0, 1 - sag / r));
-      int segments = kMinCircleSegments;
-      while (kTwoPi / segments > max_step && segments < (1 << 20)) segments *= 2;
-      const double step = kTwoPi / segments;
+      const double step = kTwoPi / circle_segments(r, sag);
       const gp_XYZ cx = circle.XAxis().Direction().XYZ(), cy = circle.YAxis().Direction().XYZ();
       const double phase = std::atan2(grid_ref * cy, grid_ref * cx);  // grid angle 0, in the circle's parameter
       const double margin = 1e-6 * step;
@@ -142,6 +207,8 @@ void outline_edge(const TopoDS_Edge& edge, const PlaneFrame& frame, double sag, 
       break;
     }
     default: {
+      const Point2 grid{grid_ref * frame.x, grid_ref * frame.y};
+      if (outline_circular_arc(curve, reversed, frame, sag, grid, loop)) return;
       free_curve_parameters(curve, kArcStep, t);
       for (std::size_t i = 0; i + 1 < t.size(); ++i) {
         const gp_XYZ start = curve.Value(t[i]).XYZ();

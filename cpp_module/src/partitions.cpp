@@ -1242,7 +1242,7 @@ Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances) 
     std::snprintf(buffer, sizeof buffer, "%.6g", value);
     return std::string(buffer);
   };
-  const auto fail = [](const std::string& message) { return Status::failure(StatusCode::InvalidInput, message); };
+  const auto fail = [](const std::string& message) { return Status::failure(StatusCode::InvalidArgument, message); };
   if (!std::isfinite(tolerances.linear) || !(tolerances.linear > 0))
     return fail("linear tolerance must be a positive, finite length in mm; got " + text(tolerances.linear));
   if (!std::isfinite(tolerances.angular) || !(tolerances.angular > 0))

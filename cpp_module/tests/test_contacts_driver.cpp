@@ -229,7 +229,9 @@ void expect_same_contacts(const ContactsResult& direct, const ContactsResult& re
     EXPECT_EQ(a.body_b, b.body_b);
     EXPECT_EQ(a.faces_a, b.faces_a);
     EXPECT_EQ(a.faces_b, b.faces_b);
-    EXPECT_NEAR(a.area, b.area, 1e-7 * std::max(1.0, a.area)) << what << " contact " << k;
+    // Curved plane outlines are cut by a chordal tolerance on a grid of the
+    // plane's own frame: a rotated copy agrees to that error, not to rounding.
+    EXPECT_NEAR(a.area, b.area, 1e-5 * std::max(1.0, a.area)) << what << " contact " << k;
     EXPECT_NEAR(a.radius, b.radius, 1e-9);
     EXPECT_EQ(a.partial, b.partial);
     if (a.type == ContactType::PLF) {

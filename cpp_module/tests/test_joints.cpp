@@ -329,6 +329,22 @@ TEST(Joints, MotorJointsMobilityAndGroups) {
   for (const PassiveSpin& s : mob.passive_spins) spinning.insert(m.a.assembly.bodies[s.body].name);
   for (int k = 1; k <= 4; ++k) EXPECT_TRUE(spinning.count("Screw-" + std::to_string(k)));
   EXPECT_EQ(mob.group_motions[0].type, JointType::Rigid);
+
+  // Each part's way out, its neighbours held still. A screw: up its axis
+  // only (held across by three bores, stopped below by its head); the shaft:
+  // both ways along its axis (bores only); the rotor-front: none (planes on
+  // both sides along the axis, the shaft across); a magnet: its plane both
+  // ways and away from the rotor-back (five generators).
+  const auto out_of = [&](const std::string& name) { return body_free_directions(m.a.contacts, m.a.joints, id(name)); };
+  const auto screw = out_of("Screw-1");
+  ASSERT_EQ(screw.size(), 1u);
+  EXPECT_LT(angle(screw[0], gp::DZ()), 1e-9);
+  const auto shaft = out_of("Axis");
+  ASSERT_EQ(shaft.size(), 2u);
+  EXPECT_TRUE(parallel(shaft[0], gp::DZ()) && parallel(shaft[1], gp::DZ()));
+  EXPECT_NEAR(shaft[0].Dot(shaft[1]), -1.0, 1e-12);
+  EXPECT_TRUE(out_of("Rotor-front").empty());
+  EXPECT_EQ(out_of("Magnet-1").size(), 5u);
 }
 
 // The same answers after a rigid motion of the whole assembly, axes moved with it.
@@ -379,4 +395,20 @@ TEST(Clearances, PinInLargerBore) {
   EXPECT_EQ(r.clearances[0].kind, SurfaceKind::Cylinder);
   EXPECT_NEAR(r.clearances[0].gap, 0.2, 1e-9);
   EXPECT_TRUE(find_clearances(r.partitions, 0.1, r.tolerances).empty());
+}
+
+// Results of another assembly, or a ground out of range: a clear error, no crash.
+TEST(Joints, MismatchedInputIsAnError) {
+  const Analysed a = analyse({{"Base", box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 10))},
+                              {"Top", box(gp_Pnt(10, 10, 10), gp_Pnt(30, 30, 15))}});
+  Assembly one;
+  one.bodies.push_back(a.assembly.bodies[0]);
+  const JointsResult wrong = find_joints(one, a.contacts);
+  EXPECT_EQ(wrong.status.code, StatusCode::InvalidInput);
+  EXPECT_NE(wrong.status.message.find("another assembly"), std::string::npos);
+  const MobilityResult m = assembly_mobility(one, a.contacts, a.joints);
+  EXPECT_EQ(m.status.code, StatusCode::InvalidInput);
+  MobilityOptions far;
+  far.ground = 5;
+  EXPECT_EQ(assembly_mobility(a.assembly, a.contacts, a.joints, far).status.code, StatusCode::InvalidInput);
 }

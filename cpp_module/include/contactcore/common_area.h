@@ -27,6 +27,14 @@ inline bool boxes_meet(const Bnd_Box& a, const Bnd_Box& b, double gap) {
   return !grown.IsOut(b);
 }
 
+// The region two plane outlines (in one frame) have in common: its area
+// (exact on arcs, by the chords' bulges) and the length of its boundary.
+struct CommonRegion {
+  double area = 0;
+  double perimeter = 0;
+};
+CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol);
+
 // Tests one candidate pair (a from body ia, b from body ib, ia < ib) and
 // appends the contact it makes, if any, to `out` (side a = body ia).
 // May throw Standard_Failure from OCCT: the caller decides what to skip.

@@ -13,6 +13,7 @@ enum class StatusCode {
   ReadError,       // a file could not be opened or parsed
   GeometryError,   // OCCT raised Standard_Failure on a body or face
   Cancelled,       // the caller's progress callback asked to stop
+  InvalidArgument, // an option out of range (a tolerance that is NaN, negative, too large)
 };
 
 struct Status {

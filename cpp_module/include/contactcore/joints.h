@@ -97,6 +97,13 @@ JointsResult find_joints(const Assembly& assembly, const ContactsResult& contact
 PairJoint joint_of_pair(const ContactsResult& contacts, int body_a, int body_b,
                         const std::vector<int>& contact_indices, const JointOptions& options = {});
 
+// Generators of the cone of translation directions in which `body` can
+// leave, every neighbour it touches held still (all its contacts at once,
+// stops oriented for `body`): what a disassembly planner asks of each part.
+// Empty: the body cannot translate out at all.
+std::vector<gp_Dir> body_free_directions(const ContactsResult& contacts, const JointsResult& joints, int body,
+                                         const JointOptions& options = {});
+
 // Names a space of free twists (any basis) and gives its axes: the kernel of
 // the classification, exposed for the assembly's group motions and for tests.
 // `centre` is the point nearest which rotation axes of a free point are placed

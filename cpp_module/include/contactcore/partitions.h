@@ -116,7 +116,7 @@ Tolerances resolve_tolerances(const Bnd_Box& model_box, std::optional<double> li
 constexpr double kMaxRelativeLinear = 1e-2;
 constexpr double kMaxAngular = 0.1;
 
-// InvalidInput naming the bad value unless both tolerances are finite,
+// InvalidArgument naming the bad value unless both tolerances are finite,
 // positive and below those bounds.
 Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances);
 

@@ -1,0 +1,198 @@
+// Haptic trial benchmark (stage 6), printing a Markdown table:
+//  1. incremental contact update of the moving part (real-time contacts from
+//     partitions) against the batch contact stage on the same assembly;
+//  2. servo step time p50/p99 of the scripted insertion of the motor's axis
+//     in lockstep, with collision models refined to >= 100,000 triangles;
+//  3. the loop on its own thread for 10 s: rate, jitter, overruns.
+//
+//   bench_haptics [--seconds S] [--triangles N] [MOTOR.step]
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <BRepTools.hxx>
+
+#include "contactcore/contacts.h"
+#include "contactcore/haptics/spacemouse.h"
+#include "contactcore/haptics/trial.h"
+
+using namespace contactcore;
+using namespace contactcore::haptics;
+
+namespace {
+
+double now() { return steady_seconds(); }
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(p / 100.0 * (v.size() - 1) + 0.5))];
+}
+
+TrialScript insertion() {
+  TrialScript s;
+  s.start = {0, Vec3(0.25, -0.2, 30), Vec3(0.4, -0.3, 0)};
+  s.hand = {{0.0, Vec3(0.25, -0.2, 30), Vec3(0.4, -0.3, 0)},
+            {2.5, Vec3(0.3, 0.2, 0), Vec3(-0.5, 0.4, 2)},
+            {3.0, Vec3(0, 0, 0), Vec3(0, 0, 0)}};
+  return s;
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a;
+  in >> a;
+  return a;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string path = std::string(CONTACTS_SAMPLES) + "/motor.step";
+  double seconds = 10;
+  std::size_t want_triangles = 100000;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
+    else if (!std::strcmp(argv[i], "--triangles") && i + 1 < argc) want_triangles = std::atol(argv[++i]);
+    else path = argv[i];
+  }
+  const AssemblyResult read = read_step(path);
+  if (!read.status.ok()) {
+    std::fprintf(stderr, "%s\n", read.status.describe().c_str());
+    return 1;
+  }
+  std::printf("Machine load average at start: %s (2 cores shared)\n\n", load_average().c_str());
+
+  // 1. Incremental contact update vs the batch stage.
+  Status status;
+  auto scene = TrialScene::build(read.assembly, "Axis", SceneOptions{}, status);
+  if (!scene) {
+    std::fprintf(stderr, "%s\n", status.describe().c_str());
+    return 1;
+  }
+  std::vector<double> batch;
+  for (int r = 0; r < 5; ++r) {
+    const double t0 = now();
+    const ContactsResult all = find_contacts(read.assembly, ContactOptions{});
+    batch.push_back(now() - t0);
+  }
+  std::vector<LiveContact> live(256);
+  std::vector<double> updates;
+  const int samples = 20000;
+  int found = 0;
+  for (int i = 0; i < samples; ++i) {
+    const double z = 30.0 * (1.0 - double(i) / samples);
+    const Pose pose = offset_pose(Vec3(0.1 * std::sin(i * 0.01), 0, z), Vec3(0, 0, 0.001 * i), scene->centre());
+    const double t0 = now();
+    found += scene->contacts().update(pose, live.data(), 256);
+    updates.push_back(now() - t0);
+  }
+  const double batch_ms = *std::min_element(batch.begin(), batch.end()) * 1e3;
+  std::printf("| incremental contacts (motor, Axis moving) | p50 | p99 | max | batch stage (all pairs) | ratio batch/p50 |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  std::printf("| update of the moving part, %d poses along the insertion (%.1f contacts each) | %.2f us | %.2f us | %.1f us | %.1f ms | %.0fx |\n\n",
+              samples, double(found) / samples, percentile(updates, 50) * 1e6, percentile(updates, 99) * 1e6,
+              *std::max_element(updates.begin(), updates.end()) * 1e6, batch_ms,
+              batch_ms * 1e3 / (percentile(updates, 50) * 1e6));
+
+  // 2. Servo steps with >= 100,000 triangles of collision models.
+  SceneOptions fine;
+  double deflection = 0.01;
+  std::unique_ptr<TrialScene> dense;
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    fine.deflection = deflection;
+    fine.angle = 0.1;
+    for (const Body& b : read.assembly.bodies) BRepTools::Clean(b.shape);
+    dense = TrialScene::build(read.assembly, "Axis", fine, status);
+    if (!dense || dense->collision().triangle_count() >= want_triangles) break;
+    deflection *= 0.5;
+  }
+  if (!dense) {
+    std::fprintf(stderr, "%s\n", status.describe().c_str());
+    return 1;
+  }
+  TrialOptions options;
+  const TrialResult lockstep = run_trial(*dense, insertion(), options, false);
+  // The same steps timed in CPU time of this thread: the step's own cost,
+  // without the waits of a machine shared with other jobs.
+  std::vector<double> cpu_steps;
+  {
+    const Vec3 c = dense->centre();
+    const TrialScript script = insertion();
+    std::vector<HandKey> keys;
+    for (const ScriptKey& k : script.hand)
+      keys.push_back({k.t, offset_pose(k.translate, Vec3(rad(k.rotate_deg.x()), rad(k.rotate_deg.y()), rad(k.rotate_deg.z())), c)});
+    const Pose start = keys.front().pose;
+    SimulatedHand hand(HandScript(keys), HandParameters{}, c, start);
+    ServoConfig config;
+    config.centre = c;
+    config.lockstep = true;
+    ServoLoop loop(hand, config, start);
+    loop.set_joint_finder(&dense->finder());
+    loop.set_collision(&dense->collision());
+    for (int i = 0; i < 4500; ++i) {
+      const double t0 = cpu_seconds();
+      loop.step_lockstep();
+      cpu_steps.push_back(cpu_seconds() - t0);
+    }
+  }
+  std::printf("| servo step, scripted insertion in lockstep | triangles (moving part) | ticks | p50 | p99 | max | steps over 1 ms | final offset |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  std::printf("| motor, deflection %.4f mm, wall clock | %zu (%zu) | %llu | %.1f us | %.1f us | %.0f us | %llu | %.1e mm |\n",
+              deflection, dense->collision().triangle_count(), dense->collision().moving_triangle_count(),
+              static_cast<unsigned long long>(lockstep.ticks), lockstep.step_p50_us, lockstep.step_p99_us,
+              lockstep.step_max_us, static_cast<unsigned long long>(lockstep.overruns), lockstep.final_translate.norm());
+  std::size_t cpu_over = 0;
+  for (double t : cpu_steps) cpu_over += t > 1e-3;
+  std::printf("| the same steps, thread CPU time | | %zu | %.1f us | %.1f us | %.0f us | %zu | |\n\n", cpu_steps.size(),
+              percentile(cpu_steps, 50) * 1e6, percentile(cpu_steps, 99) * 1e6,
+              *std::max_element(cpu_steps.begin(), cpu_steps.end()) * 1e6, cpu_over);
+
+  // 3. The loop on its thread: the hand keeps inserting and extracting.
+  std::printf("| loop thread, %.0f s, insert/extract every second | ticks | rate | jitter (sd of period) | step p50 | step p99 | overruns |\n", seconds);
+  std::printf("|---|---|---|---|---|---|---|\n");
+  for (int priority : {0, 80}) {
+    std::vector<HandKey> keys;
+    const Vec3 c = dense->centre();
+    for (int k = 0; k <= static_cast<int>(seconds / 2) + 1; ++k) {
+      keys.push_back({2.0 * k, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c)});
+      keys.push_back({2.0 * k + 1.0, offset_pose(Vec3(0, 0, 0), Vec3::Zero(), c)});
+    }
+    SimulatedHand hand(HandScript(keys), HandParameters{}, c, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c));
+    ServoConfig config;
+    config.centre = c;
+    config.realtime_priority = priority;
+    ServoLoop loop(hand, config, offset_pose(Vec3(0, 0, 30), Vec3::Zero(), c));
+    loop.set_joint_finder(&dense->finder());
+    loop.set_collision(&dense->collision());
+    loop.start();
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    loop.stop();
+    if (priority > 0 && !loop.got_realtime_priority()) {
+      std::printf("| SCHED_FIFO %d refused (no CAP_SYS_NICE) | | | | | | |\n", priority);
+      continue;
+    }
+    std::printf("| motor, %zu triangles, %s | %llu | %.1f Hz | %.1f us | %.1f us | %.1f us | %llu |\n",
+                dense->collision().triangle_count(), priority > 0 ? "SCHED_FIFO 80" : "normal priority",
+                static_cast<unsigned long long>(loop.ticks()), loop.rate_hz(), loop.jitter_us(),
+                loop.step_percentile_us(50), loop.step_percentile_us(99),
+                static_cast<unsigned long long>(loop.overruns()));
+  }
+  std::printf("\n");
+  std::printf("Machine load average at end: %s\n", load_average().c_str());
+  return 0;
+}

@@ -1,0 +1,108 @@
+"""Meshes tagged by partition, collision queries and the removal sequence,
+headless (the paper's mixed representation, stage 5).
+
+    from contactwb import meshes
+    assembly = meshes.load_assembly("Resources/samples/motor.step")
+    for body, result in zip(assembly.bodies, meshes.mesh_assembly(assembly, deflection=0.1)):
+        print(body.name, result.quality.watertight)
+    print(meshes.disassembly_json(assembly))
+"""
+import json
+import os
+
+from contactwb import core
+
+
+def load_assembly(path):
+    """The bodies of a STEP file (read in C++) or of a FreeCAD document's visible solids."""
+    if not os.path.isfile(path):
+        raise core.ContactsError(f"no such file: '{path}'")
+    if path.lower().endswith(".fcstd"):
+        from contactwb import bodies as document_bodies
+        from contactwb import freecad_setup
+        doc = freecad_setup.open_document(os.path.abspath(path))
+        assembly, _ = document_bodies.assembly_from_document(doc, None, [])
+        return assembly
+    return core.contactcore.read_step(os.path.abspath(path))
+
+
+def mesh_assembly(assembly, deflection=0.1, angle=0.5, max_edge=0.0, linear=None, angular=None):
+    """One contactcore.MeshResult (mesh, quality) per body, in order."""
+    options = core.contactcore.MeshOptions(deflection, angle, max_edge)
+    return core.contactcore.mesh_assembly(assembly, options, linear, angular)
+
+
+def body_report(name, result):
+    """The per-body entry of meshes.json."""
+    quality = result.quality
+    return {
+        "name": name,
+        "triangles": quality.triangles,
+        "watertight": quality.watertight,
+        "min_angle": quality.min_angle_deg,
+        "aspect_ratio": {"p50": quality.aspect_p50, "p90": quality.aspect_p90, "p99": quality.aspect_p99,
+                         "max": quality.aspect_max},
+        "max_edge_length": quality.max_edge_length,
+        "partitions": result.mesh.partition_count,
+    }
+
+
+def ply_name(name):
+    """A file name for a body: path separators and odd characters replaced."""
+    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
+    return (safe or "body") + ".ply"
+
+
+def write_meshes(assembly, out_dir, deflection=0.1, angle=0.5, max_edge=0.0, linear=None, angular=None):
+    """One PLY per body and out_dir/meshes.json; returns the JSON document."""
+    os.makedirs(out_dir, exist_ok=True)
+    results = mesh_assembly(assembly, deflection, angle, max_edge, linear, angular)
+    bodies = []
+    used = set()
+    for body, result in zip(assembly.bodies, results):
+        file_name = ply_name(body.name)
+        stem, suffix = file_name[:-4], 2
+        while file_name in used:
+            file_name = f"{stem}.{suffix}.ply"
+            suffix += 1
+        used.add(file_name)
+        result.mesh.write_ply(os.path.join(out_dir, file_name))
+        entry = body_report(body.name, result)
+        entry["file"] = file_name
+        bodies.append(entry)
+    document = {"deflection": deflection, "angle": angle, "max_edge": max_edge, "bodies": bodies}
+    with open(os.path.join(out_dir, "meshes.json"), "w") as stream:
+        json.dump(document, stream, indent=2)
+    return document
+
+
+def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.02, linear=None, angular=None):
+    """contactcore.DisassemblyResult: the removal sequence, blocking graphs, or the reason none exists."""
+    options = core.contactcore.MeshOptions(deflection, angle, 0.0)
+    return core.contactcore.disassemble(assembly, options, tolerance, linear, angular)
+
+
+def disassembly_json(assembly, result=None):
+    """{"disassembly": [{"parts": [names], "direction": [x, y, z]}, ...], "base", "complete", "reason"}."""
+    result = disassemble(assembly) if result is None else result
+    names = [body.name for body in assembly.bodies]
+    return {
+        "disassembly": [{"parts": [names[i] for i in step.parts], "direction": [round(v, 12) + 0.0 for v in step.direction]}
+                        for step in result.steps],
+        "base": names[result.base] if result.base >= 0 else None,
+        "complete": result.complete,
+        "reason": result.reason,
+    }
+
+
+def disassembly_table(document):
+    """The removal sequence as text, one step a line."""
+    lines = ["Disassembly sequence:"]
+    for number, step in enumerate(document["disassembly"], 1):
+        x, y, z = step["direction"]
+        lines.append(f"{number:3d}. {', '.join(step['parts'])} along ({x:g}, {y:g}, {z:g})")
+    if document["complete"]:
+        lines.append(f"     {document['base']} stays (the base)")
+    else:
+        lines.append(f"Stopped: {document['reason']}")
+    return "\n".join(lines)

@@ -1,0 +1,403 @@
+// Haptic trials: the SpaceMouse parser and device list, the trial scene, the
+// headless scripted trial, and a live session (device + 1 kHz loop on its own
+// thread) for the panel. The loop never touches Python: the session's
+// methods exchange values with it through atomics and a snapshot.
+#include "common.h"
+
+#include <memory>
+
+#include "contactcore/haptics/spacemouse.h"
+#include "contactcore/haptics/trial.h"
+
+namespace contactcore::bindings {
+
+using namespace contactcore::haptics;
+
+namespace {
+
+class PythonProgress : public Progress {
+ public:
+  explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
+  bool report(const char* stage, double fraction) override {
+    py::gil_scoped_acquire gil;
+    try {
+      py::object answer = callback_(stage, fraction);
+      return answer.is_none() || answer.cast<bool>();
+    } catch (py::error_already_set& error) {
+      error.discard_as_unraisable(__func__);
+      return false;
+    }
+  }
+
+ private:
+  py::object callback_;
+};
+
+py::list vec(const Vec3& v) {
+  py::list out;
+  for (int i = 0; i < 3; ++i) out.append(v[i]);
+  return out;
+}
+
+Vec3 vec_from(const py::handle& value, const char* what) {
+  auto seq = value.cast<std::vector<double>>();
+  if (seq.size() != 3) throw py::value_error(std::string(what) + ": three numbers expected");
+  return {seq[0], seq[1], seq[2]};
+}
+
+ScriptKey key_from(const py::dict& d, bool timed) {
+  ScriptKey k;
+  if (timed) k.t = d.contains("t") ? d["t"].cast<double>() : 0.0;
+  if (d.contains("translate")) k.translate = vec_from(d["translate"], "translate");
+  if (d.contains("rotate_deg")) k.rotate_deg = vec_from(d["rotate_deg"], "rotate_deg");
+  return k;
+}
+
+py::dict offset_dict(const Pose& pose, const Vec3& centre) {
+  Vec3 t, r;
+  offset_of(pose, centre, t, r);
+  py::dict d;
+  d["translate"] = vec(t);
+  d["rotate_deg"] = vec(Vec3(deg(r.x()), deg(r.y()), deg(r.z())));
+  return d;
+}
+
+py::list matrix_rows(const Pose& pose) {
+  py::list rows;
+  for (int i = 0; i < 4; ++i) {
+    py::list row;
+    for (int j = 0; j < 4; ++j) row.append(pose.matrix()(i, j));
+    rows.append(row);
+  }
+  return rows;
+}
+
+py::dict capabilities_dict(const DeviceCapabilities& c) {
+  py::dict d;
+  d["name"] = c.name;
+  d["input_dof"] = c.input_dof;
+  d["force_output"] = c.force_output;
+  d["torque_output"] = c.torque_output;
+  d["control"] = to_string(c.control);
+  d["max_force"] = c.max_force;
+  d["max_torque"] = c.max_torque;
+  d["max_stiffness"] = c.max_stiffness;
+  d["max_angular_stiffness"] = c.max_angular_stiffness;
+  d["max_damping"] = c.max_damping;
+  d["hid_force_feedback"] = c.hid_force_feedback;
+  return d;
+}
+
+// A device and the loop on its own thread, for the panel.
+class HapticSession {
+ public:
+  HapticSession(TrialScene& scene, const std::string& device, const Vec3& translate, const Vec3& rotate_deg,
+                const ServoConfig& config, std::vector<RecordedReport> replay, std::uint16_t vendor,
+                std::uint16_t product)
+      : scene_(scene) {
+    const Vec3 c = scene.centre();
+    start_ = offset_pose(translate, Vec3(rad(rotate_deg.x()), rad(rotate_deg.y()), rad(rotate_deg.z())), c);
+    if (device == "spacemouse") {
+      auto mouse = std::make_unique<HidSpaceMouse>();
+      // The reader thread needs a moment for its first scan.
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (mouse->connected()) {
+        message_ = mouse->description();
+        device_ = std::move(mouse);
+      } else {
+        message_ = "No SpaceMouse found (" + mouse->description() + "): using the simulated hand.";
+      }
+    } else if (device == "replay") {
+      const SpaceMouseModel* model = find_model(vendor, product);
+      device_ = std::make_unique<ReplayDevice>(model ? *model : generic_model(vendor, product), std::move(replay));
+      message_ = "Replaying recorded reports.";
+    } else if (device != "sim") {
+      throw py::value_error("unknown device '" + device + "' (sim, spacemouse, replay)");
+    }
+    if (!device_) {
+      auto hand = std::make_unique<SimulatedHand>(HandScript{}, HandParameters{}, c, start_);
+      hand_ = hand.get();
+      device_ = std::move(hand);
+      if (message_.empty()) message_ = "Simulated hand (scripted, or replaying a recorded path).";
+    }
+    ServoConfig cfg = config;
+    cfg.centre = c;
+    loop_ = std::make_unique<ServoLoop>(*device_, cfg, start_);
+    loop_->set_joint_finder(&scene.finder());
+    loop_->set_collision(&scene.collision());
+  }
+  ~HapticSession() { loop_->stop(); }
+
+  void set_hand_target(const Vec3& t, const Vec3& r_deg) {
+    if (!hand_) return;
+    hand_->set_live_target(offset_pose(t, Vec3(rad(r_deg.x()), rad(r_deg.y()), rad(r_deg.z())), scene_.centre()));
+  }
+
+  py::dict snapshot() {
+    const ServoSnapshot s = loop_->snapshot();
+    return snapshot_dict(s);
+  }
+  py::dict snapshot_dict(const ServoSnapshot& s) {
+    const Vec3 c = scene_.centre();
+    py::dict d = offset_dict(s.proxy, c);
+    d["matrix"] = matrix_rows(s.proxy);
+    d["target"] = offset_dict(s.target, c);
+    d["force"] = vec(s.wrench.force);
+    d["torque"] = vec(s.wrench.torque);
+    d["force_n"] = s.wrench.force.norm();
+    d["engaged"] = s.engaged;
+    d["joint"] = s.engaged ? to_string(s.joint.kind) : "Free";
+    py::list with;
+    for (int k = 0; s.engaged && k < s.joint.body_count; ++k) with.append(scene_.body_names()[s.joint.bodies[k]]);
+    d["joint_with"] = with;
+    d["insertion_depth"] = s.insertion_depth;
+    d["penetration"] = s.penetration;
+    d["max_penetration"] = s.max_penetration;
+    d["max_force"] = s.max_force;
+    d["rate_hz"] = s.rate_hz;
+    d["jitter_us"] = s.jitter_us;
+    d["step_us"] = s.last_step_us;
+    d["ticks"] = s.ticks;
+    d["overruns"] = s.overruns;
+    d["watchdog"] = to_string(s.watchdog);
+    d["connected"] = s.device_connected;
+    d["enabled"] = s.enabled;
+    d["blocked"] = s.blocked;
+    py::list axes;
+    for (int i = 0; i < 6; ++i) axes.append(s.axes[i]);
+    d["axes"] = axes;
+    d["time"] = s.time;
+    d["realtime_priority"] = loop_->got_realtime_priority();
+    return d;
+  }
+
+  TrialScene& scene_;
+  Pose start_;
+  std::unique_ptr<Device> device_;
+  SimulatedHand* hand_ = nullptr;
+  std::unique_ptr<ServoLoop> loop_;
+  std::string message_;
+};
+
+ServoConfig config_from(const py::kwargs& kw) {
+  ServoConfig c;
+  if (kw.contains("stiffness")) c.stiffness = kw["stiffness"].cast<double>();
+  if (kw.contains("angular_stiffness")) c.angular_stiffness = kw["angular_stiffness"].cast<double>();
+  if (kw.contains("damping")) c.damping = kw["damping"].cast<double>();
+  if (kw.contains("angular_damping")) c.angular_damping = kw["angular_damping"].cast<double>();
+  if (kw.contains("max_speed")) c.max_speed = kw["max_speed"].cast<double>();
+  if (kw.contains("breakaway_force")) c.breakaway_force = kw["breakaway_force"].cast<double>();
+  if (kw.contains("rate_hz")) c.rate_hz = kw["rate_hz"].cast<double>();
+  if (kw.contains("realtime_priority")) c.realtime_priority = kw["realtime_priority"].cast<int>();
+  return c;
+}
+
+}  // namespace
+
+void bind_haptics(py::module_& root) {
+  py::module_ m = root.def_submodule("haptics", "Haptic trials: devices, the 1 kHz servo loop, real-time contacts");
+
+  m.def(
+      "parse_spacemouse_report",
+      [](std::uint16_t vendor, std::uint16_t product, const py::bytes& report) {
+        const SpaceMouseModel* known = find_model(vendor, product);
+        const SpaceMouseModel model = known ? *known : generic_model(vendor, product);
+        const std::string data = report;
+        SpaceMouseState state;
+        py::dict d;
+        d["understood"] = parse_report(reinterpret_cast<const std::uint8_t*>(data.data()), data.size(), model, state);
+        py::list raw, axes;
+        for (int i = 0; i < 6; ++i) {
+          raw.append(state.raw[i]);
+          axes.append(state.axes[i]);
+        }
+        d["raw"] = raw;
+        d["axes"] = axes;
+        d["buttons"] = state.buttons;
+        d["model"] = model.name;
+        return d;
+      },
+      py::arg("vendor"), py::arg("product"), py::arg("report"),
+      "Parses one SpaceMouse HID input report (report ID first) from a fresh state.");
+
+  m.def("spacemouse_devices", [] {
+    py::list out;
+    std::vector<HidSpaceMouse::Found> found;
+    {
+      py::gil_scoped_release release;
+      found = HidSpaceMouse::enumerate();
+    }
+    for (const auto& f : found) {
+      py::dict d;
+      d["name"] = f.name;
+      d["path"] = f.path;
+      d["vendor"] = f.vendor;
+      d["product"] = f.product;
+      out.append(d);
+    }
+    return out;
+  }, "The 3Dconnexion 6-DOF devices hidapi sees now (empty without hardware).");
+
+  m.def("simulated_capabilities", [] { return capabilities_dict(simulated_capabilities()); });
+
+  py::class_<TrialScene>(m, "TrialScene", "Partitions, real-time contacts and collision models for one moving part.")
+      .def(py::init([](const Assembly& assembly, const std::string& part, double capture_distance,
+                       double capture_angle_deg, double deflection, py::object progress) {
+             std::unique_ptr<PythonProgress> reporter;
+             if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
+             SceneOptions options;
+             options.capture.distance = capture_distance;
+             options.capture.angle = rad(capture_angle_deg);
+             options.deflection = deflection;
+             std::unique_ptr<TrialScene> scene;
+             raise_if_failed(guarded([&] {
+               Status status;
+               scene = TrialScene::build(assembly, part, options, status, reporter.get());
+               return status;
+             }));
+             return scene;
+           }),
+           py::arg("assembly"), py::arg("part"), py::arg("capture_distance") = 0.5,
+           py::arg("capture_angle_deg") = 2.0, py::arg("deflection") = 0.01, py::arg("progress") = py::none())
+      .def_property_readonly("part", &TrialScene::part_name)
+      .def_property_readonly("centre", [](const TrialScene& s) { return vec(s.centre()); })
+      .def_property_readonly("body_names", &TrialScene::body_names)
+      .def_property_readonly("setup_seconds", &TrialScene::setup_seconds)
+      .def_property_readonly("triangles", [](TrialScene& s) { return s.collision().triangle_count(); })
+      .def(
+          "contacts_at",
+          [](TrialScene& s, const std::vector<double>& translate, const std::vector<double>& rotate_deg) {
+            const Pose pose = offset_pose(Vec3(translate[0], translate[1], translate[2]),
+                                          Vec3(rad(rotate_deg[0]), rad(rotate_deg[1]), rad(rotate_deg[2])), s.centre());
+            std::vector<LiveContact> live(256);
+            const int n = s.contacts().update(pose, live.data(), 256);
+            py::list out;
+            for (int i = 0; i < n; ++i) {
+              py::dict d;
+              d["type"] = to_string(live[i].type);
+              d["with"] = s.body_names()[live[i].body];
+              d["distance"] = live[i].distance;
+              d["angle_deg"] = deg(live[i].angle);
+              out.append(d);
+            }
+            return out;
+          },
+          py::arg("translate"), py::arg("rotate_deg"),
+          "Real-time contacts of the part displaced by (translate mm, rotate_deg) from its placement.")
+      .def(
+          "collides",
+          [](TrialScene& s, const std::vector<double>& translate, const std::vector<double>& rotate_deg) {
+            const Pose pose = offset_pose(Vec3(translate[0], translate[1], translate[2]),
+                                          Vec3(rad(rotate_deg[0]), rad(rotate_deg[1]), rad(rotate_deg[2])), s.centre());
+            return s.collision().collides(pose, -1);
+          },
+          py::arg("translate"), py::arg("rotate_deg"));
+
+  m.def(
+      "run_trial",
+      [](TrialScene& scene, const py::dict& script, bool realtime, int record_every, double settle,
+         const py::kwargs& kw) {
+        TrialScript s;
+        if (script.contains("start")) s.start = key_from(script["start"].cast<py::dict>(), false);
+        if (!script.contains("hand")) throw py::value_error("script: 'hand' (a list of keys) is missing");
+        for (const py::handle& k : script["hand"].cast<py::list>()) s.hand.push_back(key_from(k.cast<py::dict>(), true));
+        if (s.hand.empty()) throw py::value_error("script: 'hand' is empty");
+        TrialOptions options;
+        options.servo = config_from(kw);
+        options.record_every = record_every;
+        options.settle = settle;
+        TrialResult r;
+        {
+          py::gil_scoped_release release;
+          r = run_trial(scene, s, options, realtime);
+        }
+        py::dict out;
+        out["ticks"] = r.ticks;
+        out["rate_hz"] = r.rate_hz;
+        py::dict step;
+        step["p50"] = r.step_p50_us;
+        step["p99"] = r.step_p99_us;
+        step["max"] = r.step_max_us;
+        out["step_us"] = step;
+        out["overruns"] = r.overruns;
+        py::list joints;
+        for (const auto& j : r.joints_engaged) {
+          py::dict d;
+          d["with"] = j.with;
+          d["type"] = j.type;
+          d["joint"] = j.joint;
+          d["t"] = j.time;
+          joints.append(d);
+        }
+        out["joints_engaged"] = joints;
+        py::dict final_offset;
+        final_offset["translate"] = vec(r.final_translate);
+        final_offset["rotate_deg"] = vec(r.final_rotate_deg);
+        out["final"] = final_offset;
+        out["max_penetration_mm"] = r.max_penetration_mm;
+        out["max_force_n"] = r.max_force_n;
+        py::list path;
+        for (const auto& p : r.path) {
+          py::dict d;
+          d["t"] = p.t;
+          d["translate"] = vec(p.translate);
+          d["rotate_deg"] = vec(p.rotate_deg);
+          d["force"] = vec(p.force);
+          d["engaged"] = p.engaged;
+          d["penetration"] = p.penetration;
+          path.append(d);
+        }
+        out["path"] = path;
+        return out;
+      },
+      py::arg("scene"), py::arg("script"), py::arg("realtime") = false, py::arg("record_every") = 10,
+      py::arg("settle") = 1.5,
+      "Runs a scripted trial with the simulated hand (lockstep unless realtime). Keyword options: "
+      "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz, "
+      "realtime_priority (SCHED_FIFO priority of the loop thread when permitted).");
+
+  py::class_<HapticSession>(m, "HapticSession", "A device and the 1 kHz loop on its own thread.")
+      .def(py::init([](TrialScene& scene, const std::string& device, const std::vector<double>& translate,
+                       const std::vector<double>& rotate_deg, py::object replay, int vendor, int product,
+                       const py::kwargs& kw) {
+             std::vector<RecordedReport> reports;
+             if (!replay.is_none())
+               for (const py::handle& item : replay.cast<py::list>()) {
+                 auto pair = item.cast<py::tuple>();
+                 RecordedReport r;
+                 r.time = pair[0].cast<double>();
+                 const std::string b = pair[1].cast<py::bytes>();
+                 r.bytes.assign(b.begin(), b.end());
+                 reports.push_back(std::move(r));
+               }
+             return std::make_unique<HapticSession>(scene, device, Vec3(translate[0], translate[1], translate[2]),
+                                                    Vec3(rotate_deg[0], rotate_deg[1], rotate_deg[2]), config_from(kw),
+                                                    std::move(reports), static_cast<std::uint16_t>(vendor),
+                                                    static_cast<std::uint16_t>(product));
+           }),
+           py::arg("scene"), py::arg("device") = "sim", py::arg("translate") = std::vector<double>{0, 0, 0},
+           py::arg("rotate_deg") = std::vector<double>{0, 0, 0}, py::arg("replay") = py::none(),
+           py::arg("vendor") = 0x256f, py::arg("product") = 0xc635, py::keep_alive<1, 2>())
+      .def_property_readonly("message", [](const HapticSession& s) { return s.message_; })
+      .def_property_readonly("capabilities", [](const HapticSession& s) { return capabilities_dict(s.device_->capabilities()); })
+      .def("start", [](HapticSession& s) { return s.loop_->start(); })
+      .def("stop", [](HapticSession& s) {
+        py::gil_scoped_release release;
+        s.loop_->stop();
+      })
+      .def_property_readonly("running", [](const HapticSession& s) { return s.loop_->running(); })
+      .def("step", [](HapticSession& s, int ticks) {
+        if (s.loop_->running()) throw py::value_error("the loop is running on its thread");
+        py::gil_scoped_release release;
+        for (int i = 0; i < ticks; ++i) s.loop_->step_lockstep();
+      }, py::arg("ticks"), "Lockstep ticks (with the thread stopped).")
+      .def("set_enabled", [](HapticSession& s, bool on) { s.loop_->set_enabled(on); })
+      .def("set_stiffness", [](HapticSession& s, double k, double kr) { s.loop_->set_stiffness(k, kr); })
+      .def("set_damping", [](HapticSession& s, double b, double br) { s.loop_->set_damping(b, br); })
+      .def("set_hand_target", [](HapticSession& s, const std::vector<double>& t, const std::vector<double>& r) {
+        s.set_hand_target(Vec3(t[0], t[1], t[2]), Vec3(r[0], r[1], r[2]));
+      }, py::arg("translate"), py::arg("rotate_deg"))
+      .def("snapshot", &HapticSession::snapshot, "The loop's latest state (lock-free).");
+}
+
+}  // namespace contactcore::bindings

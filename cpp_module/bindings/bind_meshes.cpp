@@ -1,0 +1,104 @@
+// Stage 5a in Python: tagged meshes of every body of an assembly, their
+// quality, PLY files.
+#include <BRepBndLib.hxx>
+#include <Bnd_Box.hxx>
+
+#include "common.h"
+#include "contactcore/bodies.h"
+#include "contactcore/meshes.h"
+
+namespace contactcore::bindings {
+
+namespace {
+
+py::list vertex_list(const TaggedMesh& mesh) {
+  py::list out;
+  for (const auto& v : mesh.vertices) out.append(py::make_tuple(v[0], v[1], v[2]));
+  return out;
+}
+
+py::list triangle_list(const TaggedMesh& mesh) {
+  py::list out;
+  for (const auto& t : mesh.triangles) out.append(py::make_tuple(t[0], t[1], t[2]));
+  return out;
+}
+
+}  // namespace
+
+void bind_meshes(py::module_& m) {
+  py::class_<MeshOptions>(m, "MeshOptions", "Chordal deviation (mm), angular deflection (rad), maximum edge (mm, 0: none)")
+      .def(py::init([](double deflection, double angle, double max_edge_length) {
+             return MeshOptions{deflection, angle, max_edge_length};
+           }),
+           py::arg("deflection") = MeshOptions{}.deflection, py::arg("angle") = MeshOptions{}.angle,
+           py::arg("max_edge_length") = 0.0)
+      .def_readwrite("deflection", &MeshOptions::deflection)
+      .def_readwrite("angle", &MeshOptions::angle)
+      .def_readwrite("max_edge_length", &MeshOptions::max_edge_length);
+
+  py::class_<TaggedMesh>(m, "TaggedMesh", "Triangles sharing vertices, each tagged with its FaceN and partition")
+      .def_property_readonly("vertices", &vertex_list, "[(x, y, z)] in mm")
+      .def_property_readonly("triangles", &triangle_list, "[(i, j, k)], counter-clockwise seen from outside")
+      .def_readonly("triangle_face", &TaggedMesh::triangle_face)
+      .def_readonly("triangle_partition", &TaggedMesh::triangle_partition)
+      .def_readonly("partition_count", &TaggedMesh::partition_count)
+      .def(
+          "write_ply",
+          [](const TaggedMesh& mesh, const std::string& path) { raise_if_failed(write_ply(mesh, path)); },
+          py::arg("path"), "ASCII PLY: vertex x y z; face vertex_indices, face, partition")
+      .def("__repr__", [](const TaggedMesh& mesh) {
+        return "<TaggedMesh " + std::to_string(mesh.triangles.size()) + " triangles, " +
+               std::to_string(mesh.vertices.size()) + " vertices>";
+      });
+
+  py::class_<MeshQuality>(m, "MeshQuality", "Closure and shape of a mesh's triangles")
+      .def_readonly("triangles", &MeshQuality::triangles)
+      .def_readonly("boundary_edges", &MeshQuality::boundary_edges)
+      .def_readonly("nonmanifold_edges", &MeshQuality::nonmanifold_edges)
+      .def_readonly("watertight", &MeshQuality::watertight)
+      .def_readonly("min_angle_deg", &MeshQuality::min_angle_deg)
+      .def_readonly("aspect_p50", &MeshQuality::aspect_p50)
+      .def_readonly("aspect_p90", &MeshQuality::aspect_p90)
+      .def_readonly("aspect_p99", &MeshQuality::aspect_p99)
+      .def_readonly("aspect_max", &MeshQuality::aspect_max)
+      .def_readonly("max_edge_length", &MeshQuality::max_edge_length);
+
+  py::class_<MeshResult>(m, "MeshResult", "A body's tagged mesh and its quality")
+      .def_readonly("mesh", &MeshResult::mesh)
+      .def_readonly("quality", &MeshResult::quality);
+
+  m.def("mesh_quality", &mesh_quality, py::arg("mesh"));
+
+  m.def(
+      "mesh_assembly",
+      [](const Assembly& assembly, const MeshOptions& options, std::optional<double> linear,
+         std::optional<double> angular) {
+        std::vector<MeshResult> results(assembly.bodies.size());
+        raise_if_failed(guarded([&] {
+          Bnd_Box box;
+          for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box);
+          const Tolerances tolerances = resolve_tolerances(box, linear, angular);
+          for (std::size_t i = 0; i < assembly.bodies.size(); ++i) {
+            const Body& body = assembly.bodies[i];
+            const BodyPartitions partitions = partition_shape(body.shape, tolerances);
+            Status status = partitions.status;
+            if (status.ok()) {
+              results[i] = mesh_body(body.shape, partitions, options);
+              status = results[i].status;
+            }
+            if (!status.ok()) {
+              status.body = body.name;
+              return status;
+            }
+          }
+          return Status::success();
+        }));
+        return results;
+      },
+      py::arg("assembly"), py::arg("options") = MeshOptions{}, py::arg("linear") = py::none(),
+      py::arg("angular") = py::none(),
+      "Partitions (tolerances as find_contacts) and tessellates every body: one MeshResult per body, in order.\n"
+      "Raises ContactsError naming the body and face OCCT could not mesh.");
+}
+
+}  // namespace contactcore::bindings

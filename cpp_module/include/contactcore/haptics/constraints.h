@@ -1,0 +1,82 @@
+// What the servo loop asks of the assembly, as small abstract interfaces: the
+// joint the part is held to (its free twists and one-sided stops), where a
+// joint captures the part (engagement), and whether a pose collides with the
+// neighbours (the joint's own partitions switched off). The trial fills them
+// from the contacts (realtime_contacts.h) and the triangle models
+// (mesh_collision.h); tests fill them by hand.
+#pragma once
+
+#include <array>
+
+#include "contactcore/haptics/pose_math.h"
+
+namespace contactcore::haptics {
+
+enum class JointKind { Free, Cylindrical, Revolute, Prismatic, Spherical, Fixed };
+const char* to_string(JointKind kind);
+
+// A one-sided stop: the reference point c of the part keeps normal . c <= limit
+// (a shoulder on a bore's face, the bottom of a blind hole).
+struct Stop {
+  Vec3 normal = Vec3::UnitZ();
+  double limit = 0;
+};
+
+constexpr int kMaxStops = 8;
+constexpr int kMaxJointBodies = 8;
+
+struct JointState {
+  JointKind kind = JointKind::Free;
+  Vec3 point = Vec3::Zero();   // on the axis line (world), or the centre (Spherical)
+  Vec3 axis = Vec3::UnitZ();   // unit
+  // The part's own axis (or centre), in its assembled frame: snapping aligns it.
+  Vec3 part_point = Vec3::Zero();
+  Vec3 part_axis = Vec3::UnitZ();
+  double part_axial_min = 0, part_axial_max = 0;  // extent along part_axis from part_point
+  std::array<Stop, kMaxStops> stops{};
+  int stop_count = 0;
+  int group = -1;  // which collision partitions to switch off (-1: none)
+  // The bodies this joint is with, and the contact type, for reports.
+  std::array<int, kMaxJointBodies> bodies{};
+  int body_count = 0;
+  int contact_type = 0;  // contactcore::ContactType as int
+
+  bool add_stop(const Vec3& normal, double limit) {
+    if (stop_count >= kMaxStops) return false;
+    stops[stop_count++] = Stop{normal, limit};
+    return true;
+  }
+};
+
+// Free twists of `joint` at the part's reference point `c` (world), as the
+// columns of `basis` (6 x n, n returned): (velocity of c, angular velocity).
+int free_twists(const JointState& joint, const Vec3& c, Eigen::Matrix<double, 6, 6>& basis);
+
+// `pose` moved the least onto the joint: the part's axis made the joint's axis
+// (sign kept), its point put on the line (Cylindrical, Revolute, Prismatic),
+// its centre on the centre (Spherical).
+Pose snap_to_joint(const JointState& joint, const Pose& pose);
+
+// Largest distance from the joint's axis line of the part's axis over its
+// extent (mm): how far the pose is from the joint (0 when snapped).
+double joint_deviation(const JointState& joint, const Pose& pose);
+
+// Engagement: the joint near `pose` within the capture distance and angle.
+class JointFinder {
+ public:
+  virtual ~JointFinder() = default;
+  // True and `joint` filled when a joint captures the part at `pose`.
+  virtual bool capture(const Pose& pose, JointState& joint) noexcept = 0;
+  // False once the part has left the joint (no common extent left).
+  virtual bool still_engaged(const Pose& pose, const JointState& joint) noexcept = 0;
+};
+
+class CollisionQuery {
+ public:
+  virtual ~CollisionQuery() = default;
+  // True when the part at `pose` overlaps a neighbour; the partitions of
+  // collision group `group` (a joint's own surfaces) are switched off.
+  virtual bool collides(const Pose& pose, int group) noexcept = 0;
+};
+
+}  // namespace contactcore::haptics

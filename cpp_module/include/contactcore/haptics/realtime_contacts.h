@@ -1,0 +1,110 @@
+// Contacts in real time (the paper's second configuration): while one part
+// moves, its contacts with the other bodies are found again at every pose
+// from the partitions alone: a broad phase on the moving part's box only,
+// then partitions of the same kind and radius (sorted per body) whose
+// parameters match within a capture tolerance. No OCCT call after set-up, no
+// allocation per update. Engagement (JointFinder) builds on it: near a
+// shaft-in-bore contact the part is captured by a cylindrical joint on the
+// bore's axis, with one-sided stops from the facing planes along that axis.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "contactcore/contacts.h"
+#include "contactcore/haptics/constraints.h"
+
+namespace contactcore::haptics {
+
+// A partition as plain numbers (global frame; for the moving part, its
+// assembled placement).
+struct SurfaceProxy {
+  int body = 0, partition = 0;
+  SurfaceKind kind = SurfaceKind::Other;
+  MaterialSide side = MaterialSide::Outward;
+  Vec3 location = Vec3::Zero(), axis = Vec3::UnitZ();
+  double radius = 0, half_angle = 0;
+  double axial_min = 0, axial_max = 0;  // revolution surfaces, along axis from location
+  Eigen::AlignedBox3d box;
+  std::vector<std::vector<Vec3>> loops; // planes: outline loops (outer CCW, holes CW about axis)
+};
+
+struct CaptureTolerances {
+  double distance = 0.5;   // mm: axis lines, plane distances, centres
+  double angle = 0.035;    // rad (2 degrees)
+  double radius = 0.005;   // mm: radii must agree this well to be one surface
+};
+
+struct LiveContact {
+  ContactType type = ContactType::PLF;
+  int body = 0;                 // the other body
+  int moving_partition = 0, other_partition = 0;
+  int other_index = 0;          // into surfaces(body)
+  int moving_index = 0;         // into moving_surfaces()
+  double distance = 0, angle = 0;
+};
+
+class RealtimeContacts {
+ public:
+  // Set-up (allocates): partitions of every body of the assembly, body boxes.
+  RealtimeContacts(const std::vector<BodyPartitions>& partitions, int moving,
+                   const CaptureTolerances& tolerances);
+  // The contacts of the moving part at `pose` (its displacement from the
+  // assembled placement), at most `capacity`, written to `out`. Allocation-free.
+  int update(const Pose& pose, LiveContact* out, int capacity) const noexcept;
+  // Bodies whose box meets the moving part's box at `pose` (inflated by the
+  // capture distance); returns how many were written.
+  int near_bodies(const Pose& pose, int* out, int capacity) const noexcept;
+
+  int moving() const { return moving_; }
+  int body_count() const { return static_cast<int>(bodies_.size()); }
+  const std::vector<SurfaceProxy>& moving_surfaces() const { return bodies_[moving_].surfaces; }
+  const std::vector<SurfaceProxy>& surfaces(int body) const { return bodies_[body].surfaces; }
+  const Eigen::AlignedBox3d& body_box(int body) const { return bodies_[body].box; }
+  const CaptureTolerances& tolerances() const { return tolerances_; }
+
+ private:
+  struct BodySurfaces {
+    std::vector<SurfaceProxy> surfaces;
+    std::vector<int> by_radius[6];  // per SurfaceKind: indices sorted by radius (planes: all)
+    Eigen::AlignedBox3d box;
+  };
+  bool match(const SurfaceProxy& m, const SurfaceProxy& o, LiveContact& c) const noexcept;
+  std::vector<BodySurfaces> bodies_;
+  int moving_ = 0;
+  CaptureTolerances tolerances_;
+};
+
+// Engagement from the real-time contacts: a shaft-in-bore (CLJ) contact within
+// capture captures the part on the bore's axis (Cylindrical); a ball in a cup
+// (SPF) on its centre (Ball). Stops come from planes of the part facing planes
+// of the partners along the axis, over a common radial band.
+class ContactJointFinder : public JointFinder {
+ public:
+  // `partition_groups[i]` is the collision group of moving partition i (-1:
+  // none); `centre` the part's reference point (stops are written on it).
+  ContactJointFinder(const RealtimeContacts& contacts, std::vector<int> partition_groups,
+                     const Vec3& centre);
+  bool capture(const Pose& pose, JointState& joint) noexcept override;
+  bool still_engaged(const Pose& pose, const JointState& joint) noexcept override;
+
+ private:
+  void add_stops(const Pose& pose, JointState& joint) const noexcept;
+  const RealtimeContacts& contacts_;
+  std::vector<int> groups_;
+  Vec3 centre_;
+  std::vector<LiveContact> live_;  // scratch, sized once
+};
+
+// Groups of the moving part's revolution partitions lying on one surface that
+// some other body has a same-radius, opposite-side partition for: the surfaces
+// a joint switches off in collision. Returns per moving partition its group
+// (-1: none), and per group and body the other partitions switched off.
+struct CollisionGroups {
+  std::vector<int> moving_group;                          // per moving partition
+  std::vector<std::vector<std::vector<int>>> switched_off;  // [group][body] -> partition ids
+  int count() const { return static_cast<int>(switched_off.size()); }
+};
+CollisionGroups collision_groups(const RealtimeContacts& contacts);
+
+}  // namespace contactcore::haptics

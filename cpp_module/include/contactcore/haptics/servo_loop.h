@@ -1,0 +1,191 @@
+// The 1 kHz servo loop of haptic trials. Each tick: read the device (never
+// blocking), map its input to a commanded pose (position control for an arm,
+// rate control for a SpaceMouse), capture or keep the joint, project the
+// commanded motion onto the joint's free twists, apply the one-sided stops,
+// stop at collisions (bisection to the last free pose), and render the
+// virtual-coupling force and torque clamped to the device's limits. A
+// watchdog zeroes the force on an overrun, a stale or unplugged device, or
+// disable. Nothing inside a tick allocates, takes a lock, or calls Python or
+// OCCT; the GUI reads a lock-free snapshot and writes atomics.
+//
+// Runs in its own thread on the steady clock (start/stop) or, for tests and
+// headless trials, in lockstep (step_lockstep: a virtual clock of exact ticks).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+#include "contactcore/haptics/constraints.h"
+#include "contactcore/haptics/device.h"
+
+namespace contactcore::haptics {
+
+// Single-writer single-reader triple buffer: the writer never waits, the
+// reader always gets the latest complete value.
+template <class T>
+class TripleBuffer {
+ public:
+  void write(const T& value) {
+    slots_[back_] = value;
+    back_ = middle_.exchange(back_ | kFresh, std::memory_order_acq_rel) & kIndex;
+  }
+  // The latest value written (the same one again if nothing new came).
+  const T& read() {
+    if (middle_.load(std::memory_order_acquire) & kFresh)
+      front_ = middle_.exchange(front_, std::memory_order_acq_rel) & kIndex;
+    return slots_[front_];
+  }
+
+ private:
+  static constexpr int kFresh = 4, kIndex = 3;
+  T slots_[3]{};
+  std::atomic<int> middle_{1};
+  int back_ = 0;   // writer's
+  int front_ = 2;  // reader's
+};
+
+enum class Watchdog : int { None = 0, Disabled, Unplugged, Stale, Overrun };
+const char* to_string(Watchdog reason);
+
+struct ServoConfig {
+  double rate_hz = 1000;
+  Vec3 centre = Vec3::Zero();       // reference point: the part's centre of mass (assembled)
+  double stiffness = 1.0;           // N/mm of the virtual coupling (clamped to the device)
+  double angular_stiffness = 3000;  // N mm/rad
+  double damping = 0.005;           // N s/mm
+  double angular_damping = 5;       // N mm s/rad
+  double max_speed = 150;           // mm/s the proxy may move
+  double max_angular_speed = 2;     // rad/s
+  double rate_speed = 40;           // mm/s at full deflection (rate control)
+  double rate_angular_speed = 0.8;  // rad/s at full deflection
+  Mat3 rate_frame = Mat3::Identity();  // device axes -> world (the view's orientation)
+  double stale_after = 0.25;        // s without a device report
+  double length_scale = 10;         // mm: weighs rotations against translations
+  double breakaway_force = 8;       // N across the joint's free directions breaks away
+  int collision_bisections = 10;
+  bool lockstep = false;            // virtual clock; overruns counted, not acted on
+  int realtime_priority = 0;        // > 0: ask for SCHED_FIFO at this priority (needs CAP_SYS_NICE)
+};
+
+// What the GUI (or a test) sees, published every tick.
+struct ServoSnapshot {
+  Pose proxy = Pose::Identity();    // the part's displacement from its assembled placement
+  Pose target = Pose::Identity();   // the device's commanded pose
+  Wrench wrench;                    // rendered (after clamping and watchdog)
+  Wrench coupling;                  // before clamping
+  JointState joint;
+  bool engaged = false;
+  bool device_connected = false;
+  bool enabled = false;
+  Watchdog watchdog = Watchdog::None;
+  bool blocked = false;             // a collision or stop held the last step
+  std::uint64_t ticks = 0, overruns = 0;
+  double time = 0;                  // s since start
+  double rate_hz = 0, jitter_us = 0;
+  double last_step_us = 0;
+  double insertion_depth = 0;       // mm along the joint axis from where it engaged
+  double penetration = 0;           // mm: stop overshoot or distance off the joint
+  double max_penetration = 0, max_force = 0;
+  std::uint64_t engagements = 0;
+  Vec6 axes = Vec6::Zero();
+};
+
+// One engagement, for reports.
+struct EngagementEvent {
+  double time = 0;
+  JointState joint;
+};
+
+class ServoLoop {
+ public:
+  ServoLoop(Device& device, const ServoConfig& config, const Pose& initial_pose);
+  ~ServoLoop();
+  ServoLoop(const ServoLoop&) = delete;
+  ServoLoop& operator=(const ServoLoop&) = delete;
+
+  void set_joint_finder(JointFinder* finder) { finder_ = finder; }
+  void set_collision(CollisionQuery* collision) { collision_ = collision; }
+  // Holds the part to a given joint (tests, or a joint chosen in the panel).
+  void hold_to(const JointState& joint);
+  void release_joint();
+
+  // Thread mode on the steady clock.
+  bool start();
+  void stop();
+  bool running() const { return thread_.joinable(); }
+
+  // Lockstep: one tick at virtual time ticks * period.
+  void step_lockstep();
+
+  // GUI side: lock-free.
+  void set_enabled(bool enabled) { enabled_.store(enabled); }
+  void set_stiffness(double linear, double angular) {
+    stiffness_.store(linear);
+    angular_stiffness_.store(angular);
+  }
+  void set_damping(double linear, double angular) {
+    damping_.store(linear);
+    angular_damping_.store(angular);
+  }
+  ServoSnapshot snapshot() { return snapshots_.read(); }
+
+  // Statistics (call when stopped or from the loop's thread).
+  std::uint64_t ticks() const { return ticks_; }
+  std::uint64_t overruns() const { return overruns_; }
+  double step_percentile_us(double p) const;  // from a 0.25 us histogram
+  double step_max_us() const { return step_max_us_; }
+  double rate_hz() const;
+  double jitter_us() const;
+  const Pose& proxy() const { return proxy_; }
+  const ServoSnapshot& last() const { return last_; }
+  const std::vector<EngagementEvent>& engagement_events() const { return events_; }
+  const ServoConfig& config() const { return config_; }
+  bool got_realtime_priority() const { return got_priority_.load(); }
+
+ private:
+  void tick(double now);
+  void run();
+  void engage(const JointState& joint, double now);
+  Pose interpolate(const Pose& a, const Pose& b, double s) const;
+  Pose limit_and_constrain(const Pose& target, double dt);
+
+  Device& device_;
+  ServoConfig config_;
+  DeviceCapabilities caps_;
+  double period_;
+  JointFinder* finder_ = nullptr;
+  CollisionQuery* collision_ = nullptr;
+
+  Pose proxy_;
+  Pose anchor_ = Pose::Identity();  // device pose -> commanded pose (re-set on enable)
+  bool was_enabled_ = false;
+  JointState joint_;
+  bool engaged_ = false;
+  bool held_ = false;               // joint set by hold_to: never released by the finder
+  bool rearm_ = true;               // after a break-away: no capture until out of reach
+  double engaged_axial_ = 0;        // axial position where it engaged
+  Vec6 proxy_velocity_ = Vec6::Zero();
+  bool overrun_pending_ = false;
+
+  std::atomic<bool> enabled_{true};
+  std::atomic<double> stiffness_, angular_stiffness_, damping_, angular_damping_;
+  std::atomic<bool> stop_{false};
+  std::atomic<bool> got_priority_{false};
+  std::thread thread_;
+
+  std::uint64_t ticks_ = 0, overruns_ = 0;
+  std::vector<std::uint32_t> step_histogram_;  // allocated once: 0.25 us bins
+  double step_max_us_ = 0;
+  double start_time_ = 0, last_tick_start_ = 0;
+  double period_mean_ = 0, period_m2_ = 0;
+  std::uint64_t period_count_ = 0;
+  double max_penetration_ = 0, max_force_ = 0;
+  std::uint64_t engagements_ = 0;
+  std::vector<EngagementEvent> events_;  // reserved up front; full: later ones dropped
+  ServoSnapshot last_;
+  TripleBuffer<ServoSnapshot> snapshots_;
+};
+
+}  // namespace contactcore::haptics

@@ -1,0 +1,107 @@
+// A haptic trial on an assembly: the scene (partitions, real-time contacts,
+// engagement, triangle models of the moving part and its neighbours) and the
+// headless run of a scripted insertion with the simulated hand in lockstep
+// (`contacts trial`). The panel uses the same scene with a live device.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contactcore/bodies.h"
+#include "contactcore/haptics/mesh_collision.h"
+#include "contactcore/haptics/realtime_contacts.h"
+#include "contactcore/haptics/servo_loop.h"
+#include "contactcore/haptics/simulated.h"
+
+namespace contactcore::haptics {
+
+struct SceneOptions {
+  CaptureTolerances capture;
+  double deflection = 0.01;  // mm, triangle models
+  double angle = 0.2;        // rad
+};
+
+// Everything the loop needs about the assembly, built once (OCCT here only).
+class TrialScene {
+ public:
+  static std::unique_ptr<TrialScene> build(const Assembly& assembly, const std::string& part,
+                                           const SceneOptions& options, Status& status,
+                                           Progress* progress = nullptr);
+  int moving() const { return moving_; }
+  const std::string& part_name() const { return part_name_; }
+  const Vec3& centre() const { return centre_; }
+  RealtimeContacts& contacts() { return *contacts_; }
+  ContactJointFinder& finder() { return *finder_; }
+  MeshCollision& collision() { return *collision_; }
+  const std::vector<std::string>& body_names() const { return names_; }
+  double setup_seconds() const { return setup_seconds_; }
+
+ private:
+  TrialScene() = default;
+  int moving_ = 0;
+  std::string part_name_;
+  Vec3 centre_ = Vec3::Zero();
+  std::vector<std::string> names_;
+  std::vector<BodyPartitions> partitions_;
+  std::unique_ptr<RealtimeContacts> contacts_;
+  CollisionGroups groups_;
+  std::unique_ptr<ContactJointFinder> finder_;
+  std::unique_ptr<MeshCollision> collision_;
+  double setup_seconds_ = 0;
+};
+
+// The trial script: the part's start offset from its assembled placement and
+// the hand's target offsets over time (translate mm, rotate degrees about
+// global axes through the part's centre of mass, applied x, then y, then z).
+struct ScriptKey {
+  double t = 0;
+  Vec3 translate = Vec3::Zero();
+  Vec3 rotate_deg = Vec3::Zero();
+};
+struct TrialScript {
+  ScriptKey start;
+  std::vector<ScriptKey> hand;
+};
+
+struct TrialOptions {
+  ServoConfig servo;
+  HandParameters hand;
+  double settle = 1.5;     // s run after the last key
+  int record_every = 10;   // ticks between recorded samples (0: no record)
+};
+
+struct TrialSample {
+  double t = 0;
+  Vec3 translate = Vec3::Zero(), rotate_deg = Vec3::Zero();  // offset from the assembled placement
+  Vec3 force = Vec3::Zero();                                 // N rendered to the hand
+  bool engaged = false;
+  double penetration = 0;
+};
+
+struct EngagedJoint {
+  std::string with;   // body name
+  std::string type;   // contact type of the joint (CLJ, SPF)
+  std::string joint;  // joint kind (Cylindrical, Ball)
+  double time = 0;
+};
+
+struct TrialResult {
+  Status status;
+  std::uint64_t ticks = 0;
+  double rate_hz = 0;
+  double step_p50_us = 0, step_p99_us = 0, step_max_us = 0;
+  std::uint64_t overruns = 0;
+  std::vector<EngagedJoint> joints_engaged;
+  Vec3 final_translate = Vec3::Zero(), final_rotate_deg = Vec3::Zero();
+  double max_penetration_mm = 0, max_force_n = 0;
+  std::vector<TrialSample> path;
+  double setup_seconds = 0;
+};
+
+// Runs the script with the simulated hand in lockstep (deterministic), or on
+// the loop's own thread in real time when `realtime`.
+TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialOptions& options,
+                      bool realtime = false);
+
+}  // namespace contactcore::haptics

@@ -1,0 +1,350 @@
+#include "contactcore/haptics/servo_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <pthread.h>
+#include <sched.h>
+
+#include "contactcore/haptics/spacemouse.h"
+
+namespace contactcore::haptics {
+
+const char* to_string(ControlMode mode) { return mode == ControlMode::Rate ? "rate" : "position"; }
+
+const char* to_string(Watchdog reason) {
+  switch (reason) {
+    case Watchdog::None: return "none";
+    case Watchdog::Disabled: return "disabled";
+    case Watchdog::Unplugged: return "unplugged";
+    case Watchdog::Stale: return "stale";
+    case Watchdog::Overrun: return "overrun";
+  }
+  return "?";
+}
+
+Wrench clamp_to_device(const Wrench& wrench, const DeviceCapabilities& caps) {
+  Wrench out;
+  if (caps.force_output) {
+    out.force = wrench.force;
+    const double f = out.force.norm();
+    if (f > caps.max_force) out.force *= caps.max_force / f;
+  }
+  if (caps.torque_output) {
+    out.torque = wrench.torque;
+    const double t = out.torque.norm();
+    if (t > caps.max_torque) out.torque *= caps.max_torque / t;
+  }
+  return out;
+}
+
+namespace {
+constexpr std::size_t kHistogramBins = 40000;  // 0.25 us each: up to 10 ms
+constexpr double kBinUs = 0.25;
+constexpr std::size_t kMaxEvents = 256;
+
+double limited(double value, double limit) { return limit > 0 ? std::min(value, limit) : value; }
+}  // namespace
+
+ServoLoop::ServoLoop(Device& device, const ServoConfig& config, const Pose& initial_pose)
+    : device_(device),
+      config_(config),
+      caps_(device.capabilities()),
+      period_(1.0 / config.rate_hz),
+      proxy_(initial_pose),
+      stiffness_(config.stiffness),
+      angular_stiffness_(config.angular_stiffness),
+      damping_(config.damping),
+      angular_damping_(config.angular_damping),
+      step_histogram_(kHistogramBins, 0) {
+  events_.reserve(kMaxEvents);
+  last_.proxy = proxy_;
+  last_.target = proxy_;
+  snapshots_.write(last_);
+}
+
+ServoLoop::~ServoLoop() { stop(); }
+
+void ServoLoop::hold_to(const JointState& joint) {
+  joint_ = joint;
+  engaged_ = true;
+  held_ = true;
+  proxy_ = snap_to_joint(joint_, proxy_);
+  engaged_axial_ = (proxy_ * config_.centre).dot(joint_.axis);
+}
+
+void ServoLoop::release_joint() {
+  engaged_ = held_ = false;
+  joint_ = JointState{};
+}
+
+void ServoLoop::engage(const JointState& joint, double now) {
+  joint_ = joint;
+  engaged_ = true;
+  ++engagements_;
+  engaged_axial_ = (proxy_ * config_.centre).dot(joint_.axis);
+  if (events_.size() < events_.capacity()) events_.push_back(EngagementEvent{now, joint});
+}
+
+Pose ServoLoop::interpolate(const Pose& a, const Pose& b, double s) const {
+  const Vec3 c = config_.centre;
+  const Eigen::Quaterniond qa(a.linear()), qb(b.linear());
+  Pose out = Pose::Identity();
+  out.linear() = qa.slerp(s, qb).toRotationMatrix();
+  const Vec3 ca = a * c, cb = b * c;
+  out.translation() = ca + s * (cb - ca) - out.linear() * c;
+  return out;
+}
+
+Pose ServoLoop::limit_and_constrain(const Pose& target, double dt) {
+  const Vec3 c = config_.centre;
+  Vec6 xi = twist_between(proxy_, target, c);
+  // Speed limits keep each tick's motion small (collision bisection, capture).
+  const double lin = xi.head<3>().norm(), ang = xi.tail<3>().norm();
+  const double max_lin = config_.max_speed * dt, max_ang = config_.max_angular_speed * dt;
+  if (lin > max_lin) xi.head<3>() *= max_lin / lin;
+  if (ang > max_ang) xi.tail<3>() *= max_ang / ang;
+
+  if (engaged_) {
+    Eigen::Matrix<double, 6, 6> basis;
+    const int n = free_twists(joint_, proxy_ * c, basis);
+    if (n == 0) {
+      xi.setZero();
+    } else if (n < 6) {
+      // Weighted least squares: the free motion nearest the commanded one.
+      Vec6 w;
+      const double l2 = config_.length_scale * config_.length_scale;
+      w << 1, 1, 1, l2, l2, l2;
+      using Cols = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
+      using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+      using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+      const Cols s = basis.leftCols(n);
+      const Square m = s.transpose() * w.asDiagonal() * s;
+      const Column rhs = s.transpose() * (w.asDiagonal() * xi);
+      const Column q = m.ldlt().solve(rhs);
+      xi = s * q;
+    }
+  }
+  Pose candidate = apply_twist(proxy_, xi, c);
+  if (engaged_) candidate = snap_to_joint(joint_, candidate);
+  last_.blocked = false;
+  for (int i = 0; i < joint_.stop_count && engaged_; ++i) {
+    const Stop& stop = joint_.stops[i];
+    const double over = stop.normal.dot(candidate * c) - stop.limit;
+    if (over > 0) {
+      candidate.translation() -= over * stop.normal;
+      last_.blocked = true;
+    }
+  }
+  if (collision_ && collision_->collides(candidate, engaged_ ? joint_.group : -1)) {
+    // Bisection between the free proxy and the candidate: keep the last free pose.
+    double free = 0, hit = 1;
+    for (int k = 0; k < config_.collision_bisections; ++k) {
+      const double mid = 0.5 * (free + hit);
+      if (collision_->collides(interpolate(proxy_, candidate, mid), engaged_ ? joint_.group : -1))
+        hit = mid;
+      else
+        free = mid;
+    }
+    candidate = free > 0 ? interpolate(proxy_, candidate, free) : proxy_;
+    last_.blocked = true;
+  }
+  return candidate;
+}
+
+void ServoLoop::tick(double now) {
+  const double started = steady_seconds();
+  const double dt = period_;
+  const Vec3 c = config_.centre;
+  const DeviceSample sample = device_.read(now);
+
+  Watchdog reason = Watchdog::None;
+  const bool enabled = enabled_.load(std::memory_order_relaxed);
+  if (!enabled) reason = Watchdog::Disabled;
+  else if (!sample.connected) reason = Watchdog::Unplugged;
+  else if (now - sample.time > config_.stale_after) reason = Watchdog::Stale;
+  else if (overrun_pending_) reason = Watchdog::Overrun;
+  overrun_pending_ = false;
+
+  // Gains within what the device renders stably.
+  const double k = limited(stiffness_.load(std::memory_order_relaxed), caps_.max_stiffness);
+  const double kr = limited(angular_stiffness_.load(std::memory_order_relaxed), caps_.max_angular_stiffness);
+  const double b = limited(damping_.load(std::memory_order_relaxed), caps_.max_damping);
+  const double br = angular_damping_.load(std::memory_order_relaxed);
+
+  Pose target = proxy_;
+  Vec6 device_velocity = Vec6::Zero();
+  Wrench coupling;
+  if (reason == Watchdog::None) {
+    if (caps_.control == ControlMode::Position) {
+      // A clutch: after disable or unplugging, the device picks up where the part is.
+      if (!was_enabled_) anchor_ = proxy_ * sample.pose.inverse();
+      target = anchor_ * sample.pose;
+      device_velocity.head<3>() = anchor_.linear() * sample.velocity.head<3>();
+      device_velocity.tail<3>() = anchor_.linear() * sample.velocity.tail<3>();
+    } else {
+      Vec6 rate;
+      rate.head<3>() = config_.rate_frame * sample.axes.head<3>() * config_.rate_speed;
+      rate.tail<3>() = config_.rate_frame * sample.axes.tail<3>() * config_.rate_angular_speed;
+      target = apply_twist(proxy_, rate * dt, c);
+      device_velocity = rate;
+    }
+    was_enabled_ = true;
+
+    // Engagement: capture near a joint (once re-armed after a break-away).
+    if (finder_ && !engaged_) {
+      JointState found;
+      const Pose probe = interpolate(proxy_, target, 1.0);
+      if (finder_->capture(probe, found)) {
+        if (rearm_) {
+          engage(found, now);
+          // The snap is a jump only within the capture distance.
+          const Pose snapped = snap_to_joint(joint_, proxy_);
+          if (!collision_ || !collision_->collides(snapped, joint_.group)) proxy_ = snapped;
+          else engaged_ = false;
+        }
+      } else {
+        rearm_ = true;
+      }
+    }
+
+    const Pose next = limit_and_constrain(target, dt);
+    proxy_velocity_ = twist_between(proxy_, next, c) / dt;
+    proxy_ = next;
+
+    // Virtual coupling: the device is pulled towards the proxy.
+    coupling.force = k * (proxy_ * c - target * c) + b * (proxy_velocity_.head<3>() - device_velocity.head<3>());
+    coupling.torque = kr * rotation_vector(proxy_.linear() * target.linear().transpose()) +
+                      br * (proxy_velocity_.tail<3>() - device_velocity.tail<3>());
+
+    if (engaged_ && !held_) {
+      // The hand pulls across the joint's free directions: break away above the threshold.
+      const Vec3 pull = -coupling.force;
+      Vec3 across = pull;
+      if (joint_.kind == JointKind::Cylindrical || joint_.kind == JointKind::Prismatic)
+        across -= pull.dot(joint_.axis) * joint_.axis;
+      if (across.norm() > config_.breakaway_force) {
+        engaged_ = false;
+        rearm_ = false;
+      } else if (finder_ && !finder_->still_engaged(proxy_, joint_)) {
+        engaged_ = false;
+      }
+    }
+  } else {
+    was_enabled_ = reason == Watchdog::Stale || reason == Watchdog::Overrun ? was_enabled_ : false;
+    proxy_velocity_.setZero();
+  }
+
+  const Wrench rendered = reason == Watchdog::None ? clamp_to_device(coupling, caps_) : Wrench{};
+  device_.write(rendered);
+
+  double penetration = engaged_ ? joint_deviation(joint_, proxy_) : 0.0;
+  for (int i = 0; engaged_ && i < joint_.stop_count; ++i)
+    penetration = std::max(penetration, joint_.stops[i].normal.dot(proxy_ * c) - joint_.stops[i].limit);
+  max_penetration_ = std::max(max_penetration_, penetration);
+  max_force_ = std::max(max_force_, rendered.force.norm());
+
+  ++ticks_;
+  const double step_us = (steady_seconds() - started) * 1e6;
+  step_max_us_ = std::max(step_max_us_, step_us);
+  ++step_histogram_[std::min<std::size_t>(static_cast<std::size_t>(step_us / kBinUs), kHistogramBins - 1)];
+  if (step_us > period_ * 1e6) {
+    ++overruns_;
+    overrun_pending_ = !config_.lockstep;
+  }
+
+  last_.proxy = proxy_;
+  last_.target = target;
+  last_.wrench = rendered;
+  last_.coupling = coupling;
+  last_.joint = joint_;
+  last_.engaged = engaged_;
+  last_.device_connected = sample.connected;
+  last_.enabled = enabled;
+  last_.watchdog = reason;
+  last_.ticks = ticks_;
+  last_.overruns = overruns_;
+  last_.time = now;
+  last_.rate_hz = rate_hz();
+  last_.jitter_us = jitter_us();
+  last_.last_step_us = step_us;
+  last_.insertion_depth = engaged_ ? (proxy_ * c).dot(joint_.axis) - engaged_axial_ : 0.0;
+  last_.penetration = penetration;
+  last_.max_penetration = max_penetration_;
+  last_.max_force = max_force_;
+  last_.engagements = engagements_;
+  last_.axes = sample.axes;
+  snapshots_.write(last_);
+}
+
+void ServoLoop::step_lockstep() { tick(static_cast<double>(ticks_) * period_); }
+
+bool ServoLoop::start() {
+  if (thread_.joinable()) return false;
+  stop_ = false;
+  thread_ = std::thread([this] { run(); });
+  return true;
+}
+
+void ServoLoop::stop() {
+  stop_ = true;
+  if (thread_.joinable()) thread_.join();
+}
+
+void ServoLoop::run() {
+  using clock = std::chrono::steady_clock;
+  if (config_.realtime_priority > 0) {
+    // A haptic loop wants a real-time class; without the privilege it runs as it is.
+    sched_param param{};
+    param.sched_priority = config_.realtime_priority;
+    got_priority_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
+  }
+  const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(period_));
+  const double origin = steady_seconds();
+  start_time_ = 0;
+  auto next = clock::now();
+  while (!stop_.load(std::memory_order_relaxed)) {
+    const double now = steady_seconds() - origin;
+    if (ticks_ > 0) {
+      // Welford's running mean and variance of the tick period.
+      const double p = now - last_tick_start_;
+      ++period_count_;
+      const double delta = p - period_mean_;
+      period_mean_ += delta / period_count_;
+      period_m2_ += delta * (p - period_mean_);
+    }
+    last_tick_start_ = now;
+    tick(now);
+    next += period;
+    const auto after = clock::now();
+    if (after >= next) next = after;  // behind: no burst of catch-up ticks
+    else std::this_thread::sleep_until(next);
+  }
+  device_.write(Wrench{});
+}
+
+double ServoLoop::rate_hz() const {
+  if (config_.lockstep) return config_.rate_hz;
+  return period_count_ > 0 && period_mean_ > 0 ? 1.0 / period_mean_ : 0.0;
+}
+
+double ServoLoop::jitter_us() const {
+  if (config_.lockstep || period_count_ < 2) return 0;
+  return std::sqrt(period_m2_ / (period_count_ - 1)) * 1e6;
+}
+
+double ServoLoop::step_percentile_us(double p) const {
+  std::uint64_t total = 0;
+  for (auto n : step_histogram_) total += n;
+  if (total == 0) return 0;
+  const double wanted = p / 100.0 * total;
+  std::uint64_t seen = 0;
+  for (std::size_t i = 0; i < step_histogram_.size(); ++i) {
+    seen += step_histogram_[i];
+    if (seen >= wanted) return (static_cast<double>(i) + 0.5) * kBinUs;
+  }
+  return static_cast<double>(step_histogram_.size()) * kBinUs;
+}
+
+}  // namespace contactcore::haptics

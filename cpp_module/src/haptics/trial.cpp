@@ -1,0 +1,172 @@
+#include "contactcore/haptics/trial.h"
+
+#include <chrono>
+#include <set>
+#include <thread>
+
+#include <BRepBndLib.hxx>
+#include <Standard_Failure.hxx>
+
+namespace contactcore::haptics {
+
+std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const std::string& part,
+                                              const SceneOptions& options, Status& status, Progress* progress) {
+  const auto started = std::chrono::steady_clock::now();
+  std::unique_ptr<TrialScene> scene(new TrialScene());
+  int moving = -1;
+  for (std::size_t i = 0; i < assembly.bodies.size(); ++i) {
+    scene->names_.push_back(assembly.bodies[i].name);
+    if (assembly.bodies[i].name == part) moving = static_cast<int>(i);
+  }
+  if (moving < 0) {
+    std::string names;
+    for (const auto& n : scene->names_) names += (names.empty() ? "" : ", ") + n;
+    status = Status::failure(StatusCode::InvalidInput, "no body named '" + part + "' (bodies: " + names + ")");
+    status.body = part;
+    return nullptr;
+  }
+  scene->moving_ = moving;
+  scene->part_name_ = part;
+  try {
+    // Partitions with the same tolerances the contact stage uses.
+    Bnd_Box model_box;
+    for (const Body& b : assembly.bodies) BRepBndLib::Add(b.shape, model_box, false);
+    const ContactOptions defaults;
+    const Tolerances tol = resolve_tolerances(model_box, defaults.linear, defaults.angular);
+    const std::size_t n = assembly.bodies.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      scene->partitions_.push_back(partition_shape(assembly.bodies[i].shape, tol));
+      if (progress && !progress->report("partitions", double(i + 1) / n)) {
+        status = Status::failure(StatusCode::Cancelled, "cancelled");
+        return nullptr;
+      }
+    }
+    scene->centre_ = [&] {
+      const MassProperties mp = mass_properties(assembly.bodies[moving].shape);
+      return Vec3(mp.centre.X(), mp.centre.Y(), mp.centre.Z());
+    }();
+    scene->contacts_ = std::make_unique<RealtimeContacts>(scene->partitions_, moving, options.capture);
+    scene->groups_ = collision_groups(*scene->contacts_);
+    scene->finder_ = std::make_unique<ContactJointFinder>(*scene->contacts_, scene->groups_.moving_group,
+                                                          scene->centre_);
+    std::vector<TriangleMesh> meshes(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      meshes[i] = tessellate(assembly.bodies[i].shape, scene->partitions_[i], options.deflection, options.angle);
+      if (progress && !progress->report("collision models", double(i + 1) / n)) {
+        status = Status::failure(StatusCode::Cancelled, "cancelled");
+        return nullptr;
+      }
+    }
+    scene->collision_ = std::make_unique<MeshCollision>(meshes, moving, scene->groups_);
+  } catch (const Standard_Failure& failure) {
+    status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
+    status.body = part;
+    return nullptr;
+  }
+  scene->setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  status = Status::success();
+  return scene;
+}
+
+TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialOptions& options, bool realtime) {
+  TrialResult result;
+  const Vec3 c = scene.centre();
+  auto pose_of = [&](const ScriptKey& k) {
+    return offset_pose(k.translate, Vec3(rad(k.rotate_deg.x()), rad(k.rotate_deg.y()), rad(k.rotate_deg.z())), c);
+  };
+  std::vector<HandKey> keys;
+  for (const ScriptKey& k : script.hand) {
+    HandKey h;
+    h.t = k.t;
+    h.pose = pose_of(k);
+    keys.push_back(h);
+  }
+  const Pose start = pose_of(script.start);
+  SimulatedHand hand(HandScript(keys), options.hand, c, start);
+  ServoConfig config = options.servo;
+  config.centre = c;
+  config.lockstep = !realtime;
+  ServoLoop loop(hand, config, start);
+  loop.set_joint_finder(&scene.finder());
+  loop.set_collision(&scene.collision());
+
+  const double duration = (keys.empty() ? 0.0 : keys.back().t) + options.settle;
+  const auto total = static_cast<std::uint64_t>(duration * config.rate_hz + 0.5);
+  // Joints as they engage, and the further bodies the part enters on the same
+  // joint (a shaft reaching its second bearing): real-time contacts at the
+  // recorded poses, outside the loop.
+  std::set<std::pair<int, int>> seen;
+  std::vector<LiveContact> live(256);
+  auto note = [&](int body, int type, JointKind kind, double t) {
+    if (!seen.insert({body, type}).second) return;
+    EngagedJoint j;
+    j.with = scene.body_names()[body];
+    j.type = to_string(static_cast<ContactType>(type));
+    j.joint = to_string(kind);
+    j.time = t;
+    result.joints_engaged.push_back(j);
+  };
+  auto track = [&](const ServoSnapshot& s) {
+    if (!s.engaged) return;
+    for (int k = 0; k < s.joint.body_count; ++k) note(s.joint.bodies[k], s.joint.contact_type, s.joint.kind, s.time);
+    const int n = scene.contacts().update(s.proxy, live.data(), static_cast<int>(live.size()));
+    for (int i = 0; i < n; ++i) {
+      const LiveContact& lc = live[i];
+      if (static_cast<int>(lc.type) != s.joint.contact_type) continue;
+      const SurfaceProxy& o = scene.contacts().surfaces(lc.body)[lc.other_index];
+      const Vec3 r = o.location - s.joint.point;
+      if (std::abs(o.axis.dot(s.joint.axis)) > 0.9999 && (r - r.dot(s.joint.axis) * s.joint.axis).norm() < 1e-3)
+        note(lc.body, lc.type == ContactType::CLJ ? s.joint.contact_type : static_cast<int>(lc.type), s.joint.kind, s.time);
+    }
+  };
+  auto record = [&](const ServoSnapshot& s) {
+    TrialSample sample;
+    sample.t = s.time;
+    Vec3 r;
+    offset_of(s.proxy, c, sample.translate, r);
+    sample.rotate_deg = Vec3(deg(r.x()), deg(r.y()), deg(r.z()));
+    sample.force = s.wrench.force;
+    sample.engaged = s.engaged;
+    sample.penetration = s.penetration;
+    result.path.push_back(sample);
+  };
+  if (!realtime) {
+    for (std::uint64_t i = 0; i < total; ++i) {
+      loop.step_lockstep();
+      const bool sample = i % std::max(1, options.record_every) == 0 || i + 1 == total;
+      if (sample) track(loop.last());
+      if (options.record_every > 0 && sample) record(loop.last());
+    }
+  } else {
+    loop.start();
+    const auto period = std::chrono::duration<double>(options.record_every > 0 ? options.record_every / config.rate_hz : 0.01);
+    while (loop.snapshot().ticks < total) {
+      std::this_thread::sleep_for(period);
+      const ServoSnapshot s = loop.snapshot();
+      track(s);
+      if (options.record_every > 0) record(s);
+    }
+    loop.stop();
+  }
+  const ServoSnapshot& last = loop.last();
+  result.ticks = loop.ticks();
+  result.rate_hz = loop.rate_hz();
+  result.step_p50_us = loop.step_percentile_us(50);
+  result.step_p99_us = loop.step_percentile_us(99);
+  result.step_max_us = loop.step_max_us();
+  result.overruns = loop.overruns();
+  Vec3 r;
+  offset_of(last.proxy, c, result.final_translate, r);
+  result.final_rotate_deg = Vec3(deg(r.x()), deg(r.y()), deg(r.z()));
+  result.max_penetration_mm = last.max_penetration;
+  result.max_force_n = last.max_force;
+  for (const EngagementEvent& e : loop.engagement_events())
+    for (int k = 0; k < e.joint.body_count; ++k) note(e.joint.bodies[k], e.joint.contact_type, e.joint.kind, e.time);
+  std::stable_sort(result.joints_engaged.begin(), result.joints_engaged.end(),
+                   [](const EngagedJoint& a, const EngagedJoint& b) { return a.time < b.time; });
+  result.setup_seconds = scene.setup_seconds();
+  result.status = Status::success();
+  return result;
+}
+
+}  // namespace contactcore::haptics

@@ -1,0 +1,109 @@
+"""Runs inside the FreeCAD GUI (freecad tests/gui/haptic_session.py under Xvfb).
+
+Opens the bundled motor, selects its Axis, opens the haptic trial panel
+(Contacts_HapticTrial), plays the scripted insertion of the axis into its
+bearings in real time (the 1 kHz loop on its thread, the panel at 30 Hz),
+records the path, takes screenshots on the way and at the end, commits with
+OK, checks the undo, and writes what it saw to $CONTACTS_GUI_RESULT."""
+import json
+import os
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui
+from PySide2 import QtWidgets
+
+out_dir = os.environ["CONTACTS_GUI_OUT"]
+report = {"errors": []}
+
+
+def wait(seconds):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        QtWidgets.QApplication.processEvents()
+        time.sleep(0.005)
+
+
+def placement_offset(placement):
+    return [placement.Base.x, placement.Base.y, placement.Base.z], list(placement.Rotation.toEuler())
+
+
+def save_view(name):
+    path = os.path.join(out_dir, name)
+    FreeCADGui.activeDocument().activeView().saveImage(path, 800, 600, "White")
+    return path
+
+
+def run():
+    main = FreeCADGui.getMainWindow()
+    main.resize(1280, 960)
+    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
+    axis = next(o for o in doc.Objects if o.Label == "Axis")
+    for o in doc.Objects:  # show the shaft and what it goes through, cut open by hiding the rest
+        if o.Label in ("Body", "Stator", "Front-cover", "Back-cover") or o.Label.startswith(("Screw", "Magnet")):
+            o.ViewObject.Visibility = False
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewFront()
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(axis)
+    original = FreeCAD.Placement(axis.Placement)
+    report["command_listed"] = "Contacts_HapticTrial" in FreeCADGui.listCommands()
+    FreeCADGui.runCommand("Contacts_HapticTrial")
+    wait(0.5)
+    from contactwb.gui import haptic_panel
+    panel = haptic_panel.active_panel
+    report["panel_open"] = panel is not None
+    if panel is None:
+        return
+    report["device_message"] = panel.device_message.text()
+    report["stiffness_max"] = panel.stiffness_spin.maximum()
+    with open(os.environ["CONTACTS_TRIAL_SCRIPT"]) as stream:
+        script = json.load(stream)
+    dock = next((d for d in main.findChildren(QtWidgets.QDockWidget) if d.windowTitle() == "Combo View"), None)
+    if dock is not None:
+        from PySide2 import QtCore
+        main.resizeDocks([dock], [430], QtCore.Qt.Horizontal)
+    panel.start_recording()
+    panel.play_script(script)
+    wait(0.1)
+    FreeCADGui.Selection.clearSelection()  # the axis in its own colour, not the selection's
+    view.fitAll()
+    wait(1.1)
+    report["mid_offset"] = placement_offset(axis.Placement)[0]
+    report["mid_joint"] = panel.joint_label.text()
+    report["mid_png"] = save_view("haptic_trial_mid.png")
+    window_png = os.path.join(out_dir, "haptic_trial_panel.png")
+    main.grab().save(window_png)
+    report["panel_png"] = window_png
+    while not panel.script_done():
+        wait(0.05)
+    wait(2.0)  # settle
+    report["readouts"] = {k: v.text() for k, v in panel.readouts.items()}
+    samples = panel.stop_recording()
+    report["samples"] = len(samples)
+    report["max_penetration"] = max(s["penetration"] for s in samples)
+    report["engaged_all"] = all(s["engaged"] for s in samples[1:])
+    report["z_first"] = samples[0]["translate"][2]
+    view.fitAll()
+    report["end_png"] = save_view("haptic_trial_end.png")
+    undo_before = list(doc.UndoNames)
+    panel.accept()
+    FreeCADGui.updateGui()
+    report["panel_closed"] = haptic_panel.active_panel is None
+    final = FreeCAD.Placement(axis.Placement)
+    report["final_offset_mm"] = (final.Base - original.Base).Length
+    report["final_angle_deg"] = abs(final.Rotation.multiply(original.Rotation.inverted()).Angle) * 180 / 3.141592653589793
+    report["undo_added"] = [n for n in doc.UndoNames if n not in undo_before] or list(doc.UndoNames)[:1]
+    doc.undo()
+    report["undo_restores"] = (axis.Placement.Base - original.Base).Length < 1e-9
+
+
+try:
+    run()
+except Exception:
+    report["errors"].append(traceback.format_exc())
+with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
+    json.dump(report, stream, indent=1)
+os._exit(0)
