@@ -283,3 +283,8 @@ def test_compound_import_names_the_bodies(report):
     assert compound["objects"] == [["motor001", 18]] or [n for _, n in compound["objects"]] == [18]
     assert compound["contacts"] == MOTOR_CONTACTS
     assert set(compound["bodies"]) <= set(compound["products"]) and len(compound["bodies"]) == 18
+
+
+@steps("preferences_dialog")
+def test_preferences_page_in_freecads_dialog(report):
+    assert report["preferences_dialog"] == {"page": True, "paint": "Common area"}

@@ -611,6 +611,27 @@ def compound_import():
     FreeCAD.closeDocument(doc.Name)
 
 
+def preferences_dialog():
+    """The Contacts page is in FreeCAD's Preferences dialog (looked at, then closed)."""
+    seen = {}
+
+    def inspect():
+        dialog = QtWidgets.QApplication.activeModalWidget()
+        if dialog is None:
+            QtCore.QTimer.singleShot(200, inspect)
+            return
+        pages = [w for w in dialog.findChildren(QtWidgets.QWidget) if w.objectName() == "ContactsPreferences"]
+        seen["page"] = bool(pages)
+        if pages:
+            combos = pages[0].findChildren(QtWidgets.QComboBox)
+            seen["paint"] = combos[0].currentText() if combos else None
+        dialog.reject()
+
+    QtCore.QTimer.singleShot(300, inspect)
+    FreeCADGui.runCommand("Std_DlgPreferences")
+    report["preferences_dialog"] = seen
+
+
 def report_view():
     """The Report view's text: tracebacks and errors the workbench printed."""
     main = FreeCADGui.getMainWindow()
@@ -624,7 +645,7 @@ def report_view():
 for function in (open_sample, panel_whole_document, update_in_place, other_scopes, table,
                  highlighted_contact, colours_and_paint, stale_after_move_and_delete,
                  export_command, joints, ghost_and_context_menu, partitions, save_and_reopen, asm4_pick, cancel_in_panel,
-                 compound_import, report_view):
+                 compound_import, preferences_dialog, report_view):
     step(function)
 with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
     json.dump(report, stream, indent=1)
