@@ -1,6 +1,7 @@
 #include "contactcore/contacts.h"
 
 #include "contactcore/common_area.h"
+#include "contactcore/interferences.h"
 
 #include <algorithm>
 #include <chrono>
@@ -182,6 +183,11 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       }
     }
     result.times.area = seconds_since(start);
+    const Status interferences = find_interferences(assembly, result, progress);
+    if (!interferences.ok()) {
+      result.status = interferences;
+      return result;
+    }
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
   }
