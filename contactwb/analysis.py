@@ -169,6 +169,8 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None):
     """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
     if "\0" in str(path):
         raise core.InputError(f"the path contains a NUL character: {path!r}")
+    if os.path.isdir(path):
+        raise core.InputError(f"a directory, not a file: '{path}'")
     if not os.path.isfile(path):
         raise core.InputError(f"no such file: '{path}'")
     # As bytes: a file name that is not UTF-8 reaches OCCT unchanged.
