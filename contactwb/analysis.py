@@ -141,7 +141,7 @@ def _analysis(source, assembly, result, face_name=None):
             area=c.area, partial=c.partial, span=degrees(c.span), radius=c.radius,
             half_angle=degrees(c.half_angle), point=c.point, direction=c.direction,
             body_a=c.body_a, body_b=c.body_b))
-    messages = list(assembly.messages) + list(result.messages)
+    messages = list(assembly.messages) + list(getattr(result, "messages", []))
     # Faces OCCT could not evaluate were typed Other and skipped: say which.
     for name, body in zip(names, result.partitions):
         if body.status != "ok":
@@ -153,7 +153,7 @@ def _analysis(source, assembly, result, face_name=None):
         linear_tolerance=result.tolerances.linear, angular_tolerance=result.tolerances.angular,
         bodies=[BodyInfo(b.name, b.path, b.volume, b.center) for b in assembly.bodies],
         contacts=contacts, messages=messages, body_pairs=len(result.body_pairs),
-        interferences=[(names[i.body_a], names[i.body_b], i.volume) for i in result.interferences],
+        interferences=[(names[i.body_a], names[i.body_b], i.volume) for i in getattr(result, "interferences", [])],
         candidates=result.candidates, times=times, raw=result)
 
 
