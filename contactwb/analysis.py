@@ -104,6 +104,7 @@ class Analysis:
     bodies: List[BodyInfo]
     contacts: List[ContactRecord]
     messages: List[str] = field(default_factory=list)
+    interferences: List[Tuple[str, str, float]] = field(default_factory=list)  # (a, b, volume mm^3)
     body_pairs: int = 0
     candidates: int = 0
     times: Dict[str, float] = field(default_factory=dict)
@@ -135,6 +136,7 @@ class Analysis:
             "totals": dict(self.counts()),
             "skipped": [{"a": s.a, "b": s.b, "faces_a": s.faces_a, "faces_b": s.faces_b, "message": s.message}
                         for s in self.skipped],
+            "interferences": [{"a": a, "b": b, "volume": v} for a, b, v in self.interferences],
             "messages": self.messages,
             "times": self.times,
         }
@@ -157,6 +159,11 @@ class Analysis:
             for (a, b), n in pairs.items():
                 note = f"  ({partial[(a, b)]} partial)" if partial[(a, b)] else ""
                 lines.append(f"  {a:<{width}}  <->  {b:<{width}}  {n}{note}")
+        if self.interferences:
+            lines.append("")
+            lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
+            for a, b, volume in self.interferences:
+                lines.append(f"  {a:<{width}}  <->  {b:<{width}}  {volume:.6g} mm3")
         lines.append("")
         summary = ", ".join(f"{counts[k]} {k}" for k in TYPE_ORDER if counts[k])
         lines.append(f"Total: {len(self.contacts)} contacts ({summary or 'none'}) "
@@ -181,7 +188,7 @@ def _analysis(source, assembly, result, face_name=None):
             area=c.area, partial=c.partial, span=degrees(c.span), radius=c.radius,
             half_angle=degrees(c.half_angle), point=c.point, direction=c.direction,
             body_a=c.body_a, body_b=c.body_b))
-    messages = list(assembly.messages)
+    messages = list(assembly.messages) + list(getattr(result, "messages", []))
     # Faces OCCT could not evaluate were typed Other and skipped: say which.
     for name, body in zip(names, result.partitions):
         if body.status != "ok":
@@ -200,6 +207,7 @@ def _analysis(source, assembly, result, face_name=None):
         linear_tolerance=result.tolerances.linear, angular_tolerance=result.tolerances.angular,
         bodies=[BodyInfo(b.name, b.path, mass, i) for i, b in enumerate(core_bodies)],
         contacts=contacts, messages=messages, body_pairs=len(result.body_pairs),
+        interferences=[(names[i.body_a], names[i.body_b], i.volume) for i in result.interferences],
         candidates=result.candidates, times=times, skipped=skipped)
 
 
@@ -217,16 +225,21 @@ def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=
 
 def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None):
     """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
+    if "\0" in str(path):
+        raise core.InputError(f"the path contains a NUL character: {path!r}")
+    if os.path.isdir(path):
+        raise core.InputError(f"a directory, not a file: '{path}'")
     if not os.path.isfile(path):
-        raise core.ContactsError(f"no such file: '{path}'")
-    assembly = core.contactcore.read_step(os.path.abspath(path))  # its errors name the file
+        raise core.InputError(f"no such file: '{path}'")
+    # As bytes: a file name that is not UTF-8 reaches OCCT unchanged.
+    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)))  # its errors name the file
     try:
         return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
                                          max_pairs=max_pairs)
     except core.Cancelled:
         raise
     except core.ContactsError as error:
-        raise core.ContactsError(f"{error} in file '{path}'") from error
+        raise type(error)(f"{error} in file '{path}'") from error  # same class: callers tell input from options
 
 
 def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None,

@@ -153,6 +153,9 @@ def document_bodies(doc, objects=None, messages=None):
         if _is_leaf(obj):
             shape = _global_shape(root, subname)
             if shape.isNull() or not shape.Solids:
+                if messages is not None and shape.isNull():
+                    messages.append(f"skipped '{obj.Label}': it has no shape (not restored or not recomputed: "
+                                    "the document may be damaged)")
                 if messages is not None and not shape.isNull() and shape.Faces:
                     messages.append(f"skipped '{obj.Label}': no solid (surface model or open shell)")
                 return

@@ -1,12 +1,62 @@
 """`contacts FILE` — the functional contacts of an assembly (STEP or FCStd).
 
 Prints the paper's table (per contact type, the body pairs and counts, with
-totals), or JSON with --json."""
+totals), or JSON with --json.
+
+Exit codes: 0 done; 2 usage error (bad option or tolerance); 3 the input
+cannot be read or holds no usable solid; 4 the analysis failed (OCCT error,
+out of memory); 5 internal error (a bug: please report it); 130 cancelled."""
 import argparse
+import contextlib
 import json
+import math
 import os
 import sys
 import time
+import zipfile
+
+EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED = 0, 2, 3, 4, 5, 130
+
+
+def _tolerance(text):
+    """argparse type: a positive, finite number."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}")
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"must be a positive, finite number, got {text}")
+    return value
+
+
+@contextlib.contextmanager
+def _stdout_to_stderr():
+    """OCCT and FreeCAD print to the C-level stdout: keep it for our output."""
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        os.dup2(2, 1)
+        yield
+    finally:
+        sys.stdout.flush()
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
+def _check_fcstd(path, core):
+    """A clear error for what FreeCAD would half-open or crash on."""
+    if not zipfile.is_zipfile(path):
+        raise core.InputError(f"not a FreeCAD document (not a zip archive: truncated, or another format) "
+                              f"(file '{path}')")
+    try:
+        with zipfile.ZipFile(path) as archive:
+            if "Document.xml" not in archive.namelist():
+                raise core.InputError(f"not a FreeCAD document (no Document.xml) (file '{path}')")
+            damaged = archive.testzip()
+    except zipfile.BadZipFile as error:
+        raise core.InputError(f"damaged FreeCAD document ({error}) (file '{path}')")
+    if damaged:
+        raise core.InputError(f"damaged FreeCAD document (member '{damaged}' is corrupt) (file '{path}')")
 
 
 def _progress_printer(stream):
@@ -36,12 +86,12 @@ def main(argv=None):
     if argv and argv[0] in SUBCOMMANDS:
         import importlib
         return importlib.import_module(SUBCOMMANDS[argv[0]]).main(argv[1:])
-    parser = argparse.ArgumentParser(prog="contacts", description=__doc__,
+    parser = argparse.ArgumentParser(prog="contacts", description=__doc__,  # exit codes in __doc__
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file", help="a STEP (.step/.stp) or FreeCAD (.FCStd) assembly")
     parser.add_argument("--json", action="store_true", help="print JSON instead of the table")
-    parser.add_argument("--linear", type=float, help="linear tolerance, mm (default: scales with the model)")
-    parser.add_argument("--angular", type=float, help="angular tolerance, radians (default 1e-4)")
+    parser.add_argument("--linear", type=_tolerance, help="linear tolerance, mm (default: scales with the model)")
+    parser.add_argument("--angular", type=_tolerance, help="angular tolerance, radians (default 1e-4)")
     parser.add_argument("--progress", action="store_true", help="show progress on stderr")
     parser.add_argument("--max-pairs", type=int, default=None, metavar="N",
                         help="stop when more than N body pairs have meeting boxes (default 2000000): "
@@ -64,34 +114,56 @@ def main(argv=None):
     start = time.perf_counter()
     found = None
     wants_joints = args.joints or args.graph
+    # Paths go to C++ as bytes: a file name that is not UTF-8 still works.
+    path = os.fsdecode(args.file)
     try:
-        if args.file.lower().endswith(".fcstd"):
-            from contactwb import freecad_setup
-            if not os.path.isfile(args.file):
-                raise core.ContactsError(f"no such file: '{args.file}'")
-            doc = freecad_setup.open_document(os.path.abspath(args.file))
-            if wants_joints:
-                result, found, _ = joints_api.joints_in_document(
-                    doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
-                    clearance_gap=args.clearance_gap, max_pairs=args.max_pairs)
+        with _stdout_to_stderr():
+            if path.lower().endswith(".fcstd"):
+                from contactwb import freecad_setup
+                if not os.path.isfile(path):
+                    raise core.InputError(f"no such file: '{path}'")
+                _check_fcstd(path, core)
+                doc = freecad_setup.open_document(os.path.abspath(path))
+                if wants_joints:
+                    result, found, _ = joints_api.joints_in_document(
+                        doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
+                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs)
+                else:
+                    result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
+                                                                   progress=progress, max_pairs=args.max_pairs)
+            elif wants_joints:
+                result, found = joints_api.joints_in_step(path, args.linear, args.angular, progress,
+                                                          ground=args.ground, clearance_gap=args.clearance_gap,
+                                                          max_pairs=args.max_pairs)
             else:
-                result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
-                                                               progress=progress, max_pairs=args.max_pairs)
-        elif wants_joints:
-            result, found = joints_api.joints_in_step(args.file, args.linear, args.angular, progress,
-                                                      ground=args.ground, clearance_gap=args.clearance_gap,
-                                                      max_pairs=args.max_pairs)
-        else:
-            result = analysis.find_contacts_in_step(args.file, args.linear, args.angular, progress,
-                                                    max_pairs=args.max_pairs)
-        if args.graph:
-            found.write_graph(args.graph)
-    except core.Cancelled:
+                result = analysis.find_contacts_in_step(path, args.linear, args.angular, progress,
+                                                        max_pairs=args.max_pairs)
+            if args.graph:
+                found.write_graph(args.graph)
+    except (core.Cancelled, KeyboardInterrupt):
         print("contacts: cancelled", file=sys.stderr)
-        return 130
+        return EXIT_CANCELLED
+    except core.ArgumentError as error:
+        print(f"contacts: {error}", file=sys.stderr)
+        return EXIT_USAGE
+    except core.InputError as error:
+        print(f"contacts: {error}", file=sys.stderr)
+        return EXIT_INPUT
     except core.ContactsError as error:
         print(f"contacts: {error}", file=sys.stderr)
-        return 1
+        return EXIT_FAILED
+    except MemoryError:
+        print("contacts: out of memory", file=sys.stderr)
+        return EXIT_FAILED
+    except (OSError, UnicodeError, ValueError) as error:
+        print(f"contacts: cannot read '{path}': {error}", file=sys.stderr)
+        return EXIT_INPUT
+    except Exception as error:  # a bug: say so, without a traceback unless asked
+        if os.environ.get("CONTACTS_DEBUG"):
+            raise
+        print(f"contacts: internal error ({type(error).__name__}: {error}); "
+              "set CONTACTS_DEBUG=1 for the traceback and please report it", file=sys.stderr)
+        return EXIT_INTERNAL
     elapsed = time.perf_counter() - start
     if args.json:
         document = result.to_json()

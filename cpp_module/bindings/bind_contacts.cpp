@@ -112,7 +112,17 @@ void bind_contacts(py::module_& m) {
                s.message + ">";
       });
 
+  py::class_<Interference>(m, "Interference", "Two bodies whose material overlaps (never a contact).")
+      .def_readonly("body_a", &Interference::body_a)
+      .def_readonly("body_b", &Interference::body_b)
+      .def_readonly("volume", &Interference::volume, "common volume, mm^3")
+      .def("__repr__", [](const Interference& i) {
+        return "<Interference bodies " + std::to_string(i.body_a) + "-" + std::to_string(i.body_b) +
+               " volume=" + std::to_string(i.volume) + ">";
+      });
+
   py::class_<ContactsResult>(m, "ContactsResult", "Contacts of an assembly and what led to them.")
+      .def_readonly("interferences", &ContactsResult::interferences)
       .def_readonly("tolerances", &ContactsResult::tolerances)
       .def_readonly("partitions", &ContactsResult::partitions)
       .def_readonly("body_pairs", &ContactsResult::body_pairs)

@@ -343,8 +343,8 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
           fail(StatusCode::ReadError, message);
         }
         if (result.status.ok() && !transferred) {
-          fail(StatusCode::ReadError, "STEP transfer failed" +
-                                          (check.damaged_count ? "; damaged entities: " + describe_damaged(check) : ""));
+          fail(StatusCode::ReadError, check.damaged_count ? "STEP transfer failed; damaged entities: " + describe_damaged(check)
+                                                          : std::string("STEP transfer failed: no solid in the file"));
         }
         if (result.status.ok()) {
           Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());

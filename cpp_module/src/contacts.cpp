@@ -3,6 +3,7 @@
 
 #include "contactcore/common_area.h"
 #include "contactcore/instances.h"
+#include "contactcore/interferences.h"
 #include "contactcore/parallel.h"
 
 #include <algorithm>
@@ -411,6 +412,11 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
     result.times.area = seconds_since(start);
+    const Status interferences = find_interferences(assembly, result, progress);
+    if (!interferences.ok()) {
+      result.status = interferences;
+      return result;
+    }
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
   }
