@@ -97,19 +97,27 @@ Status refine(std::vector<WorkTriangle>& triangles, std::vector<Vec3>& vertices,
       if (length2(t.v[k], t.v[(k + 1) % 3]) > limit2) midpoint.emplace(edge_key(t.v[k], t.v[(k + 1) % 3]), -1);
     }
     if (midpoint.empty()) return Status::success();
-    for (bool changed = true; changed;) {
-      changed = false;
-      for (const WorkTriangle& t : triangles) {
-        const int k = longest_edge(t);
-        const std::uint64_t longest = edge_key(t.v[k], t.v[(k + 1) % 3]);
-        if (midpoint.count(longest)) continue;
-        for (int j = 0; j < 3; ++j)
-          if (midpoint.count(edge_key(t.v[j], t.v[(j + 1) % 3]))) {
-            midpoint.emplace(longest, -1);
-            changed = true;
-            break;
-          }
-      }
+    // Closure by a work list: a triangle with a split edge splits its longest one, which may in
+    // turn reach the triangle across it.
+    std::unordered_map<std::uint64_t, std::vector<int>> edge_triangles;
+    edge_triangles.reserve(triangles.size() * 2);
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        edge_triangles[edge_key(triangles[i].v[k], triangles[i].v[(k + 1) % 3])].push_back(static_cast<int>(i));
+    std::vector<int> work;
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        if (midpoint.count(edge_key(triangles[i].v[k], triangles[i].v[(k + 1) % 3]))) {
+          work.push_back(static_cast<int>(i));
+          break;
+        }
+    while (!work.empty()) {
+      const WorkTriangle& t = triangles[work.back()];
+      work.pop_back();
+      const int k = longest_edge(t);
+      const std::uint64_t longest = edge_key(t.v[k], t.v[(k + 1) % 3]);
+      if (!midpoint.emplace(longest, -1).second) continue;
+      for (int neighbour : edge_triangles[longest]) work.push_back(neighbour);
     }
     if (progress && !progress->report("refine", std::min(1.0, pass / 10.0)))
       return Status::failure(StatusCode::Cancelled, "cancelled while refining the mesh");
