@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
@@ -97,9 +98,26 @@ bool press_fit(const BodyPartitions& a, const BodyPartitions& b, const Tolerance
   return !probes.empty();
 }
 
-// True when one of the points lies inside both shapes.
-bool inside_both(const std::vector<gp_Pnt>& points, const TopoDS_Shape& a, const TopoDS_Shape& b, double tolerance) {
-  BRepClass3d_SolidClassifier in_a(a), in_b(b);
+// A point classifier per body, made when first needed and kept: it caches
+// the ray intersectors of the body's faces, the costly part on free-form
+// faces, for the body's other pairs.
+class Classifiers {
+ public:
+  explicit Classifiers(const Assembly& assembly) : assembly_(assembly), made_(assembly.bodies.size()) {}
+  BRepClass3d_SolidClassifier& of(int body) {
+    std::unique_ptr<BRepClass3d_SolidClassifier>& made = made_[body];
+    if (!made) made = std::make_unique<BRepClass3d_SolidClassifier>(assembly_.bodies[body].shape);
+    return *made;
+  }
+
+ private:
+  const Assembly& assembly_;
+  std::vector<std::unique_ptr<BRepClass3d_SolidClassifier>> made_;
+};
+
+// True when one of the points lies inside both bodies.
+bool inside_both(const std::vector<gp_Pnt>& points, BRepClass3d_SolidClassifier& in_a,
+                 BRepClass3d_SolidClassifier& in_b, double tolerance) {
   for (const gp_Pnt& p : points) {
     in_b.Perform(p, tolerance);
     if (in_b.State() != TopAbs_IN) continue;
@@ -136,6 +154,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
   const size_t n = assembly.bodies.size();
   const Tolerances& tol = result.tolerances;
   std::vector<char> dropped(n, 0);  // zero-volume bodies and second copies: no contacts of their own
+  Classifiers classifiers(assembly);
 
   for (size_t i = 0; i < n; ++i) {
     // A solid thinner than the tolerance holds no material (a zero-height box).
@@ -170,7 +189,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
       std::vector<gp_Pnt> probes;
       press_fit(pa, pb, tol, probes);
       press_fit(pb, pa, tol, probes);
-      if (probes.empty() || !inside_both(probes, shape_a, shape_b, tol.linear)) continue;
+      if (probes.empty() || !inside_both(probes, classifiers.of(a), classifiers.of(b), tol.linear)) continue;
       const double volume = common_volume(shape_a, shape_b, tol.linear);
       if (volume < 0) {
         result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
