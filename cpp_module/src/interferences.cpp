@@ -142,6 +142,9 @@ double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b, double tolera
   op.SetArguments(arguments);
   op.SetTools(tools);
   op.SetFuzzyValue(tolerance);
+  // Never grow the tolerances of the bodies' own edges and vertices: their
+  // boxes, and a second analysis of the same shapes, must not change.
+  op.SetNonDestructive(Standard_True);
   op.SetRunParallel(false);
   op.Build();
   if (!op.IsDone()) return -1;

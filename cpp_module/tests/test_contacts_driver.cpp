@@ -148,7 +148,7 @@ void expect_identical(const ContactsResult& serial, const ContactsResult& parall
       EXPECT_TRUE(a.params.location.IsEqual(b.params.location, 0)) << what << " body " << i << " partition " << k;
       EXPECT_TRUE(a.params.axis.IsEqual(b.params.axis, 0));
       EXPECT_EQ(a.params.radius, b.params.radius);
-      EXPECT_TRUE(same_box(a.box, b.box));
+      EXPECT_TRUE(same_box(a.box, b.box)) << what << " body " << i << " partition " << k;
     }
   }
   EXPECT_EQ(serial.body_pairs, parallel.body_pairs) << what;
