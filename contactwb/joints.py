@@ -117,7 +117,7 @@ class Joints:
         touches held still: generators of that cone, [] when it cannot."""
         raw, found, _ = self.raw
         if body not in self._body_index:
-            raise core.ContactsError(f"no body named '{body}'")
+            raise core.ArgumentError(f"no body named '{body}'")
         index = self._body_index[body]
         return [_vec(d) for d in core.contactcore.body_free_directions(raw, found, index)]
 
@@ -149,7 +149,7 @@ def _ground_index(names, ground):
     if ground is None:
         return -1  # the core picks the largest by volume
     if ground not in names:
-        raise core.ContactsError(f"no body named '{ground}' to ground; bodies: {', '.join(names)}")
+        raise core.ArgumentError(f"no body named '{ground}' to ground; bodies: {', '.join(names)}")
     return names.index(ground)
 
 
@@ -208,7 +208,7 @@ def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, 
     except core.Cancelled:
         raise
     except core.ContactsError as error:
-        raise core.ContactsError(f"{error} in file '{path}'") from error
+        raise type(error)(f"{error} in file '{path}'") from error  # same class: usage errors stay usage errors
 
 
 def joints_in_shapes(named_shapes, source="shapes", linear=None, angular=None, ground=None, clearance_gap=0.0):

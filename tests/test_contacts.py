@@ -200,7 +200,7 @@ def test_faces_that_failed_typing_are_reported():
     failed = SimpleNamespace(status="surface cannot be evaluated (Face3)")
     fake = SimpleNamespace(contacts=real.contacts, times=real.times, tolerances=real.tolerances,
                            body_pairs=real.body_pairs, candidates=real.candidates,
-                           skipped=real.skipped, messages=real.messages,
+                           skipped=real.skipped, messages=real.messages, interferences=real.interferences,
                            partitions=[real.partitions[0], failed])
     result = analysis._analysis("test", assembly, fake)
     assert result.messages == ["body 'b': surface cannot be evaluated (Face3)"]

@@ -170,7 +170,7 @@ def test_cli_table_ground_and_graph_files(sample, tmp_path):
     assert text.startswith("graph liaison {") and text.count(" -- ") == 29
     assert '"Front-cover" -- "Screw-1" [label="revolute (1)"' in text
     bad = run_cli(sample("motor.step"), "--joints", "--ground", "Nothing")
-    assert bad.returncode == 1 and "no body named 'Nothing'" in bad.stderr
+    assert bad.returncode == 2 and "no body named 'Nothing'" in bad.stderr  # a usage error
 
 
 def test_wrench_and_nut_clearance_not_contact(shared_step):

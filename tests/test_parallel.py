@@ -92,7 +92,7 @@ def test_too_many_overlapping_bodies_raise_a_clear_error():
 def test_cli_max_pairs(tmp_path, capsys):
     path = str(tmp_path / "copies.step")
     Part.makeCompound([shape for _, shape in overlapping_copies(30)]).exportStep(path)
-    assert cli.main([path, "--max-pairs", "100"]) == 1
+    assert cli.main([path, "--max-pairs", "100"]) == cli.EXIT_INPUT  # heavily overlapping input
     assert "more than 100 body pairs" in capsys.readouterr().err
     assert cli.main([path, "--max-pairs", "1000", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
