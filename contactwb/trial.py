@@ -5,9 +5,9 @@ Used by `contacts trial` (contactwb/cli_trial.py) and the panel
 (contactwb/gui/haptic_panel.py)."""
 import csv
 import json
-import os
 
 from contactwb import core
+from contactwb.meshes import load_assembly  # noqa: F401  (one loader for the file-based tools)
 
 SCRIPT_HELP = ('{"start": {"translate": [x, y, z], "rotate_deg": [rx, ry, rz]}, '
                '"hand": [{"t": s, "translate": [...], "rotate_deg": [...]}, ...]}')
@@ -19,18 +19,6 @@ def haptics():
     if module is None:
         raise core.ContactsError("this build has no haptic trials (configure with -DCONTACTS_WITH_HAPTICS=ON)")
     return module
-
-
-def load_assembly(path):
-    """A contactcore.Assembly from a STEP or FCStd file."""
-    if not os.path.isfile(path):
-        raise core.ContactsError(f"no such file: '{path}'")
-    if path.lower().endswith(".fcstd"):
-        from contactwb import freecad_setup, bodies as document_bodies
-        doc = freecad_setup.open_document(os.path.abspath(path))
-        assembly, _ = document_bodies.assembly_from_document(doc, None, [])
-        return assembly
-    return core.contactcore.read_step(os.path.abspath(path))
 
 
 def _vector(value, where):
