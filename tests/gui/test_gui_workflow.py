@@ -2,16 +2,13 @@
 real FreeCAD under Xvfb): the task panel with each scope and in place, the
 contact table both ways, stale marking after a move and a delete, the
 regressions of issue 11's bugs, and the README screenshots."""
-import json
 import os
-import shutil
-import subprocess
 import sys
 
 import pytest
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BUILD_DIR = os.environ.get("CONTACTS_BUILD_DIR", os.path.join(REPO, "build"))
+from freecad_session import REPO, run_session  # tests/gui is on sys.path
+
 SHARED_ASM4 = os.path.join(os.path.dirname(REPO), "shared", "data", "fcstd", "Asm4_Tutorial2", "asm_tuto2.FCStd")
 MOTOR_CONTACTS = 35
 
@@ -26,26 +23,8 @@ def count_near(image, colour, tolerance=40):
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory):
-    if not shutil.which("xvfb-run") or not shutil.which("freecad"):
-        pytest.skip("xvfb-run or freecad missing (make deps)")
-    home = tmp_path_factory.mktemp("home")
-    out_dir = os.path.join(BUILD_DIR, "gui-tests")
-    os.makedirs(out_dir, exist_ok=True)
-    subprocess.run([sys.executable, os.path.join(REPO, "tools", "install_workbench.py"), "--build-dir", BUILD_DIR,
-                    "--mod-dir", str(home / ".local/share/FreeCAD/Mod/Contacts"), "--bin-dir", str(home / "bin")],
-                   check=True, capture_output=True)
-    result = os.path.join(out_dir, "workflow_report.json")
-    if os.path.exists(result):
-        os.remove(result)
-    env = dict(os.environ, HOME=str(home), QTWEBENGINE_DISABLE_SANDBOX="1", CONTACTS_GUI_OUT=out_dir,
-               CONTACTS_GUI_RESULT=result, CONTACTS_ASM4=SHARED_ASM4)
-    env.pop("CONTACTS_PYTHON_DIR", None)
-    proc = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1400x1050x24", "freecad",
-                           os.path.join(REPO, "tests", "gui", "workflow_session.py")],
-                          env=env, capture_output=True, text=True, timeout=400)
-    assert os.path.exists(result), f"FreeCAD wrote no report:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
-    with open(result) as stream:
-        return json.load(stream)
+    return run_session(tmp_path_factory, "workflow_session.py", "workflow_report.json",
+                       {"CONTACTS_ASM4": SHARED_ASM4}, screen="1400x1050x24", timeout=400)
 
 
 @pytest.fixture

@@ -1,41 +1,19 @@
 """The haptic trial panel in the real FreeCAD GUI under Xvfb: a scripted
 insertion of the motor's axis into its bearings (tests/gui/haptic_session.py)."""
-import json
 import os
-import shutil
-import subprocess
 import sys
 
 import pytest
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-BUILD_DIR = os.environ.get("CONTACTS_BUILD_DIR", os.path.join(REPO, "build"))
+from freecad_session import REPO, run_session  # tests/gui is on sys.path
+
 
 
 @pytest.fixture(scope="module")
 def haptic_report(tmp_path_factory):
-    if not shutil.which("xvfb-run") or not shutil.which("freecad"):
-        pytest.skip("xvfb-run or freecad missing (make deps)")
-    home = tmp_path_factory.mktemp("home")
-    out_dir = os.path.join(BUILD_DIR, "gui-tests")
-    os.makedirs(out_dir, exist_ok=True)
-    subprocess.run([sys.executable, os.path.join(REPO, "tools", "install_workbench.py"), "--build-dir", BUILD_DIR,
-                    "--mod-dir", str(home / ".local/share/FreeCAD/Mod/Contacts"), "--bin-dir", str(home / "bin")],
-                   check=True, capture_output=True)
-    result = os.path.join(out_dir, "haptic_report.json")
-    if os.path.exists(result):
-        os.remove(result)
-    env = dict(os.environ, HOME=str(home), QTWEBENGINE_DISABLE_SANDBOX="1", CONTACTS_GUI_OUT=out_dir,
-               CONTACTS_GUI_RESULT=result,
-               CONTACTS_SAMPLE=os.path.join(REPO, "Resources", "samples", "motor.FCStd"),
-               CONTACTS_TRIAL_SCRIPT=os.path.join(REPO, "Resources", "trials", "motor_axis_insertion.json"))
-    env.pop("CONTACTS_PYTHON_DIR", None)
-    proc = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1280x1024x24", "freecad",
-                           os.path.join(REPO, "tests", "gui", "haptic_session.py")],
-                          env=env, capture_output=True, text=True, timeout=300)
-    assert os.path.exists(result), f"FreeCAD wrote no report:\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
-    with open(result) as stream:
-        report = json.load(stream)
+    report = run_session(tmp_path_factory, "haptic_session.py", "haptic_report.json",
+                         {"CONTACTS_SAMPLE": os.path.join(REPO, "Resources", "samples", "motor.FCStd"),
+                          "CONTACTS_TRIAL_SCRIPT": os.path.join(REPO, "Resources", "trials", "motor_axis_insertion.json")})
     assert not report["errors"], "\n".join(report["errors"])
     return report
 
