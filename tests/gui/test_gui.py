@@ -3,7 +3,6 @@ a throwaway home, driven by tests/gui/gui_session.py."""
 import csv
 import json
 import os
-import sys
 
 import pytest
 

@@ -3,7 +3,6 @@ real FreeCAD under Xvfb): the task panel with each scope and in place, the
 contact table both ways, stale marking after a move and a delete, the
 regressions of issue 11's bugs, and the README screenshots."""
 import os
-import sys
 
 import pytest
 

@@ -1,13 +1,10 @@
 """The haptic trial panel in the real FreeCAD GUI under Xvfb: a scripted
 insertion of the motor's axis into its bearings (tests/gui/haptic_session.py)."""
 import os
-import sys
 
 import pytest
 
 from freecad_session import REPO, run_session  # tests/gui is on sys.path
-
-
 
 @pytest.fixture(scope="module")
 def haptic_report(tmp_path_factory):
