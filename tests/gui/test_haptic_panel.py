@@ -6,6 +6,7 @@ import pytest
 
 from freecad_session import REPO, run_session  # tests/gui is on sys.path
 
+
 @pytest.fixture(scope="module")
 def haptic_report(tmp_path_factory):
     report = run_session(tmp_path_factory, "haptic_session.py", "haptic_report.json",
