@@ -177,7 +177,7 @@ def main(argv=None):
         print(result.table())
         if args.joints:
             print()
-            print(found.table())
+            print(found.table(interferences=False))  # the contact table above lists them
         t = result.times
         print(f"Time: {elapsed * 1000:.1f} ms in all (partitions {t['partitions'] * 1000:.1f} ms, "
               f"broad phase {t['broad_phase'] * 1000:.2f} ms, candidates {t['candidates'] * 1000:.2f} ms, "

@@ -73,8 +73,9 @@ class Joints:
         """The CLI's --joints --json additions."""
         return {"joints": [j.to_json() for j in self.joints], "mobility": self.mobility.to_json()}
 
-    def table(self):
-        """The joint table, the mobility and the rigid groups, as text."""
+    def table(self, interferences=True):
+        """The joint table, the mobility and the rigid groups, as text (and the
+        interferences, unless the contact table beside it lists them already)."""
         lines = [f"Joints of {self.source} (b relative to a): {len(self.joints)} body pairs"]
         width = max([len(j.a) for j in self.joints] + [len(j.b) for j in self.joints] + [4])
         for j in self.joints:
@@ -105,7 +106,7 @@ class Joints:
             lines.append(f"Clearance fits (gap < {self.clearance_gap:g} mm, not contacts): {len(self.clearances)}")
             for c in self.clearances:
                 lines.append(f"  {c['a']:<{width}}  <->  {c['b']:<{width}}  {c['kind']} gap {c['gap']:.4g} mm")
-        if self.interferences:
+        if interferences and self.interferences:
             lines.append("")
             lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
             for i in self.interferences:

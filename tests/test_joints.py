@@ -202,6 +202,17 @@ def test_interferences_are_printed_when_present():
     assert joints.interferences_of(SimpleNamespace(), ["A"]) == []
 
 
+def test_press_interferences_listed_once_beside_the_joints(shared_step):
+    path = shared_step("R08_presse_asm.step")
+    result, found = joints.joints_in_step(path)
+    pairs = sorted((i["a"], i["b"]) for i in found.interferences)
+    assert pairs == [("CAPTEUR_FORCE", "SOLID.5"), ("CORPS_AMMOVIBLE", "PRT0001"), ("CORPS_AMMOVIBLE", "SOLID.6")]
+    assert len(result.interferences) == 3
+    done = run_cli(path, "--joints")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.count("Interferences (overlapping material, not contacts): 3") == 1
+
+
 def test_shaft_in_a_120_degree_cradle_lifts_out_within_30_degrees_of_vertical(sample):
     # The cradle (below) holds the shaft (axis x) over 120 deg centred on -z. By
     # hand: as a joint, cylindrical about the axis; one-sided, its normals at the
