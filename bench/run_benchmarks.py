@@ -27,6 +27,7 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "tests"))  # the brute-force checker
 sys.path.insert(0, os.path.join(REPO, "tools"))  # the sample families
+sys.path.insert(0, REPO)  # contactwb, for FreeCAD as a library (stacked grids)
 SHARED = os.path.join(os.path.dirname(REPO), "shared", "data", "step")
 GRID_SIZES = [100, 1000, 10000]
 ONE_NAME_COUNT = 10000
