@@ -15,24 +15,6 @@ using namespace contactcore::haptics;
 
 namespace {
 
-class PythonProgress : public Progress {
- public:
-  explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {}
-  bool report(const char* stage, double fraction) override {
-    py::gil_scoped_acquire gil;
-    try {
-      py::object answer = callback_(stage, fraction);
-      return answer.is_none() || answer.cast<bool>();
-    } catch (py::error_already_set& error) {
-      error.discard_as_unraisable(__func__);
-      return false;
-    }
-  }
-
- private:
-  py::object callback_;
-};
-
 py::list vec(const Vec3& v) {
   py::list out;
   for (int i = 0; i < 3; ++i) out.append(v[i]);
@@ -250,11 +232,13 @@ void bind_haptics(py::module_& root) {
              options.capture.angle = rad(capture_angle_deg);
              options.deflection = deflection;
              std::unique_ptr<TrialScene> scene;
-             raise_if_failed(guarded([&] {
-               Status status;
-               scene = TrialScene::build(assembly, part, options, status, reporter.get());
-               return status;
-             }));
+             const Status status = guarded([&] {
+               Status built;
+               scene = TrialScene::build(assembly, part, options, built, reporter.get());
+               return built;
+             });
+             if (reporter) reporter->rethrow_if_raised();  // the callback's own exception, as raised
+             raise_if_failed(status);
              return scene;
            }),
            py::arg("assembly"), py::arg("part"), py::arg("capture_distance") = 0.5,

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <exception>
+#include <utility>
 #include <new>
 #include <string>
 #include <vector>
@@ -38,6 +39,39 @@ auto without_gil(Work&& work) {
   py::gil_scoped_release release;
   return work();
 }
+
+// Calls a Python callable(stage, fraction) -> bool from the thread that called
+// the core (which runs without the GIL; its workers never call it). An
+// exception raised by the callback (or a return value that is not a truth
+// value) stops the work and is re-raised as is once the core has returned:
+// KeyboardInterrupt and SystemExit too.
+class PythonProgress : public Progress {
+ public:
+  explicit PythonProgress(py::object callback) : callback_(std::move(callback)) {
+    if (!PyCallable_Check(callback_.ptr()))
+      throw py::type_error("progress must be callable(stage, fraction), not " +
+                           std::string(py::str(py::type::of(callback_).attr("__name__"))));
+  }
+  bool report(const char* stage, double fraction) override {
+    py::gil_scoped_acquire gil;
+    if (raised_) return false;
+    try {
+      py::object answer = callback_(stage, fraction);
+      return answer.is_none() || answer.cast<bool>();
+    } catch (...) {
+      raised_ = std::current_exception();
+      return false;
+    }
+  }
+  // With the GIL held.
+  void rethrow_if_raised() {
+    if (raised_) std::rethrow_exception(std::exchange(raised_, nullptr));
+  }
+
+ private:
+  py::object callback_;
+  std::exception_ptr raised_;
+};
 
 // Raises contactcore.ContactsError (a RuntimeError) with Status::describe().
 void raise_if_failed(const Status& status);
