@@ -17,6 +17,7 @@ import FreeCADGui
 from pivy import coin
 
 import contactwb
+from contactwb.gui.view_providers import _ViewProvider  # nothing to save, like every view provider here
 
 ROTATION_COLOUR = (0.75, 0.05, 0.1)
 TRANSLATION_COLOUR = (0.1, 0.6, 0.15)
@@ -110,14 +111,11 @@ def joint_glyphs(joint):
     return root, axes, arrows
 
 
-class ViewProviderJoint:
+class ViewProviderJoint(_ViewProvider):
     """Draws its Joint's glyphs (over the bodies: an annotation)."""
 
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
     def attach(self, vobj):
-        self.Object = vobj.Object
+        super().attach(vobj)
         self.glyphs = coin.SoAnnotation()
         self.glyphs.setName("JointGlyphs")
         self.axes = self.arrows = 0
@@ -160,18 +158,6 @@ class ViewProviderJoint:
                     for subname in subnames:
                         FreeCADGui.Selection.addSelection(root.Document.Name, root.Name, subname)
         return True
-
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
 
 
 def render_graph(dot_text, path):
