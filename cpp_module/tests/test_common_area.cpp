@@ -33,20 +33,10 @@
 #include "test_helpers.h"
 
 using namespace contactcore;
+using contactcore::testing::contacts_of;
+using contactcore::testing::make_assembly;
 
 namespace {
-
-Assembly make_assembly(std::vector<std::pair<std::string, TopoDS_Shape>> shapes) {
-  Assembly a;
-  for (auto& [name, shape] : shapes) a.bodies.push_back({name, name, shape});
-  return a;
-}
-
-ContactsResult contacts_of(const Assembly& assembly) {
-  ContactsResult result = find_contacts(assembly, ContactOptions{});
-  EXPECT_TRUE(result.status.ok()) << result.status.describe();
-  return result;
-}
 
 // "PLF 0.69 mm^2, ..." for failure messages.
 std::string describe(const ContactsResult& result) {

@@ -14,21 +14,11 @@
 #include "test_helpers.h"
 
 using namespace contactcore;
+using contactcore::testing::contacts_of;
+using contactcore::testing::make_assembly;
 using contactcore::testing::shared_step;
 
 namespace {
-
-Assembly make_assembly(std::vector<std::pair<std::string, TopoDS_Shape>> shapes) {
-  Assembly a;
-  for (auto& [name, shape] : shapes) a.bodies.push_back({name, name, shape});
-  return a;
-}
-
-ContactsResult contacts_of(const Assembly& assembly) {
-  ContactsResult result = find_contacts(assembly, ContactOptions{});
-  EXPECT_TRUE(result.status.ok()) << result.status.describe();
-  return result;
-}
 
 std::map<std::string, int> count_types(const ContactsResult& result) {
   std::map<std::string, int> counts;

@@ -11,15 +11,11 @@
 #include "test_helpers.h"
 
 using namespace contactcore;
+using contactcore::testing::contacts_of;
+using contactcore::testing::make_assembly;
 using contactcore::testing::sample;
 
 namespace {
-
-Assembly make_assembly(std::vector<std::pair<std::string, TopoDS_Shape>> shapes) {
-  Assembly a;
-  for (auto& [name, shape] : shapes) a.bodies.push_back({name, name, shape});
-  return a;
-}
 
 int direction_index(const DisassemblyResult& r, const Direction& d) {
   for (std::size_t i = 0; i < r.directions.size(); ++i)

@@ -5,6 +5,10 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include "contactcore/contacts.h"
 
 namespace contactcore::testing {
 
@@ -13,6 +17,20 @@ inline std::string shared_step(const std::string& name) {
 }
 
 inline std::string sample(const std::string& name) { return std::string(CONTACTS_SAMPLES) + "/" + name; }
+
+// An assembly of named shapes placed as they are (name doubles as path).
+inline Assembly make_assembly(std::vector<std::pair<std::string, TopoDS_Shape>> shapes) {
+  Assembly a;
+  for (auto& [name, shape] : shapes) a.bodies.push_back({name, name, shape});
+  return a;
+}
+
+// The contacts with default options; a failed status fails the calling test.
+inline ContactsResult contacts_of(const Assembly& assembly) {
+  ContactsResult result = find_contacts(assembly, ContactOptions{});
+  EXPECT_TRUE(result.status.ok()) << result.status.describe();
+  return result;
+}
 
 }  // namespace contactcore::testing
 
