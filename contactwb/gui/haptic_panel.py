@@ -63,7 +63,8 @@ class HapticTrialPanel:
     """Task panel: device, enable, part and joint, stiffness and damping,
     readouts, record / replay, reset; OK commits the placement, Cancel resets."""
 
-    DEVICES = [("Simulated hand", "sim"), ("SpaceMouse (hidapi)", "spacemouse")]
+    DEVICES = [("Simulated hand", "sim"), ("SpaceMouse (hidapi)", "spacemouse"),
+               ("HID force feedback (PID)", "hid-ff")]
 
     def __init__(self, doc, obj, device="sim"):
         global active_panel

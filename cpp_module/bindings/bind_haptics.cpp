@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "contactcore/haptics/hid_pid.h"
 #include "contactcore/haptics/spacemouse.h"
 #include "contactcore/haptics/trial.h"
 
@@ -93,8 +94,26 @@ class HapticSession {
       const SpaceMouseModel* model = find_model(vendor, product);
       device_ = std::make_unique<ReplayDevice>(model ? *model : generic_model(vendor, product), std::move(replay));
       message_ = "Replaying recorded reports.";
+    } else if (device == "hid-ff") {
+      // The first HID device whose descriptor offers PID constant force.
+      const auto found = enumerate_hid_pid_devices();
+      std::string why = "no HID device offers force feedback (PID page)";
+      if (!found.empty()) {
+        auto transport = open_hidapi_transport(found.front().path, &why);
+        PidLayout layout;
+        const auto descriptor = hidraw_report_descriptor(found.front().path);
+        if (transport && find_pid_layout(descriptor.data(), descriptor.size(), layout, &why)) {
+          PidForceConfig pid;
+          pid.name = found.front().name;
+          const std::string path = found.front().path;
+          pid.reopen = [path] { return open_hidapi_transport(path, nullptr); };
+          device_ = std::make_unique<HidPidDevice>(std::move(transport), std::move(layout), pid);
+          message_ = found.front().name + " at " + path + " (HID force feedback)";
+        }
+      }
+      if (!device_) message_ = "No force-feedback device (" + why + "): using the simulated hand.";
     } else if (device != "sim") {
-      throw py::value_error("unknown device '" + device + "' (sim, spacemouse, replay)");
+      throw py::value_error("unknown device '" + device + "' (sim, spacemouse, hid-ff, replay)");
     }
     if (!device_) {
       auto hand = std::make_unique<SimulatedHand>(HandScript{}, HandParameters{}, c, start_);
@@ -219,6 +238,48 @@ void bind_haptics(py::module_& root) {
     }
     return out;
   }, "The 3Dconnexion 6-DOF devices hidapi sees now (empty without hardware).");
+
+  m.def("hid_force_feedback_devices", [] {
+    py::list out;
+    std::vector<HidPidFound> found;
+    {
+      py::gil_scoped_release release;
+      found = enumerate_hid_pid_devices();
+    }
+    for (const auto& f : found) {
+      py::dict d;
+      d["name"] = f.name;
+      d["path"] = f.path;
+      d["vendor"] = f.vendor;
+      d["product"] = f.product;
+      d["axes"] = f.axes;
+      out.append(d);
+    }
+    return out;
+  }, "HID devices whose report descriptor offers PID constant force (empty without hardware).");
+
+  m.def(
+      "hid_pid_capabilities",
+      [](const py::bytes& descriptor, double full_scale_force) {
+        const std::string data = descriptor;
+        PidLayout layout;
+        std::string why;
+        py::dict d;
+        if (!find_pid_layout(reinterpret_cast<const std::uint8_t*>(data.data()), data.size(), layout, &why)) {
+          d["force_output"] = false;
+          d["why"] = why;
+          return d;
+        }
+        PidForceConfig config;
+        config.full_scale_force = full_scale_force;
+        config.start_thread = false;
+        HidPidDevice device(nullptr, layout, config);
+        d = capabilities_dict(device.capabilities());
+        d["axes"] = layout.axis_count();
+        return d;
+      },
+      py::arg("descriptor"), py::arg("full_scale_force") = 3.0,
+      "What a device with this HID report descriptor can render (force output through the PID page or why not).");
 
   m.def("simulated_capabilities", [] { return capabilities_dict(simulated_capabilities()); });
 

@@ -224,6 +224,12 @@ void ServoLoop::tick(double now) {
       Vec3 across = pull;
       if (joint_.kind == JointKind::Cylindrical || joint_.kind == JointKind::Prismatic)
         across -= pull.dot(joint_.axis) * joint_.axis;
+      if (joint_.kind == JointKind::Planar) {
+        // Every force is free (slides, lift-off) or held by the stop: the
+        // hand breaks a face away by tilting it (torque over the length scale).
+        const Vec3 tilt = -coupling.torque;
+        across = (tilt - tilt.dot(joint_.axis) * joint_.axis) / config_.length_scale;
+      }
       if (across.norm() > config_.breakaway_force) {
         engaged_ = false;
         rearm_ = false;
@@ -237,7 +243,8 @@ void ServoLoop::tick(double now) {
   }
 
   const Wrench rendered = reason == Watchdog::None ? clamp_to_device(coupling, caps_) : Wrench{};
-  device_.write(rendered);
+  if (reason == Watchdog::None) device_.write(rendered);
+  else device_.halt();
 
   double penetration = engaged_ ? joint_deviation(joint_, proxy_) : 0.0;
   for (int i = 0; engaged_ && i < joint_.stop_count; ++i)
@@ -321,7 +328,7 @@ void ServoLoop::run() {
     if (after >= next) next = after;  // behind: no burst of catch-up ticks
     else std::this_thread::sleep_until(next);
   }
-  device_.write(Wrench{});
+  device_.halt();
 }
 
 double ServoLoop::rate_hz() const {
