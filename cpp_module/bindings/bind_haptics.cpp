@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "contactcore/haptics/hid_pid.h"
+#include "contactcore/haptics/joint_adapter.h"
 #include "contactcore/haptics/spacemouse.h"
 #include "contactcore/haptics/trial.h"
 
@@ -71,6 +72,10 @@ py::dict capabilities_dict(const DeviceCapabilities& c) {
   return d;
 }
 
+bool joint_of_pair(TrialScene& scene, const PairJoint& pair, JointState& joint) {
+  return joint_state_from_pair(pair, scene.moving(), scene.centre(), scene.contacts().body_box(scene.moving()), joint);
+}
+
 // A device and the loop on its own thread, for the panel.
 class HapticSession {
  public:
@@ -129,6 +134,16 @@ class HapticSession {
   }
   ~HapticSession() { loop_->stop(); }
 
+  // The loop holds the part to the joint of an assembled pair (from the joints
+  // stage) instead of the joint engagement finds; false when the loop cannot
+  // hold that type.
+  bool hold_to_pair(const PairJoint& pair) {
+    JointState joint;
+    if (!joint_of_pair(scene_, pair, joint)) return false;
+    loop_->request_hold(joint);
+    return true;
+  }
+
   void set_hand_target(const Vec3& t, const Vec3& r_deg) {
     if (!hand_) return;
     hand_->set_live_target(offset_pose(t, Vec3(rad(r_deg.x()), rad(r_deg.y()), rad(r_deg.z())), scene_.centre()));
@@ -147,7 +162,10 @@ class HapticSession {
     d["torque"] = vec(s.wrench.torque);
     d["force_n"] = s.wrench.force.norm();
     d["engaged"] = s.engaged;
+    d["held"] = s.held;
     d["joint"] = s.engaged ? to_string(s.joint.kind) : "Free";
+    d["joint_axis"] = vec(s.joint.axis);
+    d["joint_point"] = vec(s.joint.point);
     py::list with;
     for (int k = 0; s.engaged && k < s.joint.body_count; ++k) with.append(scene_.body_names()[s.joint.bodies[k]]);
     d["joint_with"] = with;
@@ -305,6 +323,22 @@ void bind_haptics(py::module_& root) {
            py::arg("assembly"), py::arg("part"), py::arg("capture_distance") = 0.5,
            py::arg("capture_angle_deg") = 2.0, py::arg("deflection") = 0.01, py::arg("progress") = py::none())
       .def_property_readonly("part", &TrialScene::part_name)
+      .def_property_readonly("moving", &TrialScene::moving, "Index of the moving part in the assembly.")
+      .def(
+          "joint_of_pair",
+          [](TrialScene& s, const PairJoint& pair) -> py::object {
+            JointState j;
+            if (!joint_of_pair(s, pair, j)) return py::none();
+            py::dict d;
+            d["kind"] = to_string(j.kind);
+            d["axis"] = vec(j.axis);
+            d["point"] = vec(j.point);
+            d["stops"] = j.stop_count;
+            return d;
+          },
+          py::arg("pair"),
+          "The joint the loop would hold the part to for this assembled pair (kind, axis, point, stops), "
+          "or None when the pair does not involve the part or the loop cannot hold its type.")
       .def_property_readonly("centre", [](const TrialScene& s) { return vec(s.centre()); })
       .def_property_readonly("body_names", &TrialScene::body_names)
       .def_property_readonly("setup_seconds", &TrialScene::setup_seconds)
@@ -442,7 +476,12 @@ void bind_haptics(py::module_& root) {
       .def("set_hand_target", [](HapticSession& s, const std::vector<double>& t, const std::vector<double>& r) {
         s.set_hand_target(Vec3(t[0], t[1], t[2]), Vec3(r[0], r[1], r[2]));
       }, py::arg("translate"), py::arg("rotate_deg"))
-      .def("snapshot", &HapticSession::snapshot, "The loop's latest state (lock-free).");
+      .def("snapshot", &HapticSession::snapshot, "The loop's latest state (lock-free).")
+      .def("hold_to_pair", &HapticSession::hold_to_pair, py::arg("pair"),
+           "Holds the part to this assembled pair's joint (a PairJoint of find_joints) instead of the one "
+           "engagement finds; False when the loop cannot hold its type.")
+      .def("release_joint", [](HapticSession& s) { s.loop_->request_release(); },
+           "Back to the joint engagement finds.");
 }
 
 }  // namespace contactcore::bindings

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <cstdlib>
 #include <new>
 #include <set>
@@ -846,4 +848,30 @@ TEST(Engagement, FaceLiftsOffAndBreaksAwayWhenTilted) {
     EXPECT_FALSE(loop.last().engaged) << (tilt ? "tilted" : "lifted");
     if (!tilt) EXPECT_NEAR((loop.proxy() * c - c).z(), 5.0, 0.01);
   }
+}
+
+// A joint chosen in the GUI reaches the running loop through its mailbox.
+TEST(ServoLoop, HoldRequestsFromAnotherThread) {
+  SimulatedHand hand(HandScript({{0.0, Pose::Identity()}, {0.2, offset_pose(Vec3(3, 4, 5), Vec3::Zero(), Vec3::Zero())}}),
+                     HandParameters{}, Vec3::Zero(), Pose::Identity());
+  ServoConfig config;
+  ServoLoop loop(hand, config, Pose::Identity());
+  ASSERT_TRUE(loop.start());
+  JointState slider;
+  slider.kind = JointKind::Prismatic;
+  slider.axis = Vec3::UnitX();
+  slider.part_axis = Vec3::UnitX();
+  loop.request_hold(slider);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  const ServoSnapshot held = loop.snapshot();
+  loop.request_release();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const ServoSnapshot released = loop.snapshot();
+  loop.stop();
+  EXPECT_TRUE(held.held && held.engaged);
+  EXPECT_EQ(held.joint.kind, JointKind::Prismatic);
+  // Held to the x slide: the part followed the hand along x only.
+  EXPECT_NEAR(held.proxy.translation().x(), 3.0, 0.2);
+  EXPECT_LT(held.proxy.translation().tail<2>().norm(), 1e-9);
+  EXPECT_FALSE(released.held || released.engaged);
 }

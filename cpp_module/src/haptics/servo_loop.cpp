@@ -79,6 +79,20 @@ void ServoLoop::release_joint() {
   joint_ = JointState{};
 }
 
+void ServoLoop::request_hold(const JointState& joint) {
+  HoldRequest r;
+  r.serial = ++request_serial_;
+  r.hold = true;
+  r.joint = joint;
+  hold_requests_.write(r);
+}
+
+void ServoLoop::request_release() {
+  HoldRequest r;
+  r.serial = ++request_serial_;
+  hold_requests_.write(r);
+}
+
 void ServoLoop::engage(const JointState& joint, double now) {
   joint_ = joint;
   engaged_ = true;
@@ -158,6 +172,14 @@ void ServoLoop::tick(double now) {
   const double dt = period_;
   const Vec3 c = config_.centre;
   const DeviceSample sample = device_.read(now);
+  {
+    const HoldRequest& request = hold_requests_.read();  // one atomic load when nothing is new
+    if (request.serial != applied_serial_) {
+      applied_serial_ = request.serial;
+      if (request.hold) hold_to(request.joint);
+      else release_joint();
+    }
+  }
 
   Watchdog reason = Watchdog::None;
   const bool enabled = enabled_.load(std::memory_order_relaxed);
@@ -267,6 +289,7 @@ void ServoLoop::tick(double now) {
   last_.coupling = coupling;
   last_.joint = joint_;
   last_.engaged = engaged_;
+  last_.held = held_;
   last_.device_connected = sample.connected;
   last_.enabled = enabled;
   last_.watchdog = reason;
