@@ -25,6 +25,25 @@ def _selected_part():
     return obj if shape is not None and not shape.isNull() and shape.Solids else None
 
 
+def _joint_choices(assembly, scene, part):
+    """The part's assembled joints the loop can hold it to (from the joints
+    stage, contactwb/joints.py): [{"label", "type", "with", "axis", "pair"}]."""
+    from contactwb import joints
+    _, found = joints.joints_in_assembly(assembly)
+    choices = []
+    for record, pair in zip(found.joints, found.raw[1].joints):
+        if part not in (record.a, record.b):
+            continue
+        held = scene.joint_of_pair(pair)
+        if held is None:
+            continue
+        other = record.b if record.a == part else record.a
+        axis = ", ".join(f"{v + 0.0:.3g}" for v in held["axis"])  # + 0.0: no "-0"
+        choices.append({"label": f"{held['kind']} with {other} (axis {axis})", "type": held["kind"],
+                        "with": other, "axis": held["axis"], "pair": pair})
+    return choices
+
+
 class Contacts_HapticTrial:
     """Opens the haptic trial panel on the selected part."""
 
@@ -80,6 +99,9 @@ class HapticTrialPanel:
         self.body_name = body.name
         self.trial = trial
         self.scene = trial.make_scene(assembly, body.name)
+        # The joints the part could be held to instead of the one engagement finds.
+        self.joint_choices = _joint_choices(assembly, self.scene, body.name)
+        self.chosen = None  # index into joint_choices, or None: the joint found
         self.original = FreeCAD.Placement(obj.Placement)
         self.session = None
         self.script = None        # (checked script, start time) played as hand targets
@@ -112,6 +134,7 @@ class HapticTrialPanel:
         self.device_message = QtWidgets.QLabel()
         self.device_message.setWordWrap(True)
         self.axes_label = QtWidgets.QLabel()
+        self.axes_label.setWordWrap(True)  # six signed values: wrap rather than widen the panel
         grid.addWidget(self.device_combo, 0, 0)
         grid.addWidget(self.enable_check, 0, 1)
         grid.addWidget(self.device_message, 1, 0, 1, 2)
@@ -123,10 +146,22 @@ class HapticTrialPanel:
         grid = QtWidgets.QGridLayout(part_box)
         grid.addWidget(QtWidgets.QLabel("Part"), 0, 0)
         grid.addWidget(QtWidgets.QLabel(self.obj.Label), 0, 1)
-        grid.addWidget(QtWidgets.QLabel("Joint"), 1, 0)
+        grid.addWidget(QtWidgets.QLabel("Hold to"), 1, 0)
+        self.joint_combo = QtWidgets.QComboBox()
+        self.joint_combo.addItem("the joint found (engagement)")
+        for choice in self.joint_choices:
+            self.joint_combo.addItem(choice["label"])
+        # Long labels must not widen the task panel past its dock.
+        self.joint_combo.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        self.joint_combo.setMinimumContentsLength(18)
+        self.joint_combo.setToolTip("Hold the part to one of its assembled joints instead of the one its "
+                                    "contacts engage on the way")
+        self.joint_combo.currentIndexChanged.connect(lambda index: self.choose_joint(index - 1 if index else None))
+        grid.addWidget(self.joint_combo, 1, 1)
+        grid.addWidget(QtWidgets.QLabel("Joint"), 4, 0)
         self.joint_label = QtWidgets.QLabel("free")
         self.joint_label.setWordWrap(True)
-        grid.addWidget(self.joint_label, 1, 1)
+        grid.addWidget(self.joint_label, 4, 1)
         grid.addWidget(QtWidgets.QLabel("Stiffness"), 2, 0)
         self.stiffness_spin = QtWidgets.QDoubleSpinBox()
         self.stiffness_spin.setDecimals(2)
@@ -192,7 +227,24 @@ class HapticTrialPanel:
         self.damping_spin.blockSignals(False)
         self._gains_changed()
         self.session.set_enabled(self.enable_check.isChecked())
+        self._apply_joint()
         self.session.start()
+
+    def choose_joint(self, index):
+        """Holds the part to joint_choices[index], or (None) to the joint found."""
+        self.chosen = index
+        self.joint_combo.blockSignals(True)
+        self.joint_combo.setCurrentIndex(0 if index is None else index + 1)
+        self.joint_combo.blockSignals(False)
+        self._apply_joint()
+
+    def _apply_joint(self):
+        if self.session is None:
+            return
+        if self.chosen is None:
+            self.session.release_joint()
+        else:
+            self.session.hold_to_pair(self.joint_choices[self.chosen]["pair"])
 
     def _device_changed(self, index):
         self._start_session(self.DEVICES[index][1])
@@ -215,7 +267,8 @@ class HapticTrialPanel:
         self._show_placement(s["matrix"])
         self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s["axes"]))
         if s["engaged"]:
-            self.joint_label.setText(f"{s['joint']} with {', '.join(s['joint_with'])}")
+            how = "chosen" if s["held"] else "found"
+            self.joint_label.setText(f"{s['joint']} with {', '.join(s['joint_with'])} ({how})")
         else:
             self.joint_label.setText("free (stopped only by collisions)")
         r = self.readouts

@@ -73,7 +73,10 @@ py::dict capabilities_dict(const DeviceCapabilities& c) {
 }
 
 bool joint_of_pair(TrialScene& scene, const PairJoint& pair, JointState& joint) {
-  return joint_state_from_pair(pair, scene.moving(), scene.centre(), scene.contacts().body_box(scene.moving()), joint);
+  if (!joint_state_from_pair(pair, scene.moving(), scene.centre(), scene.contacts().body_box(scene.moving()), joint))
+    return false;
+  scene.attach_collision_group(joint);
+  return true;
 }
 
 // A device and the loop on its own thread, for the panel.
@@ -334,6 +337,7 @@ void bind_haptics(py::module_& root) {
             d["axis"] = vec(j.axis);
             d["point"] = vec(j.point);
             d["stops"] = j.stop_count;
+            d["collision_group"] = j.group;
             return d;
           },
           py::arg("pair"),

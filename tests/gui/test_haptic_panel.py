@@ -44,8 +44,34 @@ def test_ok_commits_one_undoable_placement(haptic_report):
     assert haptic_report["undo_restores"]
 
 
+def test_joint_picker_holds_the_part_to_the_chosen_joint(haptic_report):
+    # The axis' assembled joints (joints stage): cylindrical with each body it goes through.
+    assert sorted(haptic_report["joint_choices"]) == sorted(
+        f"Cylindrical with {b} (axis 0, 0, 1)" for b in ("Rotor-front", "Rotor-back", "Bearing-front",
+                                                         "Bearing-back", "Seal"))
+    assert haptic_report["joint_combo_items"][0] == "the joint found (engagement)"
+    # Found: engagement holds it on the bores of all five; chosen: the loop holds it to the back bearing's.
+    found = haptic_report["found_joint"]
+    assert not found["held"] and sorted(found["with"]) == sorted(
+        ["Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"])
+    chosen = haptic_report["chosen_joint"]
+    assert chosen["held"] and chosen["with"] == ["Bearing-back"] and chosen["joint"] == "Cylindrical"
+    assert chosen["axis"] == pytest.approx([0, 0, 1], abs=1e-9)
+    assert chosen["point"][:2] == pytest.approx([0, 0], abs=1e-9)
+    assert chosen["label"].endswith("(chosen)")
+    # Pulled out and sideways by the hand: it slides out along the chosen axis only.
+    pulled = haptic_report["chosen_pulled"]
+    assert pulled["held"]
+    assert pulled["translate"][2] > 5.0
+    assert pulled["translate"][0] == pytest.approx(0.0, abs=0.05)  # the D-flat's centre turns about the axis
+    assert pulled["translate"][1] == pytest.approx(0.0, abs=0.05)
+    assert pulled["rotate_deg"][:2] == pytest.approx([0, 0], abs=1e-6)
+    assert not haptic_report["released_joint"]["held"]
+
+
 def test_screenshots_were_taken(haptic_report):
     from PIL import Image
-    for key in ("mid_png", "end_png", "panel_png"):
+    assert haptic_report["view_pasted"]
+    for key in ("mid_png", "end_png", "panel_png", "picker_png"):
         image = Image.open(haptic_report[key]).convert("RGB")
         assert image.width > 300 and len(set(image.getdata())) > 20
