@@ -741,7 +741,7 @@ TEST(Engagement, ConeSnapsToTheAxisAndSeats) {
   ASSERT_GE(joint.stop_count, 1);
   // The seat stop: the centre may not go below 0.1 sqrt 3 above its modelled height.
   EXPECT_NEAR(joint.stops[0].normal.z(), -1.0, 1e-9);
-  EXPECT_NEAR(-joint.stops[0].limit - c.z(), 0.1 * std::sqrt(3.0), 2e-3);
+  EXPECT_NEAR(-joint.stops[0].limit - c.z(), 0.1 * std::sqrt(3.0), 1e-6);
   // Far off the axis: no seat.
   EXPECT_FALSE(scene.finder().capture(offset_pose(Vec3(2, 0, 15), Vec3::Zero(), c), joint));
 
@@ -753,7 +753,7 @@ TEST(Engagement, ConeSnapsToTheAxisAndSeats) {
   script.hand = {{0.0, Vec3(0.2, -0.1, 15), Vec3(0.5, 0, 0)}, {2.0, Vec3(0.3, 0.2, -2), Vec3::Zero()}};
   const TrialResult r = run_trial(scene, script, TrialOptions{});
   ASSERT_TRUE(r.status.ok());
-  EXPECT_NEAR(r.final_translate.z(), 0.1 * std::sqrt(3.0), 2e-3) << r.final_translate.transpose();
+  EXPECT_NEAR(r.final_translate.z(), 0.1 * std::sqrt(3.0), 1e-6) << r.final_translate.transpose();
   EXPECT_LT(r.final_translate.head<2>().norm(), 1e-6);
   EXPECT_LT(r.final_rotate_deg.head<2>().norm(), 1e-6);
   EXPECT_LE(r.max_penetration_mm, 1e-6);
@@ -816,9 +816,9 @@ TEST(Engagement, FaceSnapsParallelAndSlidesOnThePlane) {
   const TrialResult r = run_trial(scene, script, options);
   ASSERT_TRUE(r.status.ok());
   EXPECT_NEAR(r.final_translate.z(), 0.0, 1e-9);
-  EXPECT_NEAR(r.final_translate.x(), 8.0, 0.01) << r.final_translate.transpose();
-  EXPECT_NEAR(r.final_translate.y(), -5.0, 0.01);
-  EXPECT_NEAR(r.final_rotate_deg.z(), 30.0, 0.01) << r.final_rotate_deg.transpose();
+  EXPECT_NEAR(r.final_translate.x(), 8.0, 1e-6) << r.final_translate.transpose();
+  EXPECT_NEAR(r.final_translate.y(), -5.0, 1e-6);
+  EXPECT_NEAR(r.final_rotate_deg.z(), 30.0, 1e-6) << r.final_rotate_deg.transpose();
   EXPECT_LT(r.final_rotate_deg.head<2>().norm(), 1e-9);
   EXPECT_LE(r.max_penetration_mm, 1e-9);
   ASSERT_EQ(r.joints_engaged.size(), 1u);
