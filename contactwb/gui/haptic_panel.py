@@ -16,13 +16,41 @@ active_panel = None  # the open panel (for scripts and tests)
 
 
 def _selected_part():
-    """The one selected top-level solid, or None."""
-    selection = FreeCADGui.Selection.getSelection()
+    """The one selected object, with the path it was picked by (a part inside an
+    App::Part or through a link): (object, subname) or None."""
+    selection = FreeCADGui.Selection.getSelectionEx("", 0)  # unresolved: top-level object and path
     if len(selection) != 1:
         return None
-    obj = selection[0]
-    shape = getattr(obj, "Shape", None)
-    return obj if shape is not None and not shape.isNull() and shape.Solids else None
+    entry = selection[0]
+    subnames = [s for s in entry.SubElementNames] or [""]
+    if len(subnames) != 1:
+        return None
+    return entry.Object, subnames[0]
+
+
+def _body_to_move(bodies, picked):
+    """The document body the selection picks: `picked` is a document object or
+    an (object, subname) pair from the 3D view or the tree."""
+    from contactwb import bodies as document_bodies
+    if isinstance(picked, tuple):
+        chosen = document_bodies.bodies_of_selection(bodies, [(picked[0], [picked[1]])])
+        label = picked[0].getSubObject(picked[1], retType=1).Label if picked[1] else picked[0].Label
+    else:
+        chosen = [b for b in bodies if b.obj is picked]
+        label = picked.Label
+    if not chosen:
+        raise contactwb.core.ContactsError(f"'{label}' is not a visible solid of the document")
+    if len(chosen) != 1 or len([b for b in bodies if b.obj is chosen[0].obj]) != 1:
+        raise contactwb.core.ContactsError(f"'{label}': the haptic trial moves parts made of one solid")
+    body = chosen[0]
+    # Reached through a link to a container, the part is the original every
+    # instance shows: moving it would move them all.
+    for container in [body.root] + list(body.containers):
+        if container.isDerivedFrom("App::Link") and container is not body.obj:
+            raise contactwb.core.ContactsError(
+                f"'{body.obj.Label}' is inside the linked container '{container.Label}': move the link "
+                f"or open the original")
+    return body
 
 
 def _joint_choices(assembly, scene, part):
@@ -60,12 +88,12 @@ class Contacts_HapticTrial:
 
     def Activated(self):
         from contactwb import core
-        obj = _selected_part()
-        if obj is None:
+        picked = _selected_part()
+        if picked is None:
             _show_error("Select one part (a solid) to move.")
             return
         try:
-            panel = HapticTrialPanel(FreeCAD.ActiveDocument, obj)
+            panel = HapticTrialPanel(FreeCAD.ActiveDocument, picked)
         except core.ContactsError as error:
             _show_error(str(error))
             return
@@ -85,24 +113,27 @@ class HapticTrialPanel:
     DEVICES = [("Simulated hand", "sim"), ("SpaceMouse (hidapi)", "spacemouse"),
                ("HID force feedback (PID)", "hid-ff")]
 
-    def __init__(self, doc, obj, device="sim"):
+    def __init__(self, doc, picked, device="sim"):
+        """`picked`: the part to move, a document object or an (object,
+        subname) selection path (a part inside an App::Part, or a link)."""
         global active_panel
+        import Part
         from contactwb import bodies as document_bodies, trial
-        self.doc, self.obj = doc, obj
+        self.doc = doc
         assembly, bodies = document_bodies.assembly_from_document(doc)
-        body = next((b for b in bodies if b.obj is obj), None)
-        if body is None:
-            raise contactwb.core.ContactsError(f"'{obj.Label}' is not a visible solid of the document")
-        if body.root is not obj or len([b for b in bodies if b.obj is obj]) != 1:
-            raise contactwb.core.ContactsError(
-                f"'{obj.Label}': the haptic trial moves top-level parts made of one solid")
+        body = _body_to_move(bodies, picked)
+        # The loop moves the part in the global frame; the object's Placement is
+        # local to its containers (App::Part, a link's placement): keep both.
+        self.obj = body.obj
+        self.global_placement = Part.getShape(body.root, body.subname, needSubElement=False,
+                                              transform=True).Placement
         self.body_name = body.name
         self.trial = trial
         self.scene = trial.make_scene(assembly, body.name)
         # The joints the part could be held to instead of the one engagement finds.
         self.joint_choices = _joint_choices(assembly, self.scene, body.name)
         self.chosen = None  # index into joint_choices, or None: the joint found
-        self.original = FreeCAD.Placement(obj.Placement)
+        self.original = FreeCAD.Placement(self.obj.Placement)
         self.session = None
         self.script = None        # (checked script, start time) played as hand targets
         self.recording = None     # list of samples while recording
@@ -283,9 +314,15 @@ class HapticTrialPanel:
             self.recording.append({"t": s["time"], "translate": s["translate"], "rotate_deg": s["rotate_deg"],
                                    "force": s["force"], "engaged": s["engaged"], "penetration": s["penetration"]})
 
+    def _local_placement(self, rows):
+        """The object's Placement for the loop's global displacement D (rows):
+        globally D G, locally L G^-1 D G (L its own Placement, G its global one)."""
+        moved = FreeCAD.Placement(FreeCAD.Matrix(*[v for row in rows for v in row]))
+        g = self.global_placement
+        return self.original.multiply(g.inverse()).multiply(moved).multiply(g)
+
     def _show_placement(self, rows):
-        matrix = FreeCAD.Matrix(*[v for row in rows for v in row])
-        self.obj.Placement = FreeCAD.Placement(matrix).multiply(self.original)
+        self.obj.Placement = self._local_placement(rows)
 
     # ---- scripts, record, replay
     def play_script(self, script):
@@ -372,14 +409,15 @@ class HapticTrialPanel:
         if self.session is not None:
             self.session.stop()
             s = self.session.snapshot()
-            final = FreeCAD.Placement(FreeCAD.Matrix(*[v for row in s["matrix"] for v in row])).multiply(self.original)
+            final = self._local_placement(s["matrix"])
         self._close()
         # The moves shown during the trial are not in the undo stack: one transaction for the result.
         self.obj.Placement = self.original
-        self.doc.openTransaction("Haptic trial")
+        doc = self.obj.Document  # the moved object's (a link's own, not its target's)
+        doc.openTransaction("Haptic trial")
         self.obj.Placement = final
-        self.doc.commitTransaction()
-        self.doc.recompute()
+        doc.commitTransaction()
+        doc.recompute()
         FreeCADGui.Control.closeDialog()
         return True
 

@@ -75,3 +75,22 @@ def test_screenshots_were_taken(haptic_report):
     for key in ("mid_png", "end_png", "panel_png", "picker_png"):
         image = Image.open(haptic_report[key]).convert("RGB")
         assert image.width > 300 and len(set(image.getdata())) > 20
+
+
+def test_parts_inside_containers_and_links(haptic_report):
+    block = haptic_report["container_block"]
+    assert block["object"] == "Block"
+    # Moved 5 mm along global x by the hand (on the plate: a planar joint) ...
+    assert block["global_move"] == pytest.approx([5, 0, 0], abs=0.05)
+    # ... committed to the block in its part's frame (the part is turned 90 degrees about z).
+    assert block["local"] == pytest.approx([block["global_move"][1], 5 - block["global_move"][0], 0], abs=1e-6)
+    assert block["local"] == pytest.approx(block["expected_local"], abs=0.05)
+    assert block["local_angle"] == pytest.approx(0, abs=1e-9)
+    assert block["global_base"] == pytest.approx([95 + block["global_move"][0], block["global_move"][1], 0], abs=1e-6)
+    assert block["link"] == [0, 0, 50]  # the link beside it stays
+    assert haptic_report["container_undo"]
+    link = haptic_report["container_link"]
+    assert link["object"] == "BlockLink"
+    assert link["link"] == pytest.approx([0, 3, 50], abs=0.05)
+    assert link["block"] == pytest.approx([0, 5, 0], abs=1e-9)  # the original does not move
+    assert "inside the linked container 'AssemblyLink'" in haptic_report["linked_container_refused"]
