@@ -232,3 +232,13 @@ def test_hid_force_feedback_capabilities_from_a_descriptor():
     assert caps == {"force_output": False, "why": "no PID usage page (0x0F): no force feedback"}
     # Without hardware: an empty list, not an error.
     assert isinstance(h.hid_force_feedback_devices(), list)
+
+
+def test_hid_force_feedback_session_without_hardware():
+    from contactwb import core, trial
+    scene = trial.make_scene(core.contactcore.read_step(MOTOR), "Axis")
+    session = trial.haptics().HapticSession(scene, "hid-ff")
+    # No PID device here: the simulated hand, and a message saying why, not an error.
+    assert session.message.startswith("No force-feedback device (")
+    assert session.message.endswith("using the simulated hand.")
+    assert session.capabilities["name"] == trial.haptics().simulated_capabilities()["name"]
