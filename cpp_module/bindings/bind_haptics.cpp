@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "contactcore/haptics/hid_pid.h"
+#include "contactcore/haptics/hid_pid_device.h"
 #include "contactcore/haptics/joint_adapter.h"
 #include "contactcore/haptics/spacemouse.h"
 #include "contactcore/haptics/trial.h"

@@ -8,7 +8,7 @@
 #include <memory>
 #include <thread>
 
-#include "contactcore/haptics/hid_pid.h"
+#include "contactcore/haptics/hid_pid_device.h"
 #include "contactcore/haptics/servo_loop.h"
 #include "contactcore/haptics/spacemouse.h"
 
