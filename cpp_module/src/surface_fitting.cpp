@@ -1,7 +1,7 @@
 // Recognition of free-form faces that are really analytic: sampled points
 // and normals fitted by a plane, sphere, cylinder, cone or torus (least
-// squares, Eigen), or swept surfaces typed from their curve; each fit checked
-// on a finer grid within the linear tolerance.
+// squares, Eigen's eigen-solver and LU), or swept surfaces typed from their
+// curve; each fit checked on a finer grid within the linear tolerance.
 #include "surface_fitting.h"
 
 #include <algorithm>
@@ -11,6 +11,8 @@
 #include <optional>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include <Adaptor3d_Curve.hxx>
 #include <BRepLProp_SLProps.hxx>
@@ -72,86 +74,38 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------------------
-// Small dense linear algebra for the fits (3x3 and 4x4 only).
+// Small dense linear algebra for the fits (3x3 and 4x4), by Eigen.
 
-// Eigen decomposition of a symmetric 3x3 matrix by cyclic Jacobi rotations;
-// eigenvalues ascending, eigenvectors unit length.
-struct Eigen3 {
+// Eigen decomposition of a symmetric 3x3 matrix: eigenvalues ascending,
+// eigenvectors unit length.
+struct SymmetricEigen {
   std::array<double, 3> values{};
   std::array<gp_XYZ, 3> vectors;
 };
 
-Eigen3 symmetric_eigen(std::array<std::array<double, 3>, 3> a) {
-  double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  for (int sweep = 0; sweep < 50; ++sweep) {
-    const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-    const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-    if (off <= 1e-30 * diag || off == 0) break;
-    for (int p = 0; p < 2; ++p) {
-      for (int q = p + 1; q < 3; ++q) {
-        if (a[p][q] == 0) continue;
-        const double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::fabs(theta) + std::sqrt(theta * theta + 1));
-        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < 3; ++k) {  // A <- A J
-          const double akp = a[k][p], akq = a[k][q];
-          a[k][p] = c * akp - s * akq;
-          a[k][q] = s * akp + c * akq;
-        }
-        for (int k = 0; k < 3; ++k) {  // A <- J^T A
-          const double apk = a[p][k], aqk = a[q][k];
-          a[p][k] = c * apk - s * aqk;
-          a[q][k] = s * apk + c * aqk;
-        }
-        for (int k = 0; k < 3; ++k) {  // V <- V J
-          const double vkp = v[k][p], vkq = v[k][q];
-          v[k][p] = c * vkp - s * vkq;
-          v[k][q] = s * vkp + c * vkq;
-        }
-      }
-    }
-  }
-  std::array<int, 3> order = {0, 1, 2};
-  std::sort(order.begin(), order.end(), [&a](int i, int j) { return a[i][i] < a[j][j]; });
-  Eigen3 out;
+SymmetricEigen symmetric_eigen(const Eigen::Matrix3d& a) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(a);
+  SymmetricEigen out;
   for (int i = 0; i < 3; ++i) {
-    const int k = order[i];
-    out.values[i] = a[k][k];
-    gp_XYZ vec(v[0][k], v[1][k], v[2][k]);
-    const double n = vec.Modulus();
-    out.vectors[i] = n > 0 ? vec / n : gp_XYZ(0, 0, 1);
+    out.values[i] = solver.eigenvalues()(i);
+    const Eigen::Vector3d v = solver.eigenvectors().col(i);
+    const double n = v.norm();
+    out.vectors[i] = n > 0 ? gp_XYZ(v.x(), v.y(), v.z()) / n : gp_XYZ(0, 0, 1);
   }
   return out;
 }
 
-// Solves the n x n system (n <= 4) by Gaussian elimination with partial
-// pivoting; false when singular.
+// Solves the n x n system a x = b; false when a is singular (rank-revealing
+// LU, pivots below 1e-14 of the largest count as zero).
 template <int N>
-bool solve_linear(std::array<std::array<double, N>, N> a, std::array<double, N> b,
-                  std::array<double, N>& x) {
-  double scale = 0;
-  for (const auto& row : a)
-    for (double value : row) scale = std::max(scale, std::fabs(value));
-  if (scale == 0) return false;
-  for (int col = 0; col < N; ++col) {
-    int pivot = col;
-    for (int r = col + 1; r < N; ++r)
-      if (std::fabs(a[r][col]) > std::fabs(a[pivot][col])) pivot = r;
-    if (std::fabs(a[pivot][col]) <= 1e-14 * scale) return false;
-    std::swap(a[col], a[pivot]);
-    std::swap(b[col], b[pivot]);
-    for (int r = col + 1; r < N; ++r) {
-      const double f = a[r][col] / a[col][col];
-      for (int c = col; c < N; ++c) a[r][c] -= f * a[col][c];
-      b[r] -= f * b[col];
-    }
-  }
-  for (int r = N - 1; r >= 0; --r) {
-    double sum = b[r];
-    for (int c = r + 1; c < N; ++c) sum -= a[r][c] * x[c];
-    x[r] = sum / a[r][r];
-  }
-  return true;
+bool solve_linear(const Eigen::Matrix<double, N, N>& a, const Eigen::Matrix<double, N, 1>& b,
+                  Eigen::Matrix<double, N, 1>& x) {
+  if (!a.allFinite() || !b.allFinite() || a.isZero(0)) return false;
+  Eigen::FullPivLU<Eigen::Matrix<double, N, N>> lu(a);
+  lu.setThreshold(1e-14);
+  if (!lu.isInvertible()) return false;
+  x = lu.solve(b);
+  return x.allFinite();
 }
 
 gp_XYZ centroid(const std::vector<gp_XYZ>& points) {
@@ -161,13 +115,12 @@ gp_XYZ centroid(const std::vector<gp_XYZ>& points) {
 }
 
 // Covariance (not normalised) of points about `centre`.
-std::array<std::array<double, 3>, 3> scatter(const std::vector<gp_XYZ>& points, const gp_XYZ& centre) {
-  std::array<std::array<double, 3>, 3> m{};
+Eigen::Matrix3d scatter(const std::vector<gp_XYZ>& points, const gp_XYZ& centre) {
+  Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
   for (const gp_XYZ& p : points) {
     const gp_XYZ d = p - centre;
-    const double c[3] = {d.X(), d.Y(), d.Z()};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) m[i][j] += c[i] * c[j];
+    const Eigen::Vector3d c(d.X(), d.Y(), d.Z());
+    m += c * c.transpose();
   }
   return m;
 }
@@ -187,38 +140,30 @@ std::optional<Circle2> fit_circle(const std::vector<std::pair<double, double>>& 
   double scale = 0;
   for (const auto& [x, y] : pts) scale = std::max(scale, std::hypot(x - mx, y - my));
   if (scale <= 0) return std::nullopt;
-  std::array<std::array<double, 3>, 3> a{};
-  std::array<double, 3> b{};
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero(), sol;
   for (const auto& [px, py] : pts) {
     const double x = (px - mx) / scale, y = (py - my) / scale;
-    const double row[3] = {x, y, 1};
-    const double rhs = -(x * x + y * y);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) a[i][j] += row[i] * row[j];
-      b[i] += row[i] * rhs;
-    }
+    const Eigen::Vector3d row(x, y, 1);
+    a += row * row.transpose();
+    b += row * -(x * x + y * y);
   }
-  std::array<double, 3> sol{};
   if (!solve_linear<3>(a, b, sol)) return std::nullopt;
   double cx = -sol[0] / 2, cy = -sol[1] / 2;
   const double r2 = cx * cx + cy * cy - sol[2];
   if (!(r2 > 0)) return std::nullopt;
   double r = std::sqrt(r2);
   for (int iteration = 0; iteration < 4; ++iteration) {
-    std::array<std::array<double, 3>, 3> jtj{};
-    std::array<double, 3> jtr{};
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d jtr = Eigen::Vector3d::Zero(), step;
     for (const auto& [px, py] : pts) {
       const double x = (px - mx) / scale - cx, y = (py - my) / scale - cy;
       const double d = std::hypot(x, y);
       if (d <= 0) continue;
-      const double row[3] = {-x / d, -y / d, -1};
-      const double residual = d - r;
-      for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) jtj[i][j] += row[i] * row[j];
-        jtr[i] -= row[i] * residual;
-      }
+      const Eigen::Vector3d row(-x / d, -y / d, -1);
+      jtj += row * row.transpose();
+      jtr -= row * (d - r);
     }
-    std::array<double, 3> step{};
     if (!solve_linear<3>(jtj, jtr, step)) break;
     cx += step[0], cy += step[1], r += step[2];
     if (std::fabs(step[0]) + std::fabs(step[1]) + std::fabs(step[2]) < 1e-15) break;
@@ -297,7 +242,7 @@ double max_deviation(const std::vector<gp_XYZ>& points, Distance distance) {
 std::optional<Fit> fit_plane(const Samples& s) {
   if (s.points.size() < 3 || s.normals.empty()) return std::nullopt;
   const gp_XYZ c = centroid(s.points);
-  const Eigen3 eig = symmetric_eigen(scatter(s.points, c));
+  const SymmetricEigen eig = symmetric_eigen(scatter(s.points, c));
   gp_XYZ n = eig.vectors[0];
   if (centroid(s.normals) * n < 0) n.Reverse();  // outward, as the face is oriented
   Fit fit;
@@ -315,18 +260,14 @@ std::optional<Fit> fit_sphere(const Samples& s) {
   double scale = 0;
   for (const gp_XYZ& p : s.points) scale = std::max(scale, (p - c).Modulus());
   if (scale <= 0) return std::nullopt;
-  std::array<std::array<double, 4>, 4> a{};
-  std::array<double, 4> b{};
+  Eigen::Matrix4d a = Eigen::Matrix4d::Zero();
+  Eigen::Vector4d b = Eigen::Vector4d::Zero(), sol;
   for (const gp_XYZ& p : s.points) {
     const gp_XYZ q = (p - c) / scale;
-    const double row[4] = {q.X(), q.Y(), q.Z(), 1};
-    const double rhs = -q.SquareModulus();
-    for (int i = 0; i < 4; ++i) {
-      for (int j = 0; j < 4; ++j) a[i][j] += row[i] * row[j];
-      b[i] += row[i] * rhs;
-    }
+    const Eigen::Vector4d row(q.X(), q.Y(), q.Z(), 1);
+    a += row * row.transpose();
+    b += row * -q.SquareModulus();
   }
-  std::array<double, 4> sol{};
   if (!solve_linear<4>(a, b, sol)) return std::nullopt;
   const gp_XYZ centre_scaled(-sol[0] / 2, -sol[1] / 2, -sol[2] / 2);
   const double r2 = centre_scaled.SquareModulus() - sol[3];
@@ -358,7 +299,7 @@ std::optional<std::pair<gp_XYZ, double>> axis_circle(const std::vector<gp_XYZ>& 
 std::optional<Fit> fit_cylinder(const Samples& s) {
   if (s.normals.size() < 3) return std::nullopt;
   // Normals of a cylinder are perpendicular to its axis.
-  const Eigen3 eig = symmetric_eigen(scatter(s.normals, gp_XYZ(0, 0, 0)));
+  const SymmetricEigen eig = symmetric_eigen(scatter(s.normals, gp_XYZ(0, 0, 0)));
   const gp_Dir axis(eig.vectors[0]);
   const auto circle = axis_circle(s.points, axis);
   if (!circle) return std::nullopt;
@@ -377,21 +318,17 @@ std::optional<Fit> fit_cone(const Samples& s) {
   if (s.normals.size() < 4) return std::nullopt;
   // Normals of a cone make a constant angle with the axis: their tips lie on
   // a circle in a plane perpendicular to it.
-  const Eigen3 eig = symmetric_eigen(scatter(s.normals, centroid(s.normals)));
+  const SymmetricEigen eig = symmetric_eigen(scatter(s.normals, centroid(s.normals)));
   gp_XYZ axis = eig.vectors[0];
   // Every tangent plane passes through the apex: n . apex = n . p.
-  std::array<std::array<double, 3>, 3> a{};
-  std::array<double, 3> b{};
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero(), apex_coords;
   for (std::size_t i = 0; i < s.normals.size(); ++i) {
     const gp_XYZ& n = s.normals[i];
-    const double c[3] = {n.X(), n.Y(), n.Z()};
-    const double rhs = n * s.normal_points[i];
-    for (int r = 0; r < 3; ++r) {
-      for (int k = 0; k < 3; ++k) a[r][k] += c[r] * c[k];
-      b[r] += c[r] * rhs;
-    }
+    const Eigen::Vector3d c(n.X(), n.Y(), n.Z());
+    a += c * c.transpose();
+    b += c * (n * s.normal_points[i]);
   }
-  std::array<double, 3> apex_coords{};
   if (!solve_linear<3>(a, b, apex_coords)) return std::nullopt;
   const gp_XYZ apex(apex_coords[0], apex_coords[1], apex_coords[2]);
   double mean_height = 0;
@@ -457,7 +394,7 @@ std::optional<Fit> fit_torus(const BRepAdaptor_Surface& surface, const Samples& 
     centres.reserve(points.size());
     for (std::size_t i = 0; i < points.size(); ++i) centres.push_back(points[i] + normals[i] * (sign * minor));
     const gp_XYZ c = centroid(centres);
-    const Eigen3 eig = symmetric_eigen(scatter(centres, c));
+    const SymmetricEigen eig = symmetric_eigen(scatter(centres, c));
     const gp_Dir axis(eig.vectors[0]);
     const auto circle = axis_circle(centres, axis);
     if (!circle) continue;
