@@ -84,7 +84,7 @@ std::vector<Partition> merge_faces(const TopoDS_Shape& shape, const TopTools_Ind
   for (Partition& partition : partitions) {
     const FaceInfo& first = faces[partition.faces.front() - 1];
     if (partition.faces.size() == 1) {
-      partition.extent = first.extent;
+      partition.extent = first.extent;  // the outline shared, not copied
       continue;
     }
     const SurfaceParams& s = partition.params;
@@ -92,13 +92,15 @@ std::vector<Partition> merge_faces(const TopoDS_Shape& shape, const TopTools_Ind
     extent.ref_dir = first.extent.ref_dir;
     if (s.kind == SurfaceKind::Plane) {
       const gp_Dir y_dir = s.axis.Crossed(extent.ref_dir);
+      std::vector<Polygon2> outline;
       for (int index : partition.faces) {
         const FaceInfo& face = faces[index - 1];
         std::vector<Polygon2> loops = index == partition.faces.front()
-                                          ? face.extent.outline
+                                          ? face.extent.outline.loops()
                                           : outline_in(face, s.location, extent.ref_dir, y_dir);
-        for (Polygon2& loop : loops) extent.outline.push_back(std::move(loop));
+        for (Polygon2& loop : loops) outline.push_back(std::move(loop));
       }
+      extent.outline = std::move(outline);
     } else if (is_revolution(s.kind)) {
       extent.axial_min = 1e300;
       extent.axial_max = -1e300;
