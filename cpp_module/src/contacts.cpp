@@ -412,7 +412,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
     result.times.area = seconds_since(start);
-    const Status interferences = find_interferences(assembly, result, progress);
+    const Status interferences = find_interferences(assembly, result, progress, threads);
     if (!interferences.ok()) {
       result.status = interferences;
       return result;
