@@ -9,12 +9,17 @@ from contactwb import ROOT_DIR
 
 
 def _load():
+    # A folder named explicitly wins over an installed copy (FreeCAD puts the
+    # installed workbench on sys.path: tests must load the build's).
+    explicit = os.environ.get("CONTACTS_PYTHON_DIR")
+    if explicit and os.path.isdir(explicit) and "contactcore" not in sys.modules:
+        sys.path.insert(0, explicit)
     try:
         import contactcore  # installed beside the workbench, or already on sys.path
         return contactcore
     except ImportError:
         pass
-    candidates = [os.environ.get("CONTACTS_PYTHON_DIR"), os.path.join(ROOT_DIR, "build", "python")]
+    candidates = [explicit, os.path.join(ROOT_DIR, "build", "python")]
     for folder in filter(None, candidates):
         if os.path.isdir(folder) and folder not in sys.path:
             sys.path.insert(0, folder)
