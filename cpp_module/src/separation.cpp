@@ -308,7 +308,24 @@ bool provably_apart(const BodyPartitions& a, const BodyPartitions& a_outlines, c
   std::vector<SeparationAxis> axes;
   std::vector<gp_Dir> normals;
   add_axes(a, tol, axes, normals);
+  const std::size_t from_a = axes.size();
   add_axes(b, tol, axes, normals);
+  // Axes both bodies turn about first (a shaft and its bore's): they are the
+  // ones that usually keep the two apart.
+  std::vector<char> shared(axes.size(), 0);
+  for (std::size_t i = 0; i < from_a; ++i)
+    for (const Partition& p : b.partitions)
+      if ((p.params.kind == SurfaceKind::Cylinder || p.params.kind == SurfaceKind::Cone ||
+           p.params.kind == SurfaceKind::Torus) &&
+          same_line(axes[i], {p.params.location, p.params.axis}, tol)) {
+        shared[i] = 1;
+        break;
+      }
+  std::vector<SeparationAxis> ordered;
+  for (int pass : {1, 0})
+    for (std::size_t i = 0; i < axes.size(); ++i)
+      if (shared[i] == pass) ordered.push_back(axes[i]);
+  axes.swap(ordered);
   // Along a plane normal only z matters (a separating plane); any origin.
   for (const gp_Dir& n : normals) axes.push_back({gp_Pnt(0, 0, 0), n});
   // Neighbours only for bodies that need them (cross holes), once.

@@ -1,5 +1,7 @@
 #include "contactcore/validity.h"
 
+#include <algorithm>
+
 #include <BRepCheck_Status.hxx>
 #include <BRepCheck_Wire.hxx>
 #include <Standard_Failure.hxx>
@@ -13,10 +15,52 @@ namespace contactcore {
 
 namespace {
 
-// FaceN of the faces whose wires cross themselves.
+double orientation(const Point2& a, const Point2& b, const Point2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// True when two chords of one loop cross (each strictly through the other).
+bool loop_crosses_itself(const Polygon2& loop) {
+  const std::size_t n = loop.size();
+  if (n < 4) return false;
+  struct Chord {
+    double x0, x1, y0, y1;
+    std::size_t i;
+  };
+  std::vector<Chord> chords(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2& a = loop[i];
+    const Point2& b = loop[(i + 1) % n];
+    chords[i] = {std::min(a.x, b.x), std::max(a.x, b.x), std::min(a.y, b.y), std::max(a.y, b.y), i};
+  }
+  std::sort(chords.begin(), chords.end(), [](const Chord& l, const Chord& r) { return l.x0 < r.x0; });
+  std::vector<const Chord*> active;
+  for (const Chord& c : chords) {
+    active.erase(std::remove_if(active.begin(), active.end(), [&](const Chord* o) { return o->x1 < c.x0; }),
+                 active.end());
+    for (const Chord* o : active) {
+      if (o->y1 < c.y0 || c.y1 < o->y0) continue;
+      const std::size_t i = c.i, j = o->i;
+      if ((i + 1) % n == j || (j + 1) % n == i) continue;  // neighbours share a point
+      const Point2 &p1 = loop[i], &p2 = loop[(i + 1) % n], &q1 = loop[j], &q2 = loop[(j + 1) % n];
+      const double o1 = orientation(p1, p2, q1), o2 = orientation(p1, p2, q2);
+      const double o3 = orientation(q1, q2, p1), o4 = orientation(q1, q2, p2);
+      if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) return true;
+    }
+    active.push_back(&c);
+  }
+  return false;
+}
+
+// FaceN of the faces whose wires cross themselves. A planar face whose
+// outline loops (chords within the tolerance of its edges) do not cross
+// is clear; the others are checked as BRepCheck does.
 std::vector<int> self_intersecting_faces(const BodyPartitions& body) {
   std::vector<int> faces;
   for (const FaceInfo& info : body.faces) {
+    if (info.params.kind == SurfaceKind::Plane && !info.extent.outline.empty() &&
+        std::none_of(info.extent.outline.begin(), info.extent.outline.end(), loop_crosses_itself))
+      continue;
     for (TopExp_Explorer w(info.face, TopAbs_WIRE); w.More(); w.Next()) {
       Handle(BRepCheck_Wire) check = new BRepCheck_Wire(TopoDS::Wire(w.Current()));
       TopoDS_Edge first, second;
