@@ -1,8 +1,13 @@
 #include "contactcore/validity.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <BRepCheck_Status.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_BSplineCurve.hxx>
+#include <Geom2d_Line.hxx>
+#include <Geom2d_TrimmedCurve.hxx>
 #include <BRepCheck_Wire.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
@@ -52,6 +57,38 @@ bool loop_crosses_itself(const Polygon2& loop) {
   return false;
 }
 
+// One wire of at most four edges, each an iso-parametric line in the face's
+// parameters (a cylinder or cone cut by two parallels, with its seam): a
+// rectangle in (u, v), which cannot cross itself.
+bool iso_rectangle(const TopoDS_Face& face) {
+  int wires = 0, edges = 0;
+  for (TopExp_Explorer w(face, TopAbs_WIRE); w.More(); w.Next()) ++wires;
+  if (wires != 1) return false;
+  for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) {
+    if (++edges > 4) return false;
+    double first, last;
+    Handle(Geom2d_Curve) curve = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Current()), face, first, last);
+    while (!curve.IsNull() && curve->IsKind(STANDARD_TYPE(Geom2d_TrimmedCurve)))
+      curve = Handle(Geom2d_TrimmedCurve)::DownCast(curve)->BasisCurve();
+    if (Handle(Geom2d_Line) line = Handle(Geom2d_Line)::DownCast(curve); !line.IsNull()) {
+      const gp_Dir2d d = line->Direction();
+      if (std::abs(d.X()) > 1e-12 && std::abs(d.Y()) > 1e-12) return false;
+    } else if (Handle(Geom2d_BSplineCurve) spline = Handle(Geom2d_BSplineCurve)::DownCast(curve); !spline.IsNull()) {
+      // Poles on one iso line hold the whole curve (convex hull).
+      bool same_u = true, same_v = true;
+      const gp_Pnt2d first_pole = spline->Pole(1);
+      for (int i = 2; i <= spline->NbPoles(); ++i) {
+        same_u &= std::abs(spline->Pole(i).X() - first_pole.X()) < 1e-12;
+        same_v &= std::abs(spline->Pole(i).Y() - first_pole.Y()) < 1e-12;
+      }
+      if (!same_u && !same_v) return false;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
 // FaceN of the faces whose wires cross themselves. A planar face whose
 // outline loops (chords within the tolerance of its edges) do not cross
 // is clear; the others are checked as BRepCheck does.
@@ -61,6 +98,7 @@ std::vector<int> self_intersecting_faces(const BodyPartitions& body) {
     if (info.params.kind == SurfaceKind::Plane && !info.extent.outline.empty() &&
         std::none_of(info.extent.outline.begin(), info.extent.outline.end(), loop_crosses_itself))
       continue;
+    if (info.params.kind != SurfaceKind::Plane && iso_rectangle(info.face)) continue;
     for (TopExp_Explorer w(info.face, TopAbs_WIRE); w.More(); w.Next()) {
       Handle(BRepCheck_Wire) check = new BRepCheck_Wire(TopoDS::Wire(w.Current()));
       TopoDS_Edge first, second;
