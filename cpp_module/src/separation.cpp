@@ -4,7 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepTools.hxx>
 #include <TopExp.hxx>
+#include <gp_Torus.hxx>
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
@@ -162,7 +165,53 @@ Shadow crossing_cylinder_shadow(const Partition& p, const SeparationAxis& axis, 
   return out;
 }
 
-Shadow revolution_shadow(const Partition& p, const SeparationAxis& axis, double linear) {
+// Extremes of cos (or sin, shift = pi/2) over [v0, v1].
+void trig_range(double v0, double v1, double shift, double& low, double& high) {
+  low = std::min(std::cos(v0 - shift), std::cos(v1 - shift));
+  high = std::max(std::cos(v0 - shift), std::cos(v1 - shift));
+  if (v1 - v0 >= 2 * M_PI) {
+    low = -1, high = 1;
+    return;
+  }
+  for (int k = -4; k <= 4; ++k) {
+    const double at = shift + k * M_PI;  // cos(v - shift) is +-1 there
+    if (at > v0 && at < v1) (k % 2 == 0 ? high : low) = (k % 2 == 0 ? 1.0 : -1.0);
+  }
+}
+
+// A coaxial torus partition of native toroidal faces: the part of the tube
+// its faces cover (v range: r = R + rho cos v, z = zc + rho sin v), within `whole`.
+Shadow torus_tube_shadow(const Partition& p, const BodyPartitions& body, const SeparationAxis& axis,
+                         const Shadow& whole, double linear) {
+  Shadow s{kInf, -kInf, kInf, -kInf};
+  const double zc = gp_Vec(axis.origin, p.params.location).Dot(gp_Vec(axis.direction));
+  for (int index : p.faces) {
+    if (index < 1 || index > static_cast<int>(body.faces.size())) return whole;
+    const FaceInfo& info = body.faces[index - 1];
+    if (info.recognised) return whole;
+    BRepAdaptor_Surface surface(info.face, Standard_False);
+    if (surface.GetType() != GeomAbs_Torus) return whole;
+    const gp_Torus torus = surface.Torus();
+    const double sign = gp_Vec(torus.Axis().Direction()).Dot(gp_Vec(axis.direction)) > 0 ? 1 : -1;
+    double u0, u1, v0, v1;
+    BRepTools::UVBounds(info.face, u0, u1, v0, v1);
+    double c_low, c_high, s_low, s_high;
+    trig_range(v0, v1, 0, c_low, c_high);
+    trig_range(v0, v1, M_PI / 2, s_low, s_high);
+    const double rho = torus.MinorRadius(), major = torus.MajorRadius();
+    s.r0 = std::min(s.r0, major + rho * c_low);
+    s.r1 = std::max(s.r1, major + rho * c_high);
+    const double za = zc + sign * rho * s_low, zb = zc + sign * rho * s_high;
+    s.z0 = std::min(s.z0, std::min(za, zb));
+    s.z1 = std::max(s.z1, std::max(za, zb));
+  }
+  // UV bounds are those of the pcurves: widen by the tolerance.
+  return {std::max({0.0, whole.r0, s.r0 - 2 * linear}), std::min(whole.r1, s.r1 + 2 * linear),
+          std::max(whole.z0, s.z0 - 2 * linear), std::min(whole.z1, s.z1 + 2 * linear)};
+}
+
+Shadow revolution_shadow(const Partition& p, const SeparationAxis& axis, double linear,
+                         const BodyPartitions* body = nullptr) {
   const SurfaceParams& sp = p.params;
   const bool parallel = gp_Vec(sp.axis).Crossed(gp_Vec(axis.direction)).Magnitude() < kParallel;
   const double offset = line_distance(sp.location, axis);
@@ -187,7 +236,9 @@ Shadow revolution_shadow(const Partition& p, const SeparationAxis& axis, double 
       if (!parallel || offset > linear) break;
       const double zc = gp_Vec(axis.origin, sp.location).Dot(gp_Vec(axis.direction));
       const double reach = sp.minor_radius + linear;
-      return {std::max(0.0, sp.radius - reach), sp.radius + reach, zc - reach, zc + reach};
+      Shadow whole{std::max(0.0, sp.radius - reach), sp.radius + reach, zc - reach, zc + reach};
+      if (body) return torus_tube_shadow(p, *body, axis, whole, linear);
+      return whole;
     }
     case SurfaceKind::Sphere: {
       if (offset > linear) break;
@@ -287,7 +338,7 @@ std::vector<Shadow> partition_shadows(const BodyPartitions& body, const BodyPart
           k < outlines.partitions.size() ? outlines.partitions[k].extent.outline : p.extent.outline;
       shadows.push_back(plane_shadow(p, outline, axis, linear));
     } else {
-      shadows.push_back(revolution_shadow(p, axis, linear));
+      shadows.push_back(revolution_shadow(p, axis, linear, &body));
     }
   }
   if (neighbours.size() == shadows.size()) {
