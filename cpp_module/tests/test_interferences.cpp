@@ -15,6 +15,7 @@
 
 #include "contactcore/contacts.h"
 #include "contactcore/interferences.h"
+#include "contactcore/separation.h"
 #include "test_helpers.h"
 
 using namespace contactcore;
@@ -178,4 +179,48 @@ TEST(Interferences, SharedPressHasItsThree) {
     EXPECT_GE(i.volume, 0.9 * boolean);
   }
   expect_same_serial_and_parallel(read.assembly);
+}
+
+namespace {
+
+bool apart(const ContactsResult& result, int a, int b) {
+  return provably_apart(result.partitions[a], result.partitions[result.instance_of[a]], result.partitions[b],
+                        result.partitions[result.instance_of[b]], result.tolerances);
+}
+
+}  // namespace
+
+TEST(Separation, NeverClaimsOverlappingBodiesApart) {
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const std::vector<std::pair<TopoDS_Shape, TopoDS_Shape>> overlapping = {
+      {box(0, 0, 0, 10, 10, 10), box(9, 0.5, 0.5, 10, 10, 10)},
+      {box(-20, -20, 0, 40, 40, 5), cylinder(3, 30, gp_Pnt(0, 0, -10))},
+      {box(-20, -20, -10, 40, 40, 10), BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 3), 5).Shape()},
+      {plate, cylinder(5.05, 30, gp_Pnt(0, 0, -10))},
+      {plate, cylinder(5, 30, gp_Pnt(0.5, 0, -10))},  // a shaft off its bore's axis
+  };
+  for (const auto& [first, second] : overlapping) {
+    const ContactsResult result = contacts_of(make_assembly({{"first", first}, {"second", second}}));
+    EXPECT_FALSE(apart(result, 0, 1));
+  }
+}
+
+TEST(Separation, ProvesTheMotorsTouchingPairsApart) {
+  // Every motor pair whose boxes overlap touches only: each is proven apart
+  // from the partitions (no point classification, no Boolean).
+  const AssemblyResult read = read_step(sample("motor.step"));
+  ASSERT_TRUE(read.status.ok());
+  const ContactsResult result = contacts_of(read.assembly);
+  int deep = 0;
+  for (const auto& [a, b] : result.body_pairs) {
+    double a_[6], b_[6];
+    result.partitions[a].box.Get(a_[0], a_[1], a_[2], a_[3], a_[4], a_[5]);
+    result.partitions[b].box.Get(b_[0], b_[1], b_[2], b_[3], b_[4], b_[5]);
+    double depth = 1e300;
+    for (int k = 0; k < 3; ++k) depth = std::min(depth, std::min(a_[k + 3], b_[k + 3]) - std::max(a_[k], b_[k]));
+    if (depth <= result.tolerances.linear) continue;  // boxes only touch: not looked at
+    ++deep;
+    EXPECT_TRUE(apart(result, a, b)) << read.assembly.bodies[a].name << " / " << read.assembly.bodies[b].name;
+  }
+  EXPECT_EQ(deep, 44);  // of its 51 body pairs
 }
