@@ -5,6 +5,7 @@
 #include "contactcore/instances.h"
 #include "contactcore/interferences.h"
 #include "contactcore/parallel.h"
+#include "contactcore/validity.h"
 
 #include <algorithm>
 #include <array>
@@ -398,7 +399,12 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
     result.times.area = seconds_since(start);
-    const Status interferences = find_interferences(assembly, result, progress);
+    const Status checked = check_solids(assembly, result, progress, threads);
+    if (!checked.ok()) {
+      result.status = checked;
+      return result;
+    }
+    const Status interferences = find_interferences(assembly, result, progress, threads);
     if (!interferences.ok()) {
       result.status = interferences;
       return result;

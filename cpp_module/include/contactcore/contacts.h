@@ -63,6 +63,13 @@ struct Interference {
   int body_a = 0, body_b = 0;  // body_a < body_b
   double volume = 0;           // mm^3 of the common solid
 };
+// A body whose solid BRepCheck finds invalid (a self-intersecting boundary):
+// its contacts and areas may be wrong.
+struct InvalidBody {
+  int body = 0;
+  std::vector<int> faces;  // 1-based FaceN where the fault lies
+  std::string reason;
+};
 // Same surface type and axis, radii differing by less than the clearance gap
 // (a nut on its bolt): a fit with play, not a contact.
 struct Clearance {
@@ -96,6 +103,7 @@ struct ContactsResult {
   std::size_t candidates = 0;  // candidate partition pairs (those of body pairs placed alike each counted)
   std::vector<Contact> contacts;
   std::vector<Interference> interferences;
+  std::vector<InvalidBody> invalid_bodies;  // in body order
   std::vector<Clearance> clearances;
   std::vector<SkippedPair> skipped;
   std::vector<std::string> messages;  // what was skipped or doubtful, for the user
