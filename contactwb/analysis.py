@@ -198,7 +198,6 @@ def _analysis(source, assembly, result, face_name=None):
         skipped.append(SkippedRecord(
             a=names[s.body_a], b=names[s.body_b], faces_a=[face_name(s.body_a, f) for f in s.faces_a],
             faces_b=[face_name(s.body_b, f) for f in s.faces_b], message=s.message))
-    messages.extend(result.messages)
     mass = _MassTable(assembly)
     times = {"partitions": result.times.partitions, "broad_phase": result.times.broad_phase,
              "candidates": result.times.candidates, "area": result.times.area}

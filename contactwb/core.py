@@ -9,6 +9,13 @@ from contactwb import ROOT_DIR
 
 
 def _load():
+    # An explicit build folder first: FreeCAD puts installed workbenches at the
+    # front of sys.path, so a plain import could load another (older) build.
+    explicit = os.environ.get("CONTACTS_PYTHON_DIR")
+    if explicit and os.path.isdir(explicit) and "contactcore" not in sys.modules:
+        if explicit in sys.path:
+            sys.path.remove(explicit)
+        sys.path.insert(0, explicit)
     try:
         import contactcore  # installed beside the workbench, or already on sys.path
         return contactcore
