@@ -72,14 +72,28 @@ bool usable(const Handle(StepGeom_Direction)& direction) {
   return true;
 }
 
+bool coordinates_unreadable(const Handle(StepData_StepModel)& model, Standard_Integer num) {
+  if (!model->IsErrorEntity(num)) return false;
+  const Handle(Interface_ReportEntity) report = model->ReportEntity(num);
+  if (report.IsNull() || report->Check().IsNull()) return true;
+  const Handle(Interface_Check) check = report->Check();
+  for (Standard_Integer i = 1; i <= check->NbFails(); ++i) {
+    const std::string fail = check->Fail(i)->ToCString();
+    if (fail.find("coordinates") != std::string::npos || fail.find("direction_ratios") != std::string::npos)
+      return true;
+  }
+  return false;
+}
+
 void find_non_finite(const Handle(StepData_StepModel)& model, StepModelCheck& out) {
   for (Standard_Integer num = 1; num <= model->NbEntities(); ++num) {
     const Handle(Standard_Transient) entity = model->Value(num);
     const Handle(StepGeom_CartesianPoint) point = Handle(StepGeom_CartesianPoint)::DownCast(entity);
     const Handle(StepGeom_Direction) direction = Handle(StepGeom_Direction)::DownCast(entity);
     if (point.IsNull() && direction.IsNull()) continue;
-    // An entity that failed to read keeps whatever its coordinates held.
-    const bool bad = model->IsErrorEntity(num) || (point.IsNull() ? !usable(direction) : !usable(point));
+    // A coordinate that failed to read leaves whatever was there (an unset
+    // name, "$" as some writers put, is harmless).
+    const bool bad = coordinates_unreadable(model, num) || (point.IsNull() ? !usable(direction) : !usable(point));
     if (bad) out.non_finite.push_back(entity_label(model, entity) + (point.IsNull() ? " (DIRECTION)" : " (CARTESIAN_POINT)"));
   }
 }
