@@ -278,7 +278,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
             const BodyPartitions& original = result.partitions[source];
             if (original.status.ok()) {
               result.partitions[i] = moved_partitions(original, relative_motion(assembly.bodies[source], assembly.bodies[i]),
-                                                      assembly.bodies[i].shape, false);
+                                                      assembly.bodies[i].shape);
             }
             if (!original.status.ok() || !result.partitions[i].status.ok()) {
               partition_body(i);
@@ -328,19 +328,6 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     std::vector<std::size_t> tested;  // the pairs whose candidates are tested, in order
     for (std::size_t k = 0; k < pairs.size(); ++k)
       if (representative[k] == k) tested.push_back(k);
-    // Instances tested lend their source's outlines for the while.
-    std::vector<int> lent;
-    {
-      std::vector<char> needs(n, 0);
-      for (std::size_t k : tested) needs[pairs[k].first] = needs[pairs[k].second] = 1;
-      for (std::size_t i = 0; i < n; ++i)
-        if (needs[i] && result.instance_of[i] != static_cast<int>(i)) lent.push_back(static_cast<int>(i));
-    }
-    if (!parallel_for(lent.size(), threads, progress, "candidates", [&](std::size_t t) {
-          copy_outlines(result.partitions[result.instance_of[lent[t]]], result.partitions[lent[t]]);
-        }, 16))
-      return cancelled();
-
     start = Clock::now();
     std::vector<std::vector<Candidate>> pair_candidates_of(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "candidates", [&](std::size_t t) {
@@ -384,7 +371,6 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
           std::vector<Candidate>().swap(pair_candidates_of[k]);
         }, 4))
       return cancelled();
-    for (int i : lent) drop_outlines(result.partitions[i]);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const std::size_t r = representative[k];
       const auto [ia, ib] = pairs[k];

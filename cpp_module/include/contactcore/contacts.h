@@ -89,8 +89,8 @@ struct ContactsResult {
   Tolerances tolerances;
   std::vector<BodyPartitions> partitions;  // one per body
   // Per body, the body whose shape it instances (itself when none). An
-  // instance's partitions are its source's moved, without the plane
-  // outlines: those are its source's, in the same plane frame.
+  // instance's partitions are its source's moved; their plane outlines are
+  // its source's (same plane frame), shared, not copied.
   std::vector<int> instance_of;
   std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
   std::size_t candidates = 0;  // candidate partition pairs (those of body pairs placed alike each counted)
