@@ -329,6 +329,9 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
       } else if (check.assembly_depth > kMaxAssemblyDepth) {
         fail(StatusCode::InvalidInput, "assembly nested " + std::to_string(check.assembly_depth) +
                                            " levels deep (at most " + std::to_string(kMaxAssemblyDepth) + ")");
+      } else if (!check.non_finite.empty()) {
+        fail(StatusCode::InvalidInput, "coordinates that are not finite numbers (NaN, infinite or unreadable) in " +
+                                           describe_non_finite(check));
       } else if (progress && !progress->report("read", 0.3)) {
         fail(StatusCode::Cancelled, "cancelled");
       } else {
