@@ -128,8 +128,10 @@ def write_meshes(assembly, out_dir, deflection=0.1, angle=0.5, max_edge=0.0, lin
     return document
 
 
-def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.02, linear=None, angular=None):
-    """contactcore.DisassemblyResult: the removal sequence, blocking graphs, or the reason none exists."""
+def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.0, linear=None, angular=None):
+    """contactcore.DisassemblyResult: the removal sequence, blocking graphs, or the reason none exists.
+    `tolerance` (mm; 0: twice the deflection): how deep a swept part must cut into another to be
+    blocked (two tessellations of one surface cross by up to their deflection)."""
     options = core.contactcore.MeshOptions(deflection, angle, 0.0)
     return core.contactcore.disassemble(assembly, options, tolerance, linear, angular)
 
