@@ -8,6 +8,7 @@ import FreeCAD
 
 from contactwb import analysis, bodies, core
 from contactwb.make import make_simulation_model
+from contactwb.objects.simulation_model import is_simulation_model
 
 coin = pytest.importorskip("pivy.coin")
 view = pytest.importorskip("contactwb.gui.simulation_model_view")
@@ -24,7 +25,7 @@ def part(doc, label):
     return next(o for o in doc.Objects if o.Label == label)
 
 
-def test_collision_model_of_the_front_cover_with_the_bearing_joint_switched_off(motor):
+def test_collision_model_of_the_front_cover_with_the_bearing_joint_switched_off(motor, tmp_path):
     cover, bearing = part(motor, "Front-cover"), part(motor, "Bearing-front")
     model = make_simulation_model(motor, cover, "Collision", followed=bearing, feature_size=2.5, envelope=5)
     try:
@@ -46,6 +47,18 @@ def test_collision_model_of_the_front_cover_with_the_bearing_joint_switched_off(
         # The cover is still a body of the document (a model is not a part).
         assert "Front-cover" in [b.name for b in bodies.document_bodies(motor)]
         assert len(bodies.document_bodies(motor)) == 18
+        # Saved and re-opened: the proxy and the stored mesh come back (nothing is meshed again).
+        path = str(tmp_path / "motor_with_model.FCStd")
+        motor.saveCopy(path)
+        copy = FreeCAD.openDocument(path)
+        try:
+            (restored,) = [o for o in copy.Objects if is_simulation_model(o)]
+            assert restored.Label == "Collision model of Front-cover"
+            assert list(restored.MeshTriangles) == list(model.MeshTriangles)
+            assert list(restored.SwitchedOff) == list(model.SwitchedOff)
+            assert restored.Body[0].Label == "Front-cover" and restored.FollowedPart[0].Label == "Bearing-front"
+        finally:
+            FreeCAD.closeDocument(copy.Name)
         # The view model: every feature, finer.
         model.Model = "View"
         motor.recompute()
