@@ -19,6 +19,8 @@ class ContactsWorkbench(FreeCADGui.Workbench):
         # returns their names in toolbar order.
         names = []
         names += commands.register()
+        from contactwb.gui import simulation_model_view
+        names += simulation_model_view.register()
         self.appendToolbar("Contacts", names)
         self.appendMenu("&Contacts", names)
         from contactwb.gui import haptic_panel

@@ -299,6 +299,9 @@ def main():
     print(text)
     if args.write:
         write_section(args.write, text)
+    # Meshes, collision and disassembly: their own program and section (bench/bench_meshes.py).
+    subprocess.run([sys.executable, os.path.join(REPO, "bench", "bench_meshes.py"), "--build-dir", build_dir]
+                   + (["--write", args.write] if args.write else []), check=True)
 
 
 BEGIN, END = "<!-- contacts bench: begin -->", "<!-- contacts bench: end -->"

@@ -129,7 +129,8 @@ def _split_solids(name, obj, root, subname, shape, containers):
 def _is_analysis_object(obj):
     """The workbench's own results (they link to bodies but hold no solid)."""
     from contactwb.objects.contact_objects import is_contact, is_contact_analysis
-    return is_contact_analysis(obj) or is_contact(obj)
+    from contactwb.objects.simulation_model import is_simulation_model
+    return is_contact_analysis(obj) or is_contact(obj) or is_simulation_model(obj)
 
 
 def _roots(doc):

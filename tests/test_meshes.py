@@ -77,11 +77,79 @@ def test_mesh_command_writes_watertight_tagged_ply_per_body(tmp_path, capsys):
         assert f"{body.name}: {len(triangles)} triangles, watertight" in printed
 
 
+def _hole_partitions(body, radius):
+    """Ids of the body's concave cylinder partitions of the given radius (its holes)."""
+    partitions = core.contactcore.partition_brep(body.brep)
+    return {p.id for p in partitions.partitions
+            if p.params.kind.name == "Cylinder" and p.side.name == "Concave" and abs(p.params.radius - radius) < 1e-9}
+
+
+def test_mesh_command_simplifies_the_front_cover_within_its_envelope(tmp_path, capsys):
+    # Fig. 4b: the front cover's four small through holes (diameter 2.4) leave its collision model, its
+    # four screw holes (diameter 3) stay. The holes go through the 8 mm cover: their filled walls lie at
+    # most 4 mm (half the thickness) from its faces: the Hausdorff distance, hand-derived.
+    out = tmp_path / "motor"
+    assert cli.main(["mesh", MOTOR, "--out", str(out), "--simplify", "2.5", "--envelope", "5"]) == 0
+    printed = capsys.readouterr().out
+    document = json.loads((out / "meshes.json").read_text())
+    assert (document["simplify"], document["envelope"]) == (2.5, 5.0)
+    assembly = core.contactcore.read_step(MOTOR)
+    (index, cover), = [(i, b) for i, b in enumerate(assembly.bodies) if b.name == "Front-cover"]
+    entry = document["bodies"][index]
+    small, screw = _hole_partitions(cover, 1.2), _hole_partitions(cover, 1.5)
+    assert (len(small), len(screw)) == (4, 4)
+    collision = entry["collision"]
+    assert collision["simplified"] is True and collision["message"] == ""
+    assert collision["hausdorff"] == pytest.approx(4.0, abs=1e-6)
+    partitions = core.contactcore.partition_brep(cover.brep)
+    small_faces = sorted(f for p in partitions.partitions if p.id in small for f in p.faces)
+    assert collision["removed_faces"] == [f"Face{f}" for f in small_faces]
+    assert "12 faces of small features removed, Hausdorff 4.000 mm <= 5" in printed
+    # Read back: closed, the small holes' partitions gone, the screw holes' kept; the view model has both.
+    vertices, triangles = read_ply(out / collision["file"])
+    edges = Counter()
+    for i, j, k, *_ in triangles:
+        for a, b in ((i, j), (j, k), (k, i)):
+            edges[(min(a, b), max(a, b))] += 1
+    assert set(edges.values()) == {2} and collision["watertight"] is True
+    present = {t[4] for t in triangles}
+    assert not present & small and screw <= present
+    # Every surviving face kept its partition: the tags are the original's (a subset of them).
+    assert present <= {p.id for p in partitions.partitions}
+    # Filled holes add material: 4 holes of radius 1.2 through 8 mm (chords take a little off).
+    hole_volume = 4 * 3.141592653589793 * 1.2 ** 2 * 8
+    assert signed_volume(vertices, triangles) == pytest.approx(cover.volume + hole_volume, rel=0.01)
+    _, view_triangles = read_ply(out / entry["file"])
+    assert small | screw <= {t[4] for t in view_triangles}
+    assert 0 < entry["hausdorff"] <= document["deflection"]  # the view model: its chordal deviation
+    # Coarser: the collision model has fewer triangles than the view model.
+    assert collision["triangles"] < entry["triangles"]
+
+
+def test_simplification_beyond_the_envelope_keeps_the_original(tmp_path):
+    assembly = core.contactcore.read_step(MOTOR)
+    index = [b.name for b in assembly.bodies].index("Front-cover")
+    (models,) = meshes.simulation_models(assembly, simplify=2.5, envelope=3.0, bodies=[index])
+    assert not models.simplified
+    assert "4.000000 mm > 3.000000 mm" in models.message
+    assert models.removed_faces == []
+    cover = assembly.bodies[index]
+    assert _hole_partitions(cover, 1.2) <= set(models.collision.mesh.triangle_partition)
+    assert models.collision.quality.watertight
+    assert 0 < models.collision_hausdorff <= 0.2  # its tessellation's deviation (deflection 2 x 0.1)
+    with pytest.raises(core.ContactsError):
+        meshes.simulation_models(assembly, simplify=2.5, envelope=0.0, bodies=[index])
+
+
 def test_mesh_command_refuses_bad_input(tmp_path, capsys):
     assert cli.main(["mesh", str(tmp_path / "missing.step"), "--out", str(tmp_path / "o")]) == 1
     assert "missing.step" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         cli.main(["mesh", MOTOR, "--out", str(tmp_path / "o"), "--deflection", "0"])
+    with pytest.raises(SystemExit):
+        cli.main(["mesh", MOTOR, "--out", str(tmp_path / "o"), "--simplify", "2.5"])  # no envelope
+    with pytest.raises(SystemExit):
+        cli.main(["mesh", MOTOR, "--out", str(tmp_path / "o"), "--envelope", "2"])  # no --simplify
 
 
 def test_disassembly_json_of_the_taper_pin(capsys):

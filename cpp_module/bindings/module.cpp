@@ -13,6 +13,7 @@ void bind_joints(py::module_& m);
 void bind_meshes(py::module_& m);
 void bind_collision(py::module_& m);
 void bind_disassembly(py::module_& m);
+void bind_simplify(py::module_& m);
 #ifdef CONTACTS_WITH_HAPTICS
 void bind_haptics(py::module_& m);
 #endif
@@ -29,6 +30,7 @@ PYBIND11_MODULE(contactcore, m) {
   bind_meshes(m);
   bind_collision(m);
   bind_disassembly(m);
+  bind_simplify(m);
 #ifdef CONTACTS_WITH_HAPTICS
   bind_haptics(m);
 #endif

@@ -174,7 +174,17 @@ struct CollisionPair::State {
   fcl::CollisionResultd collide_result;
   fcl::DistanceRequestd distance_request;
   fcl::DistanceResultd distance_result;
-  fcl::Sphered point{0.0};
+  // A point, as a one-triangle mesh 1e-12 mm across: FCL fits an oriented box to a shape on every
+  // mesh-shape query (an eigen-decomposition), not to a mesh it already holds.
+  std::shared_ptr<Bvh> point = [] {
+    auto model = std::make_shared<Bvh>();
+    const std::vector<fcl::Vector3d> corners{{0, 0, 0}, {1e-12, 0, 0}, {0, 1e-12, 0}};
+    const std::vector<fcl::Triangle> triangle{{0, 1, 2}};
+    model->beginModel(1, 3);
+    model->addSubModel(corners, triangle);
+    model->endModel();
+    return model;
+  }();
   // Penetration flood: visit stamps per vertex, a stack, the seeds.
   std::vector<unsigned> stamp[2];
   unsigned query_stamp = 0;
@@ -428,13 +438,12 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       const double bound = box_gap(p, Eigen::Vector3d::Zero(), s.box_center[side][q], s.box_half[side][q]);
       if (bound >= best) continue;
       s.distance_result.clear();
-      // Mesh first: FCL 0.7 fills the nearest points and ids of shape-mesh queries in mesh-shape
-      // order, and gives the mesh's nearest point in the mesh's own frame.
-      fcl::distance(subs[q].bvh.get(), s.transform[side], &s.point, at, s.distance_request, s.distance_result);
+      // Mesh-mesh: FCL 0.7 gives the nearest points in world coordinates.
+      fcl::distance(subs[q].bvh.get(), s.transform[side], s.point.get(), at, s.distance_request, s.distance_result);
       if (s.distance_result.min_distance < best) {
         best = std::max(0.0, s.distance_result.min_distance);
-        local = s.distance_result.nearest_points[0];  // FCL gives it in the mesh's frame
-        closest = s.transform[side] * local;
+        closest = s.distance_result.nearest_points[0];
+        local = s.transform[side].inverse() * closest;
         triangle = subs[q].triangle[s.distance_result.b1];
       }
     }
@@ -470,4 +479,36 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   }
 }
 
+double CollisionPair::depth_inside(int side, const RigidTransform& place, const std::array<double, 3>& point) {
+  State& s = *state_;
+  side = side == 0 ? 0 : 1;
+  const fcl::Transform3d transform = to_fcl(place);
+  const Eigen::Vector3d p(point[0], point[1], point[2]);
+  const auto& impl = s.impl(side);
+  const Eigen::Matrix3d rotation = transform.linear(), abs_rotation = rotation.cwiseAbs();
+  double best = std::numeric_limits<double>::infinity();
+  int triangle = -1;
+  Eigen::Vector3d closest, local;
+  fcl::Transform3d at = fcl::Transform3d::Identity();
+  at.translation() = p;
+  for (const auto& sub : impl.subs) {
+    if (!sub.bvh) continue;
+    if (box_gap(p, Eigen::Vector3d::Zero(), rotation * sub.center + transform.translation(), abs_rotation * sub.half) >=
+        best)
+      continue;
+    s.distance_result.clear();
+    fcl::distance(sub.bvh.get(), transform, s.point.get(), at, s.distance_request, s.distance_result);
+    if (s.distance_result.min_distance < best) {
+      best = std::max(0.0, s.distance_result.min_distance);
+      closest = s.distance_result.nearest_points[0];
+      local = transform.inverse() * closest;
+      triangle = sub.triangle[s.distance_result.b1];
+    }
+  }
+  if (triangle < 0) return 0;
+  const Eigen::Vector3d normal = rotation * pseudo_normal(impl, triangle, local);
+  return (p - closest).dot(normal) < 0 ? best : 0;
+}
+
 }  // namespace contactcore
+

@@ -62,11 +62,14 @@ std::pair<double, double> project(const Box& box, const Direction& d) {
   return {lo, hi};
 }
 
-// Does the box of `moving`, swept by s in [0, length] along d, meet `fixed` (grown by tol)?
+// Does the box of `moving`, swept by s in [0, length] along d, reach more than tol into `fixed`?
+// A vertex deeper than tol inside a part is deeper than tol inside its box (the way out to the
+// box crosses the part's surface), so boxes that only touch or graze (the cubes of the next row
+// beside a cube sliding out) cannot block.
 bool sweep_meets(const Box& moving, const Direction& d, double length, const Box& fixed, double tol) {
   for (int k = 0; k < 3; ++k) {
     const double lo = moving.min[k] + std::min(0.0, d[k] * length), hi = moving.max[k] + std::max(0.0, d[k] * length);
-    if (hi < fixed.min[k] - tol || lo > fixed.max[k] + tol) return false;
+    if (hi <= fixed.min[k] + tol || lo >= fixed.max[k] - tol) return false;
   }
   return true;
 }
@@ -170,6 +173,10 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
       result.status = Status::failure(StatusCode::InvalidInput, "a contact refers to a missing part");
       return result;
     }
+  if (!(options.tolerance > 0)) {
+    result.status = Status::failure(StatusCode::InvalidInput, "the disassembly tolerance must be positive");
+    return result;
+  }
   result.directions = candidate_directions(parts);
   const int directions = static_cast<int>(result.directions.size());
   result.blocking.assign(directions, std::vector<std::vector<int>>(n));
@@ -187,6 +194,26 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
     pair_contacts[contacts[k].body_b][contacts[k].body_a].push_back(static_cast<int>(k));
   }
   const double tol = options.tolerance;
+
+  // Is a triangle centroid of i, moved by t along d, deeper than tol inside j? The vertex depth
+  // misses faces crossing without a vertex inside: a cube pushed into a cube of the same section
+  // has all its corners on the other's faces.
+  auto centroid_inside = [&](int i, int j, double t, const Direction& d, CollisionPair& pair) {
+    const TaggedMesh& mesh = parts[i].model->mesh();
+    const Box& target = boxes[j];
+    for (const auto& triangle : mesh.triangles) {
+      std::array<double, 3> c{};
+      for (int k = 0; k < 3; ++k)
+        for (int v : triangle) c[k] += mesh.vertices[v][k] / 3;
+      bool in_box = true;
+      for (int k = 0; k < 3 && in_box; ++k) {
+        c[k] += t * d[k];
+        in_box = c[k] > target.min[k] + tol && c[k] < target.max[k] - tol;
+      }
+      if (in_box && pair.depth_inside(1, RigidTransform::identity(), c) > tol) return true;
+    }
+    return false;
+  };
 
   // Does `j` block `i` moving along d? Local: the contacts; global: a sweep.
   QueryResult query;
@@ -207,15 +234,17 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
     const double probe = std::max(2 * tol, clear / 64);
     for (double s = 0; s < clear;) {
       pair.query(RigidTransform::translated(s * d[0], s * d[1], s * d[2]), fixed, QueryKind::Distance, query);
-      if (query.distance > tol) {
-        s += query.distance - tol / 2;
+      if (query.distance > probe) {
+        s += query.distance - tol / 2;  // nothing can be met before
         continue;
       }
-      // Touching: does moving on by a probe step cut into j? Faces that only touch along edges
-      // (beside a planar fit being slid along) put no vertex inside the other part.
+      // Near or touching: does moving on by a probe step cut into j? Faces that only touch along
+      // edges (beside a planar fit being slid along) put no vertex inside the other part. (Creeping
+      // by the distance instead would take thousands of steps along a part sliding past another.)
       const double t = s + probe;
-      pair.query(RigidTransform::translated(t * d[0], t * d[1], t * d[2]), fixed, QueryKind::Penetration, query);
-      if (query.intersecting && query.depth > tol) return true;
+      const RigidTransform moved = RigidTransform::translated(t * d[0], t * d[1], t * d[2]);
+      pair.query(moved, fixed, QueryKind::Penetration, query);
+      if (query.intersecting && (query.depth > tol || centroid_inside(i, j, t, d, pair))) return true;
       s = t;
     }
     return false;
@@ -241,6 +270,18 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
   // blocks them); the smallest, then the lightest, goes first.
   std::vector<char> remaining(n, 1);
   int left = n;
+  // holds[j]: the parts j blocks in some direction; scratch marks for the leverage sums.
+  std::vector<std::vector<int>> holds(n);
+  for (int di = 0; di < directions; ++di)
+    for (int k = 0; k < n; ++k)
+      for (int j : result.blocking[di][k]) holds[j].push_back(k);
+  for (auto& list : holds) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  std::vector<char> in_group(n, 0);
+  std::vector<long> counted(n, -1);
+  long stamp = 0;
   while (left > 1) {
     if (progress && !progress->report("sequence", 1.0 - static_cast<double>(left) / n)) {
       result.status = Status::failure(StatusCode::Cancelled, "cancelled while ordering the removal");
@@ -256,6 +297,7 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
     bool found = false;
     DisassemblyStep best;
     double best_volume = 0;
+    double best_leverage = 0;
     for (int di = 0; di < directions; ++di) {
       std::vector<std::vector<int>> edges(alive.size());
       for (std::size_t a = 0; a < alive.size(); ++a)
@@ -274,14 +316,31 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
         if (!sink[c] || static_cast<int>(members[c].size()) == left) continue;
         double volume = 0;
         for (int i : members[c]) volume += parts[i].volume;
-        const bool better = !found || members[c].size() < best.parts.size() ||
-                            (members[c].size() == best.parts.size() && volume < best_volume - 1e-9);
+        for (int i : members[c]) in_group[i] = 1;
+        // Leverage: the volume of the remaining parts the group blocks in some direction, over its
+        // own volume. Fasteners (small, holding much) come first.
+        double held = 0;
+        for (int j : members[c])
+          for (int k : holds[j])
+            if (remaining[k] && !in_group[k] && counted[k] != stamp) {
+              counted[k] = stamp;
+              held += parts[k].volume;
+            }
+        ++stamp;
+        for (int i : members[c]) in_group[i] = 0;
+        const double leverage = held / std::max(volume, 1e-12);
+        const bool better =
+            !found || members[c].size() < best.parts.size() ||
+            (members[c].size() == best.parts.size() &&
+             (leverage > best_leverage * (1 + 1e-9) ||
+              (leverage >= best_leverage * (1 - 1e-9) && volume < best_volume - 1e-9)));
         if (better) {
           found = true;
           best.parts = members[c];
           std::sort(best.parts.begin(), best.parts.end());
           best.direction = result.directions[di];
           best_volume = volume;
+          best_leverage = leverage;
         }
       }
     }
@@ -346,7 +405,9 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
         parts[joint.body_b].directions.push_back({d.X(), d.Y(), d.Z()});
         parts[joint.body_a].directions.push_back({-d.X(), -d.Y(), -d.Z()});
       }
-  return plan_disassembly(parts, found.contacts, options, progress);
+  DisassemblyOptions resolved = options;
+  if (!(resolved.tolerance > 0)) resolved.tolerance = 2 * mesh_options.deflection;
+  return plan_disassembly(parts, found.contacts, resolved, progress);
 }
 
 }  // namespace contactcore

@@ -151,6 +151,20 @@ TEST(Collision, OverlappingBoxesGiveDepthAndDirection) {
   EXPECT_FALSE(result.intersecting);
 }
 
+TEST(Collision, DepthOfAPointInsideABody) {
+  const Body a = make_body(BRepPrimAPI_MakeBox(10, 10, 10).Shape());
+  const Body b = make_body(BRepPrimAPI_MakeBox(4, 4, 4).Shape());
+  CollisionPair pair(a.model, b.model);
+  // Hand-derived: the distance to the nearest face inside, 0 outside or on the surface.
+  EXPECT_NEAR(pair.depth_inside(0, RigidTransform::identity(), {5, 5, 5}), 5.0, 1e-9);
+  EXPECT_NEAR(pair.depth_inside(0, RigidTransform::identity(), {1, 6, 7}), 1.0, 1e-9);
+  EXPECT_EQ(pair.depth_inside(0, RigidTransform::identity(), {11, 5, 5}), 0.0);
+  EXPECT_EQ(pair.depth_inside(0, RigidTransform::identity(), {10, 5, 5}), 0.0);
+  // B placed at (20, 0, 0): its centre 2 deep.
+  EXPECT_NEAR(pair.depth_inside(1, RigidTransform::translated(20, 0, 0), {22, 2, 2}), 2.0, 1e-9);
+  EXPECT_EQ(pair.depth_inside(1, RigidTransform::identity(), {22, 2, 2}), 0.0);
+}
+
 TEST(Collision, DistancesMatchTheExactBRepDistanceOnSampledPlacements) {
   const Body cylinder = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 10).Shape());
   const Body holed = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -4), 12, 12, 8).Shape(),

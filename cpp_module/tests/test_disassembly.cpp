@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <BRepAlgoAPI_Cut.hxx>
@@ -79,12 +80,27 @@ TEST(Disassembly, MotorScrewsComeOutFirstEachAlongItsAxis) {
   const ContactsResult contacts = find_contacts(motor.assembly, ContactOptions{});
   const DisassemblyResult result = disassemble(motor.assembly, ContactOptions{}, MeshOptions{}, DisassemblyOptions{});
   ASSERT_TRUE(result.status.ok()) << result.status.describe();
-  ASSERT_GE(result.steps.size(), 4u);
+  ASSERT_TRUE(result.complete) << result.reason;
+  // The whole sequence. The four screws first (fasteners: the smallest parts holding the most),
+  // each up its axis; the seal out of the cover, the shaft out through its bearings and rotor,
+  // the back cover off the screws' ends, then the inside downwards; the body stays.
+  const std::vector<std::pair<std::string, Direction>> expected{
+      {"Screw-1", {0, 0, 1}},      {"Screw-3", {0, 0, 1}},       {"Screw-2", {0, 0, 1}},
+      {"Screw-4", {0, 0, 1}},      {"Seal", {0, 0, 1}},          {"Axis", {0, 0, 1}},
+      {"Back-cover", {0, 0, -1}},  {"Bearing-back", {1, 0, 0}},  {"Magnet-1", {0, 0, -1}},
+      {"Magnet-2", {0, 0, -1}},    {"Magnet-3", {0, 0, -1}},     {"Magnet-4", {0, 0, -1}},
+      {"Rotor-back", {0, 0, -1}},  {"Rotor-front", {0, 0, -1}},  {"Bearing-front", {0, 0, -1}},
+      {"Front-cover", {0, 0, 1}},  {"Stator", {0, 0, 1}}};
+  ASSERT_EQ(result.steps.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    ASSERT_EQ(result.steps[k].parts.size(), 1u) << "step " << k + 1;
+    EXPECT_EQ(motor.assembly.bodies[result.steps[k].parts[0]].name, expected[k].first) << "step " << k + 1;
+    EXPECT_EQ(result.steps[k].direction, expected[k].second) << "step " << k + 1;
+  }
+  EXPECT_EQ(motor.assembly.bodies[result.base].name, "Body");
   for (int k = 0; k < 4; ++k) {
     const DisassemblyStep& step = result.steps[k];
-    ASSERT_EQ(step.parts.size(), 1u);
     const int screw = step.parts[0];
-    EXPECT_EQ(motor.assembly.bodies[screw].name.rfind("Screw", 0), 0u) << motor.assembly.bodies[screw].name;
     // Along the axis of its cylindrical joints, head first.
     int joints = 0;
     for (const Contact& c : contacts.contacts) {
@@ -100,7 +116,58 @@ TEST(Disassembly, MotorScrewsComeOutFirstEachAlongItsAxis) {
     ASSERT_GE(opposite, 0);
     EXPECT_FALSE(result.blocking[opposite][screw].empty());
   }
-  for (int k = 4; k < static_cast<int>(result.steps.size()); ++k)
-    for (int part : result.steps[k].parts)
-      EXPECT_NE(motor.assembly.bodies[part].name.rfind("Screw", 0), 0u);
+  // Every step is free: nothing still in place blocks the moved part along its direction.
+  std::vector<char> gone(motor.assembly.bodies.size(), 0);
+  for (const DisassemblyStep& step : result.steps) {
+    const int d = direction_index(result, step.direction);
+    for (int part : step.parts)
+      for (int blocker : result.blocking[d][part]) EXPECT_TRUE(gone[blocker]) << part << " blocked by " << blocker;
+    for (int part : step.parts) gone[part] = 1;
+  }
+}
+
+// A 10 x 10 x 10 grid of touching 10 mm cubes: hand-derived blocking (a cube moving along an axis
+// meets exactly the cubes ahead of it on its line; the cubes beside it only slide along its faces),
+// and every step removes a cube with none left ahead of it.
+TEST(Disassembly, ThousandCubeGridComesApartCubeByCube) {
+  const int side = 10;
+  std::vector<std::pair<std::string, TopoDS_Shape>> shapes;
+  auto index = [&](int x, int y, int z) { return (x * side + y) * side + z; };
+  for (int x = 0; x < side; ++x)
+    for (int y = 0; y < side; ++y)
+      for (int z = 0; z < side; ++z)
+        shapes.push_back({"Cube_" + std::to_string(x) + "_" + std::to_string(y) + "_" + std::to_string(z),
+                          BRepPrimAPI_MakeBox(gp_Pnt(10 * x, 10 * y, 10 * z), 10, 10, 10).Shape()});
+  const DisassemblyResult result = disassemble(make_assembly(shapes), ContactOptions{}, MeshOptions{}, DisassemblyOptions{});
+  ASSERT_TRUE(result.status.ok()) << result.status.describe();
+  ASSERT_TRUE(result.complete) << result.reason;
+  ASSERT_EQ(result.directions.size(), 6u);  // the contacts' normals are the axes
+  for (std::size_t d = 0; d < 6; ++d) {
+    const Direction& dir = result.directions[d];
+    const int axis = dir[0] != 0 ? 0 : dir[1] != 0 ? 1 : 2;
+    const int sign = dir[axis] > 0 ? 1 : -1;
+    for (int x = 0; x < side; ++x)
+      for (int y = 0; y < side; ++y)
+        for (int z = 0; z < side; ++z) {
+          std::vector<int> ahead;
+          int c[3] = {x, y, z};
+          for (int t = 0; t < side; ++t) {
+            if ((t - c[axis]) * sign <= 0) continue;
+            int o[3] = {x, y, z};
+            o[axis] = t;
+            ahead.push_back(index(o[0], o[1], o[2]));
+          }
+          std::sort(ahead.begin(), ahead.end());
+          ASSERT_EQ(result.blocking[d][index(x, y, z)], ahead) << "cube " << x << y << z << " direction " << d;
+        }
+  }
+  ASSERT_EQ(result.steps.size(), 999u);
+  std::vector<char> gone(1000, 0);
+  for (const DisassemblyStep& step : result.steps) {
+    ASSERT_EQ(step.parts.size(), 1u);
+    const int d = direction_index(result, step.direction);
+    for (int blocker : result.blocking[d][step.parts[0]]) ASSERT_TRUE(gone[blocker]);
+    gone[step.parts[0]] = 1;
+  }
+  EXPECT_FALSE(gone[result.base]);
 }

@@ -1,9 +1,19 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepPrimAPI_MakePrism.hxx>
+#include <BRepBndLib.hxx>
+#include <Bnd_Box.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <gp_Ax2.hxx>
@@ -67,10 +77,9 @@ TEST(Simplify, MotorFrontCoverLosesItsSmallThroughHolesAndKeepsTheScrewHoles) {
   int small_holes = 0, screw_holes = 0;
   for (const Partition& p : partitions.partitions) {
     if (p.params.kind != SurfaceKind::Cylinder || p.side != MaterialSide::Concave) continue;
-    // The two small holes on x = +-14 are split in half faces across two walls; OCCT's defeaturing
-    // refills them on the same cylinder (a known gap, see docs/meshes.md): only the whole-face ones
-    // are checked here.
-    if (std::abs(p.params.radius - 1.2) < 1e-6 && p.faces.size() == 2) {
+    // All four small holes go, also the two at x = +-14 whose walls are split in half faces
+    // across two layers (unified before the defeaturing).
+    if (std::abs(p.params.radius - 1.2) < 1e-6) {
       ++small_holes;
       EXPECT_EQ(present.count(p.id), 0u) << "small hole partition " << p.id;
     } else if (std::abs(p.params.radius - 1.5) < 1e-6) {
@@ -78,9 +87,54 @@ TEST(Simplify, MotorFrontCoverLosesItsSmallThroughHolesAndKeepsTheScrewHoles) {
       EXPECT_EQ(present.count(p.id), 1u) << "screw hole partition " << p.id;
     }
   }
-  EXPECT_EQ(small_holes, 2);
+  EXPECT_EQ(small_holes, 4);
   EXPECT_EQ(screw_holes, 4);
+  // The removed faces are exactly the small holes' walls (4 x 2 + 2 x 2 half faces... as stored: 12).
+  std::vector<int> small_hole_faces;
+  for (const Partition& p : partitions.partitions)
+    if (p.params.kind == SurfaceKind::Cylinder && std::abs(p.params.radius - 1.2) < 1e-6)
+      small_hole_faces.insert(small_hole_faces.end(), p.faces.begin(), p.faces.end());
+  std::sort(small_hole_faces.begin(), small_hole_faces.end());
+  EXPECT_EQ(model.removed_faces, small_hole_faces);
+  EXPECT_EQ(small_hole_faces.size(), 12u);
   EXPECT_TRUE(model.quality.watertight);
   // The holes go through the 8 mm cover: the filled walls are at most 4 mm from its faces.
   EXPECT_NEAR(model.hausdorff, 4.0, 1e-6);
+}
+
+TEST(Simplify, ASmallChamferIsRemovedAndItsHausdorffIsItsDepth) {
+  // A 20 x 20 x 10 box, its top edge along x at y = 20 chamfered by c = 1 mm (45 degrees).
+  const double c = 1.0;
+  // Cut by a triangular prism along x whose hypotenuse runs from (y, z) = (20 - c, 10) to (20, 10 - c).
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(20, 20, 10).Shape();
+  const TopoDS_Wire triangle =
+      BRepBuilderAPI_MakePolygon(gp_Pnt(-1, 20 - c, 10), gp_Pnt(-1, 20, 10 - c), gp_Pnt(-1, 21, 11), true).Wire();
+  const TopoDS_Shape prism = BRepPrimAPI_MakePrism(BRepBuilderAPI_MakeFace(triangle).Face(), gp_Vec(22, 0, 0)).Shape();
+  const TopoDS_Shape part = BRepAlgoAPI_Cut(box, prism).Shape();
+  const BodyPartitions partitions = partition_shape(part, Tolerances{});
+  ASSERT_EQ(partitions.faces.size(), 7u);
+  // Detected: the chamfer strip (width c sqrt 2) and nothing else.
+  const std::vector<int> features = small_features(part, partitions, 2.0);
+  ASSERT_EQ(features.size(), 1u);
+  const FaceInfo& strip = partitions.faces[features[0] - 1];
+  EXPECT_EQ(strip.params.kind, SurfaceKind::Plane);
+  EXPECT_NEAR(strip.area, 20 * c * std::sqrt(2.0), 1e-9);
+  // Not below its width.
+  EXPECT_TRUE(small_features(part, partitions, 1.0).empty());
+  SimplifyOptions options;
+  options.feature_size = 2.0;
+  options.envelope = 1.0;
+  const SimplifiedModel model = simplify_body(part, partitions, options);
+  ASSERT_TRUE(model.status.ok()) << model.status.describe();
+  EXPECT_EQ(model.removed_faces, features);
+  TopTools_IndexedMapOfShape left;
+  TopExp::MapShapes(model.shape, TopAbs_FACE, left);
+  EXPECT_EQ(left.Extent(), 6);  // the box again
+  EXPECT_TRUE(model.quality.watertight);
+  // Hand-derived: the restored sharp edge lies c / sqrt 2 from the chamfer plane (its foot mid-strip);
+  // the chamfer's points are at most c / 2 from the box's faces. Hausdorff: c / sqrt 2.
+  EXPECT_NEAR(model.hausdorff, c / std::sqrt(2.0), 1e-6);
+  // Envelope below it: refused.
+  options.envelope = 0.7;
+  EXPECT_FALSE(simplify_body(part, partitions, options).status.ok());
 }

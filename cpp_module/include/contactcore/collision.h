@@ -105,6 +105,11 @@ class CollisionPair {
 
   const CollisionModel& model(int side) const;
 
+  // How deep a world point is inside body `side` (0: A, 1: B) placed by `place`: its distance to
+  // that body's whole surface (switched-off partitions included) when inside, else 0. Inside is
+  // judged by the angle-weighted pseudo-normal at the closest point.
+  double depth_inside(int side, const RigidTransform& place, const std::array<double, 3>& point);
+
  private:
   struct State;
   std::unique_ptr<State> state_;

@@ -29,7 +29,11 @@ struct DisassemblyPart {
 };
 
 struct DisassemblyOptions {
-  double tolerance = 0.02;  // mm: meshes closer than this touch (about twice the chordal deflection)
+  // mm: meshes closer than this touch, and a probe step must put a vertex deeper than this into
+  // another part to count as blocked. Two tessellations of one surface (a shaft in its bore, the
+  // chamfer beside it) cross by up to their chordal deviation, so it must exceed the deflection.
+  // 0: twice the mesh deflection (disassemble); plan_disassembly needs it positive.
+  double tolerance = 0;
 };
 
 struct DisassemblyStep {
@@ -53,7 +57,11 @@ struct DisassemblyResult {
 std::vector<Direction> candidate_directions(const std::vector<DisassemblyPart>& parts);
 
 // Blocking graphs and removal sequence. `contacts` index `parts` (body_a,
-// body_b) and name the partitions switched off between the two parts.
+// body_b) and name the partitions switched off between the two parts. At
+// each step the removable groups (sink components) go smallest first; among
+// those of one size, the one of the highest leverage (volume of the remaining
+// parts it blocks over its own: fasteners before what they hold), then the
+// lightest.
 DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, const std::vector<Contact>& contacts,
                                    const DisassemblyOptions& options, Progress* progress = nullptr);
 

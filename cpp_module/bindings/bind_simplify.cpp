@@ -1,0 +1,78 @@
+// Stage 5a' in Python: the view and collision models of bodies, the
+// collision model simplified (small features removed) within an envelope.
+#include <BRepBndLib.hxx>
+#include <Bnd_Box.hxx>
+
+#include "common.h"
+#include "contactcore/bodies.h"
+#include "contactcore/simplify.h"
+
+namespace contactcore::bindings {
+
+void bind_simplify(py::module_& m) {
+  py::class_<SimulationModels>(m, "SimulationModels",
+                               "A body's view model (original B-rep) and collision model (simplified)")
+      .def_readonly("view", &SimulationModels::view)
+      .def_readonly("view_deviation", &SimulationModels::view_deviation,
+                    "mm: farthest point of the view mesh from the original B-rep")
+      .def_readonly("collision", &SimulationModels::collision)
+      .def_readonly("simplified", &SimulationModels::simplified)
+      .def_readonly("collision_hausdorff", &SimulationModels::collision_hausdorff,
+                    "mm: two-sided Hausdorff distance to the original when simplified, else the mesh's deviation")
+      .def_readonly("removed_faces", &SimulationModels::removed_faces, "1-based FaceN of the original")
+      .def_readonly("features_kept", &SimulationModels::features_kept)
+      .def_readonly("message", &SimulationModels::message, "why the simplification was refused, if it was");
+
+  m.def(
+      "simulation_models",
+      [](const Assembly& assembly, const MeshOptions& view, const MeshOptions& collision, double feature_size,
+         double envelope, std::optional<double> linear, std::optional<double> angular,
+         std::optional<std::vector<int>> bodies) {
+        if (feature_size < 0 || envelope < 0 || (feature_size > 0 && envelope <= 0))
+          raise_if_failed(Status::failure(StatusCode::InvalidInput,
+                                          "a feature size needs a positive envelope (both in mm)"));
+        std::vector<int> chosen;
+        if (bodies) {
+          chosen = *bodies;
+          for (int i : chosen)
+            if (i < 0 || i >= static_cast<int>(assembly.bodies.size()))
+              raise_if_failed(Status::failure(StatusCode::InvalidInput, "no body number " + std::to_string(i)));
+        } else {
+          for (std::size_t i = 0; i < assembly.bodies.size(); ++i) chosen.push_back(static_cast<int>(i));
+        }
+        std::vector<SimulationModels> results(chosen.size());
+        raise_if_failed(guarded([&] {
+          Bnd_Box box;
+          for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box);
+          const Tolerances tolerances = resolve_tolerances(box, linear, angular);
+          SimulationModelOptions options;
+          options.view = view;
+          options.collision = collision;
+          options.feature_size = feature_size;
+          options.envelope = envelope;
+          for (std::size_t k = 0; k < chosen.size(); ++k) {
+            const Body& body = assembly.bodies[chosen[k]];
+            const BodyPartitions partitions = partition_shape(body.shape, tolerances);
+            Status status = partitions.status;
+            if (status.ok()) {
+              results[k] = simulation_models(body.shape, partitions, options);
+              status = results[k].status;
+            }
+            if (!status.ok()) {
+              status.body = body.name;
+              return status;
+            }
+          }
+          return Status::success();
+        }));
+        return results;
+      },
+      py::arg("assembly"), py::arg("view") = MeshOptions{}, py::arg("collision") = MeshOptions{},
+      py::arg("feature_size") = 0.0, py::arg("envelope") = 0.0, py::arg("linear") = py::none(),
+      py::arg("angular") = py::none(), py::arg("bodies") = py::none(),
+      "View and collision models of the bodies (all, or the given numbers), in order: partitions with the\n"
+      "tolerances of find_contacts, the collision model without the features below feature_size (mm) unless\n"
+      "that leaves the envelope (mm). Raises ContactsError naming the body OCCT could not mesh.");
+}
+
+}  // namespace contactcore::bindings

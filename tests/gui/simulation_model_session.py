@@ -1,0 +1,133 @@
+"""Runs inside the FreeCAD GUI (freecad tests/gui/simulation_model_session.py under Xvfb).
+
+Opens the bundled motor, selects the front cover and then the front bearing,
+runs Contacts_ShowSimulationModel, sets the collision model's feature size and
+envelope (the small holes go), reads the Coin scene the view provider built
+(triangles, per-partition colours, the switched-off bore), saves the 3D view,
+undoes, and writes what it saw to $CONTACTS_GUI_RESULT."""
+import json
+import os
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui
+from PySide2 import QtWidgets
+from pivy import coin
+
+out_dir = os.environ["CONTACTS_GUI_OUT"]
+report = {"errors": []}
+
+
+def wait(seconds):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        QtWidgets.QApplication.processEvents()
+        time.sleep(0.005)
+
+
+def named(root, name):
+    search = coin.SoSearchAction()
+    search.setName(coin.SbName(name))
+    search.setInterest(coin.SoSearchAction.FIRST)
+    search.setSearchingAll(True)
+    search.apply(root)
+    path = search.getPath()
+    return path.getTail() if path else None
+
+
+def face_sets(node):
+    return [node.getChild(i) for i in range(node.getNumChildren()) if isinstance(node.getChild(i), coin.SoIndexedFaceSet)]
+
+
+def run():
+    main = FreeCADGui.getMainWindow()
+    main.resize(1280, 960)
+    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    report["command_listed"] = "Contacts_ShowSimulationModel" in FreeCADGui.listCommands()
+    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
+    cover = next(o for o in doc.Objects if o.Label == "Front-cover")
+    bearing = next(o for o in doc.Objects if o.Label == "Bearing-front")
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(cover)
+    FreeCADGui.Selection.addSelection(bearing)
+    undo_before = list(doc.UndoNames)
+    FreeCADGui.runCommand("Contacts_ShowSimulationModel")
+    wait(0.3)
+    models = [o for o in doc.Objects if getattr(getattr(o, "Proxy", None), "Type", None) == "SimulationModel"]
+    report["models"] = len(models)
+    if not models:
+        return
+    model = models[0]
+    report["undo_added"] = [n for n in doc.UndoNames if n not in undo_before]
+    report["label"] = model.Label
+    report["triangles_coarse"] = model.Triangles
+    model.FeatureSize = 2.5
+    model.Envelope = 5.0
+    doc.recompute()
+    wait(0.3)
+    report["simplified"] = model.Simplified
+    report["hausdorff"] = model.Hausdorff.Value
+    report["triangles"] = model.Triangles
+    report["switched_off"] = list(model.SwitchedOff)
+    report["mesh_partitions"] = sorted(set(model.MeshPartitions))
+    # The Coin scene under the object's root node
+    root = model.ViewObject.RootNode
+    active, off = named(root, "Partitions"), named(root, "SwitchedOff")
+    report["layers_found"] = active is not None and off is not None
+    if not report["layers_found"]:
+        return
+    (faces,) = face_sets(active)
+    (off_faces,) = face_sets(off)
+    indices = list(faces.coordIndex.getValues())
+    report["active_triangles"] = len(indices) // 4
+    report["off_triangles"] = len(list(off_faces.coordIndex.getValues())) // 4
+    report["material_index"] = list(faces.materialIndex.getValues())
+    material = active.getChild(0)
+    report["colours"] = [list(c.getValue()) for c in material.diffuseColor.getValues()]
+    report["off_striped"] = any(isinstance(off.getChild(i), coin.SoTexture2) for i in range(off.getNumChildren()))
+    report["legend"] = named(root, "SimulationModelLegend") is not None
+    # The mesh partitions of the triangles, in the order drawn
+    tri_partitions = list(model.MeshPartitions)
+    report["drawn_partitions"] = [p for p in tri_partitions if p not in model.SwitchedOff]
+    # Screenshot: the cover's model alone, from the front (the bore of the bearing striped).
+    for o in doc.Objects:
+        if o is not model and hasattr(o, "Shape"):
+            o.ViewObject.Visibility = False
+    view = FreeCADGui.activeDocument().activeView()
+    wait(0.3)
+    view.viewIsometric()
+    view.fitAll()
+    wait(0.5)
+    path = os.path.join(out_dir, "simulation_model_front_cover.png")
+    view.saveImage(path, 900, 700, "White")
+    report["png"] = path
+    view.viewTop()
+    view.fitAll()
+    wait(0.3)
+    path = os.path.join(out_dir, "simulation_model_front_cover_top.png")
+    view.saveImage(path, 900, 700, "White")
+    report["png_top"] = path
+    for o in doc.Objects:
+        if hasattr(o, "Shape"):
+            o.ViewObject.Visibility = True
+    # Hiding the model hides its drawing
+    switch = named(root, "SimulationModelSwitch")
+    model.ViewObject.Visibility = False
+    report["hidden_switch"] = switch.whichChild.getValue()
+    model.ViewObject.Visibility = True
+    report["shown_switch"] = switch.whichChild.getValue()
+    # Undo removes the object (the property changes first, then the command's transaction)
+    name = model.Name
+    while doc.UndoCount:
+        doc.undo()
+    report["undone"] = doc.getObject(name) is None
+
+
+try:
+    run()
+except Exception:
+    report["errors"].append(traceback.format_exc())
+with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
+    json.dump(report, stream, indent=1)
+os._exit(0)
