@@ -387,12 +387,17 @@ Status shape_from_brep(const std::string& brep, TopoDS_Shape& shape) {
   try {
     OCC_CATCH_SIGNALS
     std::istringstream stream(brep);
+    // OCCT 7.6's reader loops forever on a failed stream (a damaged number
+    // in an edge record, found by make fuzz): a failed read throws instead.
+    stream.exceptions(std::ios::failbit | std::ios::badbit);
     BRep_Builder builder;
     BRepTools::Read(shape, stream, builder);
   } catch (const Standard_Failure& failure) {
     const char* text = failure.GetMessageString();
     return Status::failure(StatusCode::InvalidInput, std::string("unreadable BRep: ") +
                                                          (text && *text ? text : failure.DynamicType()->Name()));
+  } catch (const std::ios_base::failure&) {
+    return Status::failure(StatusCode::InvalidInput, "unreadable BRep: damaged text (a value where OCCT's reader expects another)");
   }
   if (shape.IsNull()) return Status::failure(StatusCode::InvalidInput, "unreadable BRep: no shape");
   return Status::success();

@@ -443,7 +443,8 @@ double uv_area(const TopoDS_Face& face, Primitive primitive_of_j) {
 // r d(theta) dh on a cylinder and s sin(a) d(theta) ds on a cone (s the
 // distance from the apex), so Green needs G = r h or s^2 sin(a) / 2.
 double fitted_revolution_area(const TopoDS_Face& face, const SurfaceParams& params) {
-  const auto [e1, e2] = perpendicular_basis(params.axis);
+  const auto basis = perpendicular_basis(params.axis);
+  const gp_XYZ e1 = basis.first, e2 = basis.second;  // not a structured binding: lambdas below use them
   const gp_XYZ origin = params.location.XYZ(), axis = params.axis.XYZ();
   const bool cone = params.kind == SurfaceKind::Cone;
   const double half_sin = std::sin(params.half_angle) / 2;
@@ -779,7 +780,8 @@ std::optional<Fit> fit_cylinder(const Samples& s) {
   const gp_Dir axis(eig.vectors[0]);
   const auto circle = axis_circle(s.points, axis);
   if (!circle) return std::nullopt;
-  const auto [centre, radius] = *circle;
+  const gp_XYZ centre = circle->first;  // not a structured binding: a lambda below uses it
+  const double radius = circle->second;
   Fit fit;
   fit.params.kind = SurfaceKind::Cylinder;
   fit.params.location = gp_Pnt(centre);
@@ -878,7 +880,8 @@ std::optional<Fit> fit_torus(const BRepAdaptor_Surface& surface, const Samples& 
     const gp_Dir axis(eig.vectors[0]);
     const auto circle = axis_circle(centres, axis);
     if (!circle) continue;
-    const auto [centre, major] = *circle;
+    const gp_XYZ centre = circle->first;  // not a structured binding: a lambda below uses it
+    const double major = circle->second;
     Fit fit;
     fit.params.kind = SurfaceKind::Torus;
     fit.params.location = gp_Pnt(centre);
@@ -1407,7 +1410,8 @@ Status type_face(const TopoDS_Face& face, const Tolerances& tol, FaceInfo& out) 
     }
     if (analytic_revolution && (out.params.kind == SurfaceKind::Torus || out.params.kind == SurfaceKind::Sphere)) {
       // u turns about the frame's direction, clockwise in an indirect frame.
-      const gp_Ax3& frame = surface.GetType() == GeomAbs_Torus ? surface.Torus().Position() : surface.Sphere().Position();
+      // A copy: Torus() and Sphere() return temporaries (ASan: stack-use-after-scope).
+      const gp_Ax3 frame = surface.GetType() == GeomAbs_Torus ? surface.Torus().Position() : surface.Sphere().Position();
       const gp_Ax1 turning = frame.Direct() ? frame.Axis() : frame.Axis().Reversed();
       const double meridian_radius = out.params.kind == SurfaceKind::Torus ? out.params.minor_radius : out.params.radius;
       out.box = swept_box(meridian_points(surface, uv.v1, uv.v2, kMeridianSamples), turning,
