@@ -25,6 +25,11 @@ summary="$work/summary.txt"
 for target in "${targets[@]}"; do
   corpus="$work/corpus/$target"
   artifacts="$build_dir/fuzz-artifacts/$target"
+  # What an earlier run found is kept aside (copy it into fuzz/regressions/).
+  if [ -n "$(ls -A "$artifacts" 2>/dev/null)" ]; then
+    mkdir -p "$build_dir/fuzz-artifacts/previous/$target"
+    mv "$artifacts"/* "$build_dir/fuzz-artifacts/previous/$target/"
+  fi
   mkdir -p "$corpus" "$artifacts"
   cp -n "$repo/fuzz/corpus/$target/"* "$corpus/"
   dict=()

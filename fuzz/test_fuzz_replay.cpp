@@ -55,6 +55,23 @@ TEST(FuzzReplay, BrepCorpus) { EXPECT_EQ(replay("fuzz_brep", "corpus", contactco
 TEST(FuzzReplay, HidCorpus) { EXPECT_EQ(replay("fuzz_hid", "corpus", contactcore::fuzz::run_hid_input), 4); }
 #endif
 
+// The seeds are what they claim: FreeCAD's exportBrepToString and
+// exportStep of two solids each (make_seeds.py) read back as two bodies.
+TEST(FuzzReplay, SeedsFromFreeCADReadAsTwoBodies) {
+  for (const char* name : {"boxes", "shaft_in_bore", "ball_in_cup"}) {
+    SCOPED_TRACE(name);
+    const std::vector<std::uint8_t> brep =
+        bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_brep" / (std::string("seed_") + name + ".brep"));
+    const contactcore::AssemblyResult from_brep = contactcore::bodies_from_brep(std::string(brep.begin(), brep.end()), {});
+    ASSERT_TRUE(from_brep.status.ok()) << from_brep.status.describe();
+    EXPECT_EQ(from_brep.assembly.bodies.size(), 2u);
+    const contactcore::AssemblyResult from_step = contactcore::read_step(
+        (fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step" / (std::string("seed_") + name + ".step")).string());
+    ASSERT_TRUE(from_step.status.ok()) << from_step.status.describe();
+    EXPECT_EQ(from_step.assembly.bodies.size(), 2u);
+  }
+}
+
 // Inputs the fuzzers once crashed or hung on, each replayed through its
 // target (a hang fails by the test's timeout), then checked for its error.
 TEST(FuzzReplay, StepRegressions) { replay("fuzz_step", "regressions", contactcore::fuzz::run_step_input); }
