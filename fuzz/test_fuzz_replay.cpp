@@ -91,3 +91,16 @@ TEST(FuzzRegressions, BrepEdgeRecordWithADamagedNumberIsAnError) {
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("damaged text"), std::string::npos) << status.message;
 }
+
+// A damaged number in a pcurve ("@6.28...") was read by OCCT as 0 and the
+// Boolean common of the sphere face then ran for minutes (make fuzz): now
+// the text check names it.
+TEST(FuzzRegressions, BrepDamagedNumberInTheGeometryIsAnError) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/sphere_pcurve_damaged_number.brep");
+  ASSERT_FALSE(data.empty());
+  TopoDS_Shape shape;
+  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(status.message.find("damaged number '@6.2831853071795862' on line 35"), std::string::npos) << status.message;
+}

@@ -5,6 +5,7 @@
 #include "contactcore/instances.h"
 #include "contactcore/parallel.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -28,6 +30,7 @@
 #include <Interface_Static.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Standard_CString.hxx>
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
@@ -260,6 +263,26 @@ Status check_brep_text(const std::string& brep) {
     expected = std::stol(brep.substr(table + 9, line_start == std::string::npos ? std::string::npos : line_start - table - 9));
   } catch (const std::exception&) {
     return fail("bad TShapes count");
+  }
+  // OCCT reads a damaged number in the geometry sections as 0 (or inf) and
+  // goes on: Booleans on such a face then spin for minutes (make fuzz).
+  static constexpr std::string_view sections[] = {
+      "Locations", "Curve2ds", "Curves", "Polygon3D", "PolygonOnTriangulations", "Surfaces", "Triangulations"};
+  const size_t geometry = brep.find("Locations");
+  if (geometry == std::string::npos || geometry > table) return fail("no Locations section");
+  for (size_t pos = geometry; pos < table;) {
+    const size_t start = brep.find_first_not_of(" \t\r\n", pos);
+    if (start == std::string::npos || start >= table) break;
+    const size_t end = std::min(brep.find_first_of(" \t\r\n", start), table);
+    const std::string_view token(brep.data() + start, end - start);
+    pos = end;
+    if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) continue;
+    char* stop = nullptr;
+    const double value = Strtod(brep.c_str() + start, &stop);  // as OCCT reads it, whatever the locale
+    if (stop != brep.c_str() + end || !std::isfinite(value)) {
+      const long line = 1 + std::count(brep.begin(), brep.begin() + static_cast<long>(start), '\n');
+      return fail("damaged number '" + std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
+    }
   }
   long records = 0;
   while (line_start != std::string::npos && records < expected) {
