@@ -109,6 +109,8 @@ class Analysis:
     candidates: int = 0
     times: Dict[str, float] = field(default_factory=dict)
     skipped: List[SkippedRecord] = field(default_factory=list)
+    # Bodies whose solid is not valid: {"body", "faces": ["Face3", ...], "reason"}
+    invalid_bodies: List[dict] = field(default_factory=list)
 
     def counts(self):
         """Counter of contact types."""
@@ -137,6 +139,7 @@ class Analysis:
             "skipped": [{"a": s.a, "b": s.b, "faces_a": s.faces_a, "faces_b": s.faces_b, "message": s.message}
                         for s in self.skipped],
             "interferences": [{"a": a, "b": b, "volume": v} for a, b, v in self.interferences],
+            "invalid_bodies": self.invalid_bodies,
             "messages": self.messages,
             "times": self.times,
         }
@@ -164,6 +167,11 @@ class Analysis:
             lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
             for a, b, volume in self.interferences:
                 lines.append(f"  {a:<{width}}  <->  {b:<{width}}  {volume:.6g} mm3")
+        if self.invalid_bodies:
+            lines.append("")
+            lines.append(f"Invalid solids (their contacts may be wrong): {len(self.invalid_bodies)}")
+            for invalid in self.invalid_bodies:
+                lines.append(f"  {invalid['body']:<{width}}  {invalid['reason']}: {', '.join(invalid['faces'])}")
         lines.append("")
         summary = ", ".join(f"{counts[k]} {k}" for k in TYPE_ORDER if counts[k])
         lines.append(f"Total: {len(self.contacts)} contacts ({summary or 'none'}) "
@@ -198,7 +206,6 @@ def _analysis(source, assembly, result, face_name=None):
         skipped.append(SkippedRecord(
             a=names[s.body_a], b=names[s.body_b], faces_a=[face_name(s.body_a, f) for f in s.faces_a],
             faces_b=[face_name(s.body_b, f) for f in s.faces_b], message=s.message))
-    messages.extend(result.messages)
     mass = _MassTable(assembly)
     times = {"partitions": result.times.partitions, "broad_phase": result.times.broad_phase,
              "candidates": result.times.candidates, "area": result.times.area}
@@ -208,7 +215,9 @@ def _analysis(source, assembly, result, face_name=None):
         bodies=[BodyInfo(b.name, b.path, mass, i) for i, b in enumerate(core_bodies)],
         contacts=contacts, messages=messages, body_pairs=len(result.body_pairs),
         interferences=[(names[i.body_a], names[i.body_b], i.volume) for i in result.interferences],
-        candidates=result.candidates, times=times, skipped=skipped)
+        candidates=result.candidates, times=times, skipped=skipped,
+        invalid_bodies=[{"body": names[i.body], "faces": [face_name(i.body, f) for f in i.faces], "reason": i.reason}
+                        for i in getattr(result, "invalid_bodies", [])])
 
 
 def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None,

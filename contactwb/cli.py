@@ -147,7 +147,8 @@ def main(argv=None):
         print(f"contacts: {error}", file=sys.stderr)
         return EXIT_USAGE
     except core.InputError as error:
-        print(f"contacts: {error}", file=sys.stderr)
+        where = "" if os.path.basename(path) in str(error) else f" (file '{path}')"  # a document's body errors
+        print(f"contacts: {error}{where}", file=sys.stderr)
         return EXIT_INPUT
     except core.ContactsError as error:
         print(f"contacts: {error}", file=sys.stderr)

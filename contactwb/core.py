@@ -9,24 +9,45 @@ from contactwb import ROOT_DIR
 
 
 def _load():
+    # An explicit $CONTACTS_PYTHON_DIR wins over an installed copy: FreeCAD puts
+    # every Mod folder on sys.path, so a workbench installed earlier would
+    # otherwise shadow the build that the tests and benchmarks mean to run.
+    explicit = os.environ.get("CONTACTS_PYTHON_DIR")
+    if explicit and os.path.isdir(explicit):
+        module = _import_from(explicit)
+        if module is not None:
+            return module
     try:
         import contactcore  # installed beside the workbench, or already on sys.path
         return contactcore
     except ImportError:
         pass
-    candidates = [os.environ.get("CONTACTS_PYTHON_DIR"), os.path.join(ROOT_DIR, "build", "python")]
-    for folder in filter(None, candidates):
-        if os.path.isdir(folder) and folder not in sys.path:
-            sys.path.insert(0, folder)
-            try:
-                import contactcore
-                return contactcore
-            except ImportError:
-                sys.path.remove(folder)
+    module = _import_from(os.path.join(ROOT_DIR, "build", "python"))
+    if module is not None:
+        return module
     raise ImportError(
         "The Contacts C++ extension (contactcore) is not built or not installed: "
         "run `make build` (or `make install`) in the workbench's source folder, "
         "or set CONTACTS_PYTHON_DIR to the folder holding contactcore*.so")
+
+
+def _import_from(folder):
+    """contactcore from `folder`, ahead of any other copy on sys.path; None if absent there."""
+    if not os.path.isdir(folder):
+        return None
+    if folder in sys.path:
+        sys.path.remove(folder)
+    sys.path.insert(0, folder)
+    try:
+        import contactcore
+    except ImportError:
+        sys.path.remove(folder)
+        return None
+    if os.path.dirname(os.path.realpath(contactcore.__file__)) != os.path.realpath(folder):
+        # Imported earlier from somewhere else; the caller asked for this folder's copy.
+        raise ImportError(f"contactcore was already loaded from {contactcore.__file__}, "
+                          f"not from {folder}")
+    return contactcore
 
 
 contactcore = _load()

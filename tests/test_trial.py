@@ -161,3 +161,84 @@ def test_spacemouse_report_through_the_binding():
     assert h.parse_spacemouse_report(0x046d, 0xc626, bytes([9, 0, 0]))["understood"] is False
     # Without hardware (no /dev/hidraw here) an empty list, not an error.
     assert all(d["vendor"] in (0x046d, 0x256f) for d in h.spacemouse_devices())
+
+
+# ---- engagement on a plane and in a cone: generated cases (written at test time)
+
+def _write_step(tmp_path, name, parts):
+    """A flat STEP assembly of (label, shape) pairs, product names = labels."""
+    sys.path.insert(0, os.path.join(REPO, "tools"))
+    from samples_common import Part_ as Component, export_assembly
+    return export_assembly([Component(label, shape) for label, shape in parts], str(tmp_path), name,
+                           write_fcstd=False)[0]
+
+
+def _run_generated(tmp_path, step, part, script):
+    path = tmp_path / f"{part}.json"
+    path.write_text(json.dumps(script))
+    done = run_cli(step, "--part", part, "--device", "sim", "--script", str(path), "--json")
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout)
+
+
+def test_block_slides_on_a_plate(tmp_path):
+    import FreeCAD
+    import Part
+    # A 10 mm cube on a 40 x 40 x 5 plate (its top at z = 0), started 0.3 mm above
+    # it, tilted (1, -0.5) degrees: the face snaps parallel, slides to (8, -5),
+    # turns to 30 degrees about z and stays on the plate though the hand pushes 1 mm into it.
+    step = _write_step(tmp_path, "plate", [
+        ("Plate", Part.makeBox(40, 40, 5, FreeCAD.Vector(-20, -20, -5))),
+        ("Block", Part.makeBox(10, 10, 10, FreeCAD.Vector(-5, -5, 0)))])
+    result = _run_generated(tmp_path, step, "Block", {
+        "start": {"translate": [3, 2, 0.3], "rotate_deg": [1, -0.5, 10]},
+        "hand": [{"t": 0, "translate": [3, 2, 0.3], "rotate_deg": [1, -0.5, 10]},
+                 {"t": 2, "translate": [8, -5, -1], "rotate_deg": [0, 0, 30]}]})
+    assert result["joints_engaged"] == [{"with": "Plate", "type": "PLF"}]
+    assert result["final"]["translate"] == pytest.approx([8, -5, 0], abs=1e-6)
+    assert result["final"]["rotate_deg"] == pytest.approx([0, 0, 30], abs=1e-6)
+    assert result["max_penetration_mm"] <= 1e-9
+
+
+def test_plug_seats_in_a_cone(tmp_path):
+    import FreeCAD
+    import Part
+    # A conical hole of half-angle 30 degrees (radius 5 at z = 0) and a plug of
+    # the same angle 0.1 mm larger in radius: pushed 2 mm below its modelled
+    # placement it stops on the seat, 0.1 / tan 30 = 0.1732 mm above it, on the axis.
+    t = math.tan(math.radians(30))
+    box = Part.makeBox(40, 40, 20, FreeCAD.Vector(-20, -20, 0))
+    hole = Part.makeCone(5 - t, 5 + 21 * t, 22, FreeCAD.Vector(0, 0, -1))
+    plug = Part.makeCone(5.1 - 3 * t, 5.1 + 12 * t, 15, FreeCAD.Vector(0, 0, -3))
+    step = _write_step(tmp_path, "cone", [("Seat", box.cut(hole)), ("Plug", plug)])
+    result = _run_generated(tmp_path, step, "Plug", {
+        "start": {"translate": [0.2, -0.1, 15], "rotate_deg": [0.5, 0, 0]},
+        "hand": [{"t": 0, "translate": [0.2, -0.1, 15], "rotate_deg": [0.5, 0, 0]},
+                 {"t": 2, "translate": [0.3, 0.2, -2]}]})
+    assert result["joints_engaged"] == [{"with": "Seat", "type": "CJU"}]
+    seat = 0.1 / t
+    assert result["final"]["translate"] == pytest.approx([0, 0, seat], abs=1e-6)
+    assert result["final"]["rotate_deg"][:2] == pytest.approx([0, 0], abs=1e-6)
+    assert result["max_penetration_mm"] <= 1e-6
+
+
+def test_hid_force_feedback_capabilities_from_a_descriptor():
+    from contactwb import trial
+    h = trial.haptics()
+    # A SpaceMouse-like descriptor (Generic Desktop only): no force output, and why.
+    plain = bytes([0x05, 0x01, 0x09, 0x08, 0xA1, 0x01, 0x85, 0x01, 0x09, 0x30, 0x16, 0xA2, 0xFE,
+                   0x26, 0x5E, 0x01, 0x75, 0x10, 0x95, 0x01, 0x81, 0x02, 0xC0])
+    caps = h.hid_pid_capabilities(plain)
+    assert caps == {"force_output": False, "why": "no PID usage page (0x0F): no force feedback"}
+    # Without hardware: an empty list, not an error.
+    assert isinstance(h.hid_force_feedback_devices(), list)
+
+
+def test_hid_force_feedback_session_without_hardware():
+    from contactwb import core, trial
+    scene = trial.make_scene(core.contactcore.read_step(MOTOR), "Axis")
+    session = trial.haptics().HapticSession(scene, "hid-ff")
+    # No PID device here: the simulated hand, and a message saying why, not an error.
+    assert session.message.startswith("No force-feedback device (")
+    assert session.message.endswith("using the simulated hand.")
+    assert session.capabilities["name"] == trial.haptics().simulated_capabilities()["name"]

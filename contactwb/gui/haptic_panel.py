@@ -16,13 +16,60 @@ active_panel = None  # the open panel (for scripts and tests)
 
 
 def _selected_part():
-    """The one selected top-level solid, or None."""
-    selection = FreeCADGui.Selection.getSelection()
+    """The one selected object, with the path it was picked by (a part inside an
+    App::Part or through a link): (object, subname) or None."""
+    selection = FreeCADGui.Selection.getSelectionEx("", 0)  # unresolved: top-level object and path
     if len(selection) != 1:
         return None
-    obj = selection[0]
-    shape = getattr(obj, "Shape", None)
-    return obj if shape is not None and not shape.isNull() and shape.Solids else None
+    entry = selection[0]
+    subnames = [s for s in entry.SubElementNames] or [""]
+    if len(subnames) != 1:
+        return None
+    return entry.Object, subnames[0]
+
+
+def _body_to_move(bodies, picked):
+    """The document body the selection picks: `picked` is a document object or
+    an (object, subname) pair from the 3D view or the tree."""
+    from contactwb import bodies as document_bodies
+    if isinstance(picked, tuple):
+        chosen = document_bodies.bodies_of_selection(bodies, [(picked[0], [picked[1]])])
+        label = picked[0].getSubObject(picked[1], retType=1).Label if picked[1] else picked[0].Label
+    else:
+        chosen = [b for b in bodies if b.obj is picked]
+        label = picked.Label
+    if not chosen:
+        raise contactwb.core.ContactsError(f"'{label}' is not a visible solid of the document")
+    if len(chosen) != 1 or len([b for b in bodies if b.obj is chosen[0].obj]) != 1:
+        raise contactwb.core.ContactsError(f"'{label}': the haptic trial moves parts made of one solid")
+    body = chosen[0]
+    # Reached through a link to a container, the part is the original every
+    # instance shows: moving it would move them all.
+    for container in [body.root] + list(body.containers):
+        if container.isDerivedFrom("App::Link") and container is not body.obj:
+            raise contactwb.core.ContactsError(
+                f"'{body.obj.Label}' is inside the linked container '{container.Label}': move the link "
+                f"or open the original")
+    return body
+
+
+def _joint_choices(assembly, scene, part):
+    """The part's assembled joints the loop can hold it to (from the joints
+    stage, contactwb/joints.py): [{"label", "type", "with", "axis", "pair"}]."""
+    from contactwb import joints
+    _, found = joints.joints_in_assembly(assembly)
+    choices = []
+    for record, pair in zip(found.joints, found.raw[1].joints):
+        if part not in (record.a, record.b):
+            continue
+        held = scene.joint_of_pair(pair)
+        if held is None:
+            continue
+        other = record.b if record.a == part else record.a
+        axis = ", ".join(f"{v + 0.0:.3g}" for v in held["axis"])  # + 0.0: no "-0"
+        choices.append({"label": f"{held['kind']} with {other} (axis {axis})", "type": held["kind"],
+                        "with": other, "axis": held["axis"], "pair": pair})
+    return choices
 
 
 class Contacts_HapticTrial:
@@ -41,12 +88,12 @@ class Contacts_HapticTrial:
 
     def Activated(self):
         from contactwb import core
-        obj = _selected_part()
-        if obj is None:
+        picked = _selected_part()
+        if picked is None:
             _show_error("Select one part (a solid) to move.")
             return
         try:
-            panel = HapticTrialPanel(FreeCAD.ActiveDocument, obj)
+            panel = HapticTrialPanel(FreeCAD.ActiveDocument, picked)
         except core.ContactsError as error:
             _show_error(str(error))
             return
@@ -63,23 +110,30 @@ class HapticTrialPanel:
     """Task panel: device, enable, part and joint, stiffness and damping,
     readouts, record / replay, reset; OK commits the placement, Cancel resets."""
 
-    DEVICES = [("Simulated hand", "sim"), ("SpaceMouse (hidapi)", "spacemouse")]
+    DEVICES = [("Simulated hand", "sim"), ("SpaceMouse (hidapi)", "spacemouse"),
+               ("HID force feedback (PID)", "hid-ff")]
 
-    def __init__(self, doc, obj, device="sim"):
+    def __init__(self, doc, picked, device="sim"):
+        """`picked`: the part to move, a document object or an (object,
+        subname) selection path (a part inside an App::Part, or a link)."""
         global active_panel
+        import Part
         from contactwb import bodies as document_bodies, trial
-        self.doc, self.obj = doc, obj
+        self.doc = doc
         assembly, bodies = document_bodies.assembly_from_document(doc)
-        body = next((b for b in bodies if b.obj is obj), None)
-        if body is None:
-            raise contactwb.core.ContactsError(f"'{obj.Label}' is not a visible solid of the document")
-        if body.root is not obj or len([b for b in bodies if b.obj is obj]) != 1:
-            raise contactwb.core.ContactsError(
-                f"'{obj.Label}': the haptic trial moves top-level parts made of one solid")
+        body = _body_to_move(bodies, picked)
+        # The loop moves the part in the global frame; the object's Placement is
+        # local to its containers (App::Part, a link's placement): keep both.
+        self.obj = body.obj
+        self.global_placement = Part.getShape(body.root, body.subname, needSubElement=False,
+                                              transform=True).Placement
         self.body_name = body.name
         self.trial = trial
         self.scene = trial.make_scene(assembly, body.name)
-        self.original = FreeCAD.Placement(obj.Placement)
+        # The joints the part could be held to instead of the one engagement finds.
+        self.joint_choices = _joint_choices(assembly, self.scene, body.name)
+        self.chosen = None  # index into joint_choices, or None: the joint found
+        self.original = FreeCAD.Placement(self.obj.Placement)
         self.session = None
         self.script = None        # (checked script, start time) played as hand targets
         self.recording = None     # list of samples while recording
@@ -111,6 +165,7 @@ class HapticTrialPanel:
         self.device_message = QtWidgets.QLabel()
         self.device_message.setWordWrap(True)
         self.axes_label = QtWidgets.QLabel()
+        self.axes_label.setWordWrap(True)  # six signed values: wrap rather than widen the panel
         grid.addWidget(self.device_combo, 0, 0)
         grid.addWidget(self.enable_check, 0, 1)
         grid.addWidget(self.device_message, 1, 0, 1, 2)
@@ -122,10 +177,22 @@ class HapticTrialPanel:
         grid = QtWidgets.QGridLayout(part_box)
         grid.addWidget(QtWidgets.QLabel("Part"), 0, 0)
         grid.addWidget(QtWidgets.QLabel(self.obj.Label), 0, 1)
-        grid.addWidget(QtWidgets.QLabel("Joint"), 1, 0)
+        grid.addWidget(QtWidgets.QLabel("Hold to"), 1, 0)
+        self.joint_combo = QtWidgets.QComboBox()
+        self.joint_combo.addItem("the joint found (engagement)")
+        for choice in self.joint_choices:
+            self.joint_combo.addItem(choice["label"])
+        # Long labels must not widen the task panel past its dock.
+        self.joint_combo.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        self.joint_combo.setMinimumContentsLength(18)
+        self.joint_combo.setToolTip("Hold the part to one of its assembled joints instead of the one its "
+                                    "contacts engage on the way")
+        self.joint_combo.currentIndexChanged.connect(lambda index: self.choose_joint(index - 1 if index else None))
+        grid.addWidget(self.joint_combo, 1, 1)
+        grid.addWidget(QtWidgets.QLabel("Joint"), 4, 0)
         self.joint_label = QtWidgets.QLabel("free")
         self.joint_label.setWordWrap(True)
-        grid.addWidget(self.joint_label, 1, 1)
+        grid.addWidget(self.joint_label, 4, 1)
         grid.addWidget(QtWidgets.QLabel("Stiffness"), 2, 0)
         self.stiffness_spin = QtWidgets.QDoubleSpinBox()
         self.stiffness_spin.setDecimals(2)
@@ -191,7 +258,24 @@ class HapticTrialPanel:
         self.damping_spin.blockSignals(False)
         self._gains_changed()
         self.session.set_enabled(self.enable_check.isChecked())
+        self._apply_joint()
         self.session.start()
+
+    def choose_joint(self, index):
+        """Holds the part to joint_choices[index], or (None) to the joint found."""
+        self.chosen = index
+        self.joint_combo.blockSignals(True)
+        self.joint_combo.setCurrentIndex(0 if index is None else index + 1)
+        self.joint_combo.blockSignals(False)
+        self._apply_joint()
+
+    def _apply_joint(self):
+        if self.session is None:
+            return
+        if self.chosen is None:
+            self.session.release_joint()
+        else:
+            self.session.hold_to_pair(self.joint_choices[self.chosen]["pair"])
 
     def _device_changed(self, index):
         self._start_session(self.DEVICES[index][1])
@@ -214,7 +298,8 @@ class HapticTrialPanel:
         self._show_placement(s["matrix"])
         self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s["axes"]))
         if s["engaged"]:
-            self.joint_label.setText(f"{s['joint']} with {', '.join(s['joint_with'])}")
+            how = "chosen" if s["held"] else "found"
+            self.joint_label.setText(f"{s['joint']} with {', '.join(s['joint_with'])} ({how})")
         else:
             self.joint_label.setText("free (stopped only by collisions)")
         r = self.readouts
@@ -229,9 +314,15 @@ class HapticTrialPanel:
             self.recording.append({"t": s["time"], "translate": s["translate"], "rotate_deg": s["rotate_deg"],
                                    "force": s["force"], "engaged": s["engaged"], "penetration": s["penetration"]})
 
+    def _local_placement(self, rows):
+        """The object's Placement for the loop's global displacement D (rows):
+        globally D G, locally L G^-1 D G (L its own Placement, G its global one)."""
+        moved = FreeCAD.Placement(FreeCAD.Matrix(*[v for row in rows for v in row]))
+        g = self.global_placement
+        return self.original.multiply(g.inverse()).multiply(moved).multiply(g)
+
     def _show_placement(self, rows):
-        matrix = FreeCAD.Matrix(*[v for row in rows for v in row])
-        self.obj.Placement = FreeCAD.Placement(matrix).multiply(self.original)
+        self.obj.Placement = self._local_placement(rows)
 
     # ---- scripts, record, replay
     def play_script(self, script):
@@ -318,14 +409,15 @@ class HapticTrialPanel:
         if self.session is not None:
             self.session.stop()
             s = self.session.snapshot()
-            final = FreeCAD.Placement(FreeCAD.Matrix(*[v for row in s["matrix"] for v in row])).multiply(self.original)
+            final = self._local_placement(s["matrix"])
         self._close()
         # The moves shown during the trial are not in the undo stack: one transaction for the result.
         self.obj.Placement = self.original
-        self.doc.openTransaction("Haptic trial")
+        doc = self.obj.Document  # the moved object's (a link's own, not its target's)
+        doc.openTransaction("Haptic trial")
         self.obj.Placement = final
-        self.doc.commitTransaction()
-        self.doc.recompute()
+        doc.commitTransaction()
+        doc.recompute()
         FreeCADGui.Control.closeDialog()
         return True
 

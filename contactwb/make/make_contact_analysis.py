@@ -11,7 +11,7 @@ from contactwb import analysis as contact_analysis
 from contactwb import bodies as document_bodies
 from contactwb import core
 from contactwb.objects.contact_objects import (CONTACT_TYPES, SCOPES, Contact, ContactAnalysis, Joint,
-                                               is_contact, is_contact_analysis, is_joint)
+                                               count_children, is_contact, is_contact_analysis, is_joint)
 
 EN_DASH = "\u2013"
 
@@ -131,6 +131,7 @@ def update_contact_analysis(group, progress=None):
         remove_after_recompute(doc, [o for o in group.Group if is_joint(o)])
         group.Group = [o for o in group.Group if not is_joint(o)]
         group.Mobility, group.LiaisonGraph = [], ""
+    count_children(group)
     return group
 
 

@@ -12,6 +12,14 @@ so the tree shows it out of date before the recompute."""
 SCOPES = ["Document", "Selection", "PartAgainstRest"]
 CONTACT_TYPES = ["PLF", "CLJ", "CJU", "SPF", "LAF", "SPT", "TRF"]
 
+# Version of the objects' properties, saved in each object's ProxyVersion.
+# A property, not the proxy's dumps() state: FreeCAD 0.20 opening a file
+# without the workbench drops the proxy, and saving writes it as null; plain
+# properties survive (contactwb.objects.recovery gives the proxy back).
+#   1: files saved before ProxyVersion existed (0.1.0);
+#   2: ProxyType, ProxyVersion; the analysis counts its contacts and joints.
+PROXY_VERSION = 2
+
 
 def is_contact_analysis(obj):
     """Whether a document object is a ContactAnalysis group (also once re-opened)."""
@@ -29,6 +37,25 @@ def _add(obj, kind, name, group, doc, mode=None):
         obj.addProperty(kind, name, group, doc)
     if mode is not None:
         obj.setEditorMode(name, mode)
+
+
+def _versioned(obj, proxy_type):
+    """Adds the type and version records; returns the version the object was
+    saved with (1: before they existed)."""
+    saved = obj.ProxyVersion if "ProxyVersion" in obj.PropertiesList else 1
+    _add(obj, "App::PropertyString", "ProxyType", "Version",
+         "Kind of Contacts object (lets the workbench give a lost proxy back)", 2)
+    _add(obj, "App::PropertyInteger", "ProxyVersion", "Version",
+         "Version of the Contacts object's properties", 2)
+    obj.ProxyType = proxy_type
+    if saved > PROXY_VERSION:
+        import FreeCAD
+        FreeCAD.Console.PrintWarning(
+            f"Contacts: '{obj.Label}' was saved by a newer Contacts (object version {saved}, "
+            f"this one knows {PROXY_VERSION}); its newer properties are kept as they are\n")
+    else:
+        obj.ProxyVersion = PROXY_VERSION
+    return saved
 
 
 # Inputs the user sets (task panel or property editor), results shown read-only.
@@ -78,6 +105,28 @@ def _analysis_properties(obj):
     _add(obj, "App::PropertyString", "Ground", "Joints", "Body held still (empty: the largest by volume)")
     _add(obj, "App::PropertyStringList", "Mobility", "Joints", "Degrees of freedom and rigid groups", 1)
     _add(obj, "App::PropertyString", "LiaisonGraph", "Joints", "The liaison graph (Graphviz DOT)", 2)
+    # version 2
+    _add(obj, "App::PropertyInteger", "ContactCount", "Contacts", "Contacts found (shown in the group)", 1)
+    _add(obj, "App::PropertyInteger", "JointCount", "Joints", "Joints derived", 1)
+
+
+def count_children(obj):
+    """Sets ContactCount and JointCount from the group's children."""
+    obj.ContactCount = sum(1 for child in obj.Group if is_contact(child))
+    obj.JointCount = sum(1 for child in obj.Group if is_joint(child))
+
+
+def migrate_analysis(obj):
+    """Brings a ContactAnalysis saved by an older version up to date: adds the
+    properties it lacks with the values its saved contents give."""
+    saved = _versioned(obj, "ContactAnalysis")
+    fresh = "UpdateOnRecompute" not in obj.PropertiesList
+    _analysis_properties(obj)
+    if fresh:  # 0.1 files: analyses were always live
+        obj.UpdateOnRecompute = True
+    if saved < 2:
+        count_children(obj)
+    return saved
 
 
 class ContactAnalysis:
@@ -87,16 +136,14 @@ class ContactAnalysis:
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = "ContactAnalysis"
+        _versioned(obj, self.Type)
         _analysis_properties(obj)
         obj.UpdateOnRecompute = True
         watch_document(obj.Document)
 
     def onDocumentRestored(self, obj):
         obj.Proxy = self
-        fresh = "UpdateOnRecompute" not in obj.PropertiesList
-        _analysis_properties(obj)
-        if fresh:
-            obj.UpdateOnRecompute = True
+        migrate_analysis(obj)
         watch_document(obj.Document)
 
     def execute(self, obj):
@@ -137,10 +184,12 @@ class Contact:
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = "Contact"
+        _versioned(obj, self.Type)
         _contact_properties(obj)
 
     def onDocumentRestored(self, obj):
         obj.Proxy = self
+        _versioned(obj, "Contact")  # version 2 added only the version records
         _contact_properties(obj)
 
     def dumps(self):
@@ -262,10 +311,12 @@ class Joint:
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = "Joint"
+        _versioned(obj, self.Type)
         _joint_properties(obj)
 
     def onDocumentRestored(self, obj):
         obj.Proxy = self
+        _versioned(obj, "Joint")  # version 2 added only the version records
         _joint_properties(obj)
 
     def dumps(self):

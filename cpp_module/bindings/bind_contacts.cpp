@@ -82,8 +82,14 @@ void bind_contacts(py::module_& m) {
                " volume=" + std::to_string(i.volume) + ">";
       });
 
+  py::class_<InvalidBody>(m, "InvalidBody", "A body whose solid is not valid (BRepCheck).")
+      .def_readonly("body", &InvalidBody::body)
+      .def_readonly("faces", &InvalidBody::faces, "1-based FaceN where the fault lies")
+      .def_readonly("reason", &InvalidBody::reason);
+
   py::class_<ContactsResult>(m, "ContactsResult", "Contacts of an assembly and what led to them.")
       .def_readonly("interferences", &ContactsResult::interferences)
+      .def_readonly("invalid_bodies", &ContactsResult::invalid_bodies)
       .def_readonly("tolerances", &ContactsResult::tolerances)
       .def_readonly("partitions", &ContactsResult::partitions)
       .def_readonly("body_pairs", &ContactsResult::body_pairs)

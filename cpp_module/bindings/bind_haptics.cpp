@@ -6,6 +6,8 @@
 
 #include <memory>
 
+#include "contactcore/haptics/hid_pid_device.h"
+#include "contactcore/haptics/joint_adapter.h"
 #include "contactcore/haptics/spacemouse.h"
 #include "contactcore/haptics/trial.h"
 
@@ -70,6 +72,13 @@ py::dict capabilities_dict(const DeviceCapabilities& c) {
   return d;
 }
 
+bool joint_of_pair(TrialScene& scene, const PairJoint& pair, JointState& joint) {
+  if (!joint_state_from_pair(pair, scene.moving(), scene.centre(), scene.contacts().body_box(scene.moving()), joint))
+    return false;
+  scene.attach_collision_group(joint);
+  return true;
+}
+
 // A device and the loop on its own thread, for the panel.
 class HapticSession {
  public:
@@ -93,8 +102,26 @@ class HapticSession {
       const SpaceMouseModel* model = find_model(vendor, product);
       device_ = std::make_unique<ReplayDevice>(model ? *model : generic_model(vendor, product), std::move(replay));
       message_ = "Replaying recorded reports.";
+    } else if (device == "hid-ff") {
+      // The first HID device whose descriptor offers PID constant force.
+      const auto found = enumerate_hid_pid_devices();
+      std::string why = "no HID device offers force feedback (PID page)";
+      if (!found.empty()) {
+        auto transport = open_hidapi_transport(found.front().path, &why);
+        PidLayout layout;
+        const auto descriptor = hidraw_report_descriptor(found.front().path);
+        if (transport && find_pid_layout(descriptor.data(), descriptor.size(), layout, &why)) {
+          PidForceConfig pid;
+          pid.name = found.front().name;
+          const std::string path = found.front().path;
+          pid.reopen = [path] { return open_hidapi_transport(path, nullptr); };
+          device_ = std::make_unique<HidPidDevice>(std::move(transport), std::move(layout), pid);
+          message_ = found.front().name + " at " + path + " (HID force feedback)";
+        }
+      }
+      if (!device_) message_ = "No force-feedback device (" + why + "): using the simulated hand.";
     } else if (device != "sim") {
-      throw py::value_error("unknown device '" + device + "' (sim, spacemouse, replay)");
+      throw py::value_error("unknown device '" + device + "' (sim, spacemouse, hid-ff, replay)");
     }
     if (!device_) {
       auto hand = std::make_unique<SimulatedHand>(HandScript{}, HandParameters{}, c, start_);
@@ -109,6 +136,16 @@ class HapticSession {
     loop_->set_collision(&scene.collision());
   }
   ~HapticSession() { loop_->stop(); }
+
+  // The loop holds the part to the joint of an assembled pair (from the joints
+  // stage) instead of the joint engagement finds; false when the loop cannot
+  // hold that type.
+  bool hold_to_pair(const PairJoint& pair) {
+    JointState joint;
+    if (!joint_of_pair(scene_, pair, joint)) return false;
+    loop_->request_hold(joint);
+    return true;
+  }
 
   void set_hand_target(const Vec3& t, const Vec3& r_deg) {
     if (!hand_) return;
@@ -128,7 +165,10 @@ class HapticSession {
     d["torque"] = vec(s.wrench.torque);
     d["force_n"] = s.wrench.force.norm();
     d["engaged"] = s.engaged;
+    d["held"] = s.held;
     d["joint"] = s.engaged ? to_string(s.joint.kind) : "Free";
+    d["joint_axis"] = vec(s.joint.axis);
+    d["joint_point"] = vec(s.joint.point);
     py::list with;
     for (int k = 0; s.engaged && k < s.joint.body_count; ++k) with.append(scene_.body_names()[s.joint.bodies[k]]);
     d["joint_with"] = with;
@@ -220,6 +260,48 @@ void bind_haptics(py::module_& root) {
     return out;
   }, "The 3Dconnexion 6-DOF devices hidapi sees now (empty without hardware).");
 
+  m.def("hid_force_feedback_devices", [] {
+    py::list out;
+    std::vector<HidPidFound> found;
+    {
+      py::gil_scoped_release release;
+      found = enumerate_hid_pid_devices();
+    }
+    for (const auto& f : found) {
+      py::dict d;
+      d["name"] = f.name;
+      d["path"] = f.path;
+      d["vendor"] = f.vendor;
+      d["product"] = f.product;
+      d["axes"] = f.axes;
+      out.append(d);
+    }
+    return out;
+  }, "HID devices whose report descriptor offers PID constant force (empty without hardware).");
+
+  m.def(
+      "hid_pid_capabilities",
+      [](const py::bytes& descriptor, double full_scale_force) {
+        const std::string data = descriptor;
+        PidLayout layout;
+        std::string why;
+        py::dict d;
+        if (!find_pid_layout(reinterpret_cast<const std::uint8_t*>(data.data()), data.size(), layout, &why)) {
+          d["force_output"] = false;
+          d["why"] = why;
+          return d;
+        }
+        PidForceConfig config;
+        config.full_scale_force = full_scale_force;
+        config.start_thread = false;
+        HidPidDevice device(nullptr, layout, config);
+        d = capabilities_dict(device.capabilities());
+        d["axes"] = layout.axis_count();
+        return d;
+      },
+      py::arg("descriptor"), py::arg("full_scale_force") = 3.0,
+      "What a device with this HID report descriptor can render (force output through the PID page or why not).");
+
   m.def("simulated_capabilities", [] { return capabilities_dict(simulated_capabilities()); });
 
   py::class_<TrialScene>(m, "TrialScene", "Partitions, real-time contacts and collision models for one moving part.")
@@ -244,6 +326,23 @@ void bind_haptics(py::module_& root) {
            py::arg("assembly"), py::arg("part"), py::arg("capture_distance") = 0.5,
            py::arg("capture_angle_deg") = 2.0, py::arg("deflection") = 0.01, py::arg("progress") = py::none())
       .def_property_readonly("part", &TrialScene::part_name)
+      .def_property_readonly("moving", &TrialScene::moving, "Index of the moving part in the assembly.")
+      .def(
+          "joint_of_pair",
+          [](TrialScene& s, const PairJoint& pair) -> py::object {
+            JointState j;
+            if (!joint_of_pair(s, pair, j)) return py::none();
+            py::dict d;
+            d["kind"] = to_string(j.kind);
+            d["axis"] = vec(j.axis);
+            d["point"] = vec(j.point);
+            d["stops"] = j.stop_count;
+            d["collision_group"] = j.group;
+            return d;
+          },
+          py::arg("pair"),
+          "The joint the loop would hold the part to for this assembled pair (kind, axis, point, stops), "
+          "or None when the pair does not involve the part or the loop cannot hold its type.")
       .def_property_readonly("centre", [](const TrialScene& s) { return vec(s.centre()); })
       .def_property_readonly("body_names", &TrialScene::body_names)
       .def_property_readonly("setup_seconds", &TrialScene::setup_seconds)
@@ -381,7 +480,12 @@ void bind_haptics(py::module_& root) {
       .def("set_hand_target", [](HapticSession& s, const std::vector<double>& t, const std::vector<double>& r) {
         s.set_hand_target(Vec3(t[0], t[1], t[2]), Vec3(r[0], r[1], r[2]));
       }, py::arg("translate"), py::arg("rotate_deg"))
-      .def("snapshot", &HapticSession::snapshot, "The loop's latest state (lock-free).");
+      .def("snapshot", &HapticSession::snapshot, "The loop's latest state (lock-free).")
+      .def("hold_to_pair", &HapticSession::hold_to_pair, py::arg("pair"),
+           "Holds the part to this assembled pair's joint (a PairJoint of find_joints) instead of the one "
+           "engagement finds; False when the loop cannot hold its type.")
+      .def("release_joint", [](HapticSession& s) { s.loop_->request_release(); },
+           "Back to the joint engagement finds.");
 }
 
 }  // namespace contactcore::bindings

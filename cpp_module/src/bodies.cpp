@@ -18,6 +18,10 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#ifdef __GLIBC__
+#include <malloc.h>  // malloc_trim
+#endif
+
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <Bnd_Box.hxx>
@@ -264,8 +268,8 @@ Status check_brep_text(const std::string& brep) {
   } catch (const std::exception&) {
     return fail("bad TShapes count");
   }
-  // OCCT reads a damaged number in the geometry sections as 0 (or inf) and
-  // goes on: Booleans on such a face then spin for minutes (make fuzz).
+  // OCCT reads a damaged number in the geometry sections as 0 and goes on:
+  // Booleans on such a face then spin for minutes (make fuzz).
   static constexpr std::string_view sections[] = {
       "Locations", "Curve2ds", "Curves", "Polygon3D", "PolygonOnTriangulations", "Surfaces", "Triangulations"};
   const size_t geometry = brep.find("Locations");
@@ -278,8 +282,10 @@ Status check_brep_text(const std::string& brep) {
     pos = end;
     if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) continue;
     char* stop = nullptr;
-    const double value = Strtod(brep.c_str() + start, &stop);  // as OCCT reads it, whatever the locale
-    if (stop != brep.c_str() + end || !std::isfinite(value)) {
+    // As OCCT reads it, whatever the locale. NaN and inf are numbers: the
+    // bodies' boxes catch them later, naming the body.
+    Strtod(brep.c_str() + start, &stop);
+    if (stop != brep.c_str() + end) {
       const long line = 1 + std::count(brep.begin(), brep.begin() + static_cast<long>(start), '\n');
       return fail("damaged number '" + std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
     }
@@ -348,6 +354,9 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
       } else if (check.assembly_depth > kMaxAssemblyDepth) {
         fail(StatusCode::InvalidInput, "assembly nested " + std::to_string(check.assembly_depth) +
                                            " levels deep (at most " + std::to_string(kMaxAssemblyDepth) + ")");
+      } else if (!check.non_finite.empty()) {
+        fail(StatusCode::InvalidInput, "coordinates that are not finite numbers (NaN, infinite or unreadable) in " +
+                                           describe_non_finite(check));
       } else if (progress && !progress->report("read", 0.3)) {
         fail(StatusCode::Cancelled, "cancelled");
       } else {
@@ -399,6 +408,13 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
   } catch (const Standard_Failure&) {
     // A document half-filled by a failed transfer: nothing more to free safely.
   }
+#ifdef __GLIBC__
+  // The reader's model and the document are freed, but glibc keeps their
+  // pages (tens of MB at 10,000 parts), and the partitions are made on worker
+  // threads whose malloc arenas cannot reuse them: give them back, so the
+  // pipeline's peak is the read's, not the read's plus the partitions'.
+  malloc_trim(0);
+#endif
   if (progress && result.status.ok()) progress->report("read", 1.0);
   return result;
 }

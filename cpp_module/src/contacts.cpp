@@ -5,6 +5,7 @@
 #include "contactcore/instances.h"
 #include "contactcore/interferences.h"
 #include "contactcore/parallel.h"
+#include "contactcore/validity.h"
 
 #include <algorithm>
 #include <array>
@@ -278,7 +279,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
             const BodyPartitions& original = result.partitions[source];
             if (original.status.ok()) {
               result.partitions[i] = moved_partitions(original, relative_motion(assembly.bodies[source], assembly.bodies[i]),
-                                                      assembly.bodies[i].shape, false);
+                                                      assembly.bodies[i].shape);
             }
             if (!original.status.ok() || !result.partitions[i].status.ok()) {
               partition_body(i);
@@ -328,19 +329,6 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     std::vector<std::size_t> tested;  // the pairs whose candidates are tested, in order
     for (std::size_t k = 0; k < pairs.size(); ++k)
       if (representative[k] == k) tested.push_back(k);
-    // Instances tested lend their source's outlines for the while.
-    std::vector<int> lent;
-    {
-      std::vector<char> needs(n, 0);
-      for (std::size_t k : tested) needs[pairs[k].first] = needs[pairs[k].second] = 1;
-      for (std::size_t i = 0; i < n; ++i)
-        if (needs[i] && result.instance_of[i] != static_cast<int>(i)) lent.push_back(static_cast<int>(i));
-    }
-    if (!parallel_for(lent.size(), threads, progress, "candidates", [&](std::size_t t) {
-          copy_outlines(result.partitions[result.instance_of[lent[t]]], result.partitions[lent[t]]);
-        }, 16))
-      return cancelled();
-
     start = Clock::now();
     std::vector<std::vector<Candidate>> pair_candidates_of(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "candidates", [&](std::size_t t) {
@@ -384,7 +372,6 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
           std::vector<Candidate>().swap(pair_candidates_of[k]);
         }, 4))
       return cancelled();
-    for (int i : lent) drop_outlines(result.partitions[i]);
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const std::size_t r = representative[k];
       const auto [ia, ib] = pairs[k];
@@ -412,7 +399,12 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
     result.times.area = seconds_since(start);
-    const Status interferences = find_interferences(assembly, result, progress);
+    const Status checked = check_solids(assembly, result, progress, threads);
+    if (!checked.ok()) {
+      result.status = checked;
+      return result;
+    }
+    const Status interferences = find_interferences(assembly, result, progress, threads);
     if (!interferences.ok()) {
       result.status = interferences;
       return result;

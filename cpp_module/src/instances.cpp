@@ -12,8 +12,8 @@ namespace contactcore {
 // moved_partitions moves every field of these structs that lives in global
 // coordinates. A new field must be moved there too: these sizes make the
 // build say so when the structs change.
-static_assert(sizeof(SurfaceParams) == 80 && sizeof(Extent) == 88 && sizeof(FaceInfo) == 288 &&
-                  sizeof(Partition) == 280 && sizeof(BodyPartitions) == 224,
+static_assert(sizeof(SurfaceParams) == 80 && sizeof(Extent) == 80 && sizeof(FaceInfo) == 280 &&
+                  sizeof(Partition) == 272 && sizeof(BodyPartitions) == 224,
               "partition structs changed: update moved_partitions (instances.cpp) for the new fields");
 
 namespace {
@@ -53,22 +53,8 @@ std::vector<int> instance_sources(const std::vector<Body>& bodies) {
   return sources;
 }
 
-namespace {
-
-// The extent without its outline (which stays in the source).
-Extent without_outline(const Extent& extent) {
-  Extent out;
-  out.ref_dir = extent.ref_dir;
-  out.axial_min = extent.axial_min;
-  out.axial_max = extent.axial_max;
-  out.angular = extent.angular;
-  return out;
-}
-
-}  // namespace
-
 BodyPartitions moved_partitions(const BodyPartitions& source_partitions, const gp_Trsf& motion,
-                                const TopoDS_Shape& shape, bool with_outlines) {
+                                const TopoDS_Shape& shape) {
   TopTools_IndexedMapOfShape face_map;
   TopExp::MapShapes(shape, TopAbs_FACE, face_map);
   BodyPartitions out;
@@ -76,35 +62,7 @@ BodyPartitions moved_partitions(const BodyPartitions& source_partitions, const g
     out.status = Status::failure(StatusCode::InvalidInput, "not an instance of the same shape");
     return out;
   }
-  if (with_outlines) {
-    out = source_partitions;
-  } else {
-    out.status = source_partitions.status;
-    out.faces.reserve(source_partitions.faces.size());
-    for (const FaceInfo& face : source_partitions.faces) {
-      FaceInfo copy;
-      copy.index = face.index;
-      copy.params = face.params;
-      copy.side = face.side;
-      copy.recognised = face.recognised;
-      copy.max_deviation = face.max_deviation;
-      copy.area = face.area;
-      copy.extent = without_outline(face.extent);
-      copy.box = face.box;
-      out.faces.push_back(std::move(copy));
-    }
-    out.partitions.reserve(source_partitions.partitions.size());
-    for (const Partition& partition : source_partitions.partitions) {
-      Partition copy;
-      copy.id = partition.id;
-      copy.faces = partition.faces;
-      copy.params = partition.params;
-      copy.side = partition.side;
-      copy.area = partition.area;
-      copy.extent = without_outline(partition.extent);
-      out.partitions.push_back(std::move(copy));
-    }
-  }
+  out = source_partitions;  // outlines shared with the source, not copied
   out.box.SetVoid();
   for (std::size_t i = 0; i < out.faces.size(); ++i) {
     FaceInfo& face = out.faces[i];
@@ -121,18 +79,6 @@ BodyPartitions moved_partitions(const BodyPartitions& source_partitions, const g
     for (int index : partition.faces) partition.box.Add(out.faces[index - 1].box);
   }
   return out;
-}
-
-void copy_outlines(const BodyPartitions& from, BodyPartitions& to) {
-  for (std::size_t i = 0; i < from.faces.size() && i < to.faces.size(); ++i)
-    to.faces[i].extent.outline = from.faces[i].extent.outline;
-  for (std::size_t k = 0; k < from.partitions.size() && k < to.partitions.size(); ++k)
-    to.partitions[k].extent.outline = from.partitions[k].extent.outline;
-}
-
-void drop_outlines(BodyPartitions& body) {
-  for (FaceInfo& face : body.faces) std::vector<Polygon2>().swap(face.extent.outline);
-  for (Partition& partition : body.partitions) std::vector<Polygon2>().swap(partition.extent.outline);
 }
 
 }  // namespace contactcore

@@ -3,14 +3,24 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <tuple>
 
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
 #include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
 #include <gp_Ax1.hxx>
+
+#include "contactcore/parallel.h"
+#include "contactcore/separation.h"
 
 namespace contactcore {
 
@@ -18,6 +28,10 @@ namespace {
 
 // A common volume below this fraction of the smaller body is numerical noise.
 constexpr double kMinRelativeVolume = 1e-6;
+// A press fit: a shaft larger than its coaxial bore by at most this fraction
+// of the bore's radius (real press fits are a few thousandths; a part's outer
+// surface of radius 24 around another part's bore of radius 4 is not one).
+constexpr double kPressFitRelative = 0.5;
 
 double box_overlap(const Bnd_Box& a, const Bnd_Box& b) {
   if (a.IsVoid() || b.IsVoid()) return -1;
@@ -60,17 +74,32 @@ bool duplicates(const BodyPartitions& a, const BodyPartitions& b, double toleran
   return true;
 }
 
-// A shaft coaxial with a bore of a smaller radius, over a common axial range:
-// a press fit (what real interferences are; duplicates are found apart).
-// `probe`: a point between the two radii, in the middle of the common range,
-// which lies in both bodies when they really overlap there.
-bool press_fit(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol, std::vector<gp_Pnt>& probes) {
+// The angles a bore partition covers, measured in the shaft's frame.
+std::vector<AngularInterval> bore_angles_in(const BodyPartitions& bore_body, const Partition& bore,
+                                            const Partition& shaft, double linear) {
+  std::vector<AngularInterval> angles;
+  for (int face : bore.faces) {
+    const Extent e = revolution_extent_in(bore_body.faces[face - 1], shaft.params.location, shaft.params.axis,
+                                          shaft.extent.ref_dir, linear);
+    angles.insert(angles.end(), e.angular.begin(), e.angular.end());
+  }
+  return unite(angles);
+}
+
+// Coaxial press fits of shafts of `a` in bores of `b`: a shaft larger than the
+// bore by a small fraction of its radius, over a common axial range and
+// angle. The material they share is the ring between the two radii over that
+// range: 1/2 span (r_s^2 - r_b^2) L, exact for coaxial cylinder faces (no
+// solid Boolean). Adds the volumes found to `volume`.
+bool press_fits(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol, double& volume) {
+  bool found = false;
   for (const Partition& shaft : a.partitions) {
     if (shaft.params.kind != SurfaceKind::Cylinder || shaft.side != MaterialSide::Convex) continue;
     const gp_Ax1 axis(shaft.params.location, shaft.params.axis);
     for (const Partition& bore : b.partitions) {
       if (bore.params.kind != SurfaceKind::Cylinder || bore.side != MaterialSide::Concave) continue;
-      if (shaft.params.radius <= bore.params.radius + tol.linear) continue;
+      const double excess = shaft.params.radius - bore.params.radius;
+      if (excess <= tol.linear || excess > kPressFitRelative * bore.params.radius) continue;
       if (box_overlap(shaft.box, bore.box) <= tol.linear) continue;
       if (!bore.params.axis.IsParallel(shaft.params.axis, tol.angular)) continue;
       const gp_Vec offset(axis.Location(), bore.params.location);
@@ -83,46 +112,54 @@ bool press_fit(const BodyPartitions& a, const BodyPartitions& b, const Tolerance
       const double low = std::max(shaft.extent.axial_min, std::min(b0, b1));
       const double high = std::min(shaft.extent.axial_max, std::max(b0, b1));
       if (high - low <= tol.linear) continue;
-      const double radius = 0.5 * (shaft.params.radius + bore.params.radius);
-      const gp_Vec ref(shaft.extent.ref_dir);
-      const gp_Vec binormal = direction.Crossed(ref);
-      const double start = shaft.extent.angular.empty() ? 0 : shaft.extent.angular.front().start;
-      const double span = shaft.extent.angular.empty() ? 2 * M_PI : shaft.extent.angular.front().span;
-      for (double f : {0.5, 0.1, 0.9}) {
-        const double angle = start + f * span;
-        probes.push_back(axis.Location().Translated(direction * (0.5 * (low + high)) +
-                                                    (ref * std::cos(angle) + binormal * std::sin(angle)) * radius));
-      }
+      double span = 2 * M_PI;
+      if (shaft.extent.angular_span() < 2 * M_PI - tol.angular || bore.extent.angular_span() < 2 * M_PI - tol.angular)
+        span = overlap(shaft.extent.angular, bore_angles_in(b, bore, shaft, tol.linear));
+      if (span <= tol.angular) continue;
+      const double rs = shaft.params.radius, rb = bore.params.radius;
+      volume += 0.5 * span * (rs * rs - rb * rb) * (high - low);
+      found = true;
     }
   }
-  return !probes.empty();
+  return found;
 }
 
-// A point classifier per body, made when first needed and kept: it caches
-// the ray intersectors of the body's faces, the costly part on free-form
-// faces, for the body's other pairs.
-class Classifiers {
- public:
-  explicit Classifiers(const Assembly& assembly) : assembly_(assembly), made_(assembly.bodies.size()) {}
-  BRepClass3d_SolidClassifier& of(int body) {
-    std::unique_ptr<BRepClass3d_SolidClassifier>& made = made_[body];
-    if (!made) made = std::make_unique<BRepClass3d_SolidClassifier>(assembly_.bodies[body].shape);
-    return *made;
+// Points of a body's boundary: vertices, edge midpoints and a point inside
+// each face. One of them inside the other body proves an overlap.
+std::vector<gp_Pnt> boundary_samples(const TopoDS_Shape& shape) {
+  std::vector<gp_Pnt> points;
+  for (TopExp_Explorer v(shape, TopAbs_VERTEX); v.More(); v.Next())
+    points.push_back(BRep_Tool::Pnt(TopoDS::Vertex(v.Current())));
+  for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    if (BRep_Tool::Degenerated(edge)) continue;
+    BRepAdaptor_Curve curve(edge);
+    points.push_back(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter())));
   }
+  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(f.Current());
+    BRepAdaptor_Surface surface(face);
+    const gp_Pnt2d middle(0.5 * (surface.FirstUParameter() + surface.LastUParameter()),
+                          0.5 * (surface.FirstVParameter() + surface.LastVParameter()));
+    BRepTopAdaptor_FClass2d inside(face, Precision::PConfusion());
+    if (inside.Perform(middle) == TopAbs_IN) points.push_back(surface.Value(middle.X(), middle.Y()));
+  }
+  return points;
+}
 
- private:
-  const Assembly& assembly_;
-  std::vector<std::unique_ptr<BRepClass3d_SolidClassifier>> made_;
-};
-
-// True when one of the points lies inside both bodies.
-bool inside_both(const std::vector<gp_Pnt>& points, BRepClass3d_SolidClassifier& in_a,
-                 BRepClass3d_SolidClassifier& in_b, double tolerance) {
-  for (const gp_Pnt& p : points) {
-    in_b.Perform(p, tolerance);
-    if (in_b.State() != TopAbs_IN) continue;
-    in_a.Perform(p, tolerance);
-    if (in_a.State() == TopAbs_IN) return true;
+// True when a boundary point of `from` lies inside `into` (deeper than the tolerance).
+bool sample_inside(const TopoDS_Shape& from, const TopoDS_Shape& into, const Bnd_Box& into_box, double tolerance) {
+  Bnd_Box inner = into_box;
+  std::unique_ptr<BRepClass3d_SolidClassifier> classifier;
+  for (const gp_Pnt& p : boundary_samples(from)) {
+    double x0, y0, z0, x1, y1, z1;
+    inner.Get(x0, y0, z0, x1, y1, z1);
+    if (p.X() <= x0 + tolerance || p.X() >= x1 - tolerance || p.Y() <= y0 + tolerance || p.Y() >= y1 - tolerance ||
+        p.Z() <= z0 + tolerance || p.Z() >= z1 - tolerance)
+      continue;
+    if (!classifier) classifier = std::make_unique<BRepClass3d_SolidClassifier>(into);
+    classifier->Perform(p, tolerance);
+    if (classifier->State() == TopAbs_IN) return true;
   }
   return false;
 }
@@ -151,13 +188,64 @@ double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b, double tolera
   return shape_volume(op.Shape());
 }
 
+// What the pass finds for one body pair.
+struct PairOutcome {
+  enum Kind { None, PressFit, Overlap, Failed } kind = None;
+  double volume = 0;
+  std::string message;
+};
+
+PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, int a, int b) {
+  const Tolerances& tol = result.tolerances;
+  const BodyPartitions& pa = result.partitions[a];
+  const BodyPartitions& pb = result.partitions[b];
+  PairOutcome out;
+  double volume = 0;
+  const bool shaft_in_b = press_fits(pa, pb, tol, volume);
+  const bool shaft_in_a = press_fits(pb, pa, tol, volume);
+  if (shaft_in_b || shaft_in_a) {
+    out.kind = PairOutcome::PressFit;
+    out.volume = volume;
+    return out;
+  }
+  // Instances hold no outlines of their own: their source's, same frames.
+  const auto outlines = [&](int body) -> const BodyPartitions& {
+    const int source = body < static_cast<int>(result.instance_of.size()) ? result.instance_of[body] : body;
+    return result.partitions[source];
+  };
+  if (provably_apart(pa, outlines(a), pb, outlines(b), tol)) return out;
+  const TopoDS_Shape& shape_a = assembly.bodies[a].shape;
+  const TopoDS_Shape& shape_b = assembly.bodies[b].shape;
+  if (!sample_inside(shape_a, shape_b, pb.box, tol.linear) && !sample_inside(shape_b, shape_a, pa.box, tol.linear))
+    return out;
+  const double common = common_volume(shape_a, shape_b, tol.linear);
+  if (common < 0) {
+    out.kind = PairOutcome::Failed;
+    out.message = "bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
+                  "' seem to overlap but their common volume could not be computed";
+    return out;
+  }
+  const double smaller = std::min(std::abs(shape_volume(shape_a)), std::abs(shape_volume(shape_b)));
+  if (common > kMinRelativeVolume * smaller) {
+    out.kind = PairOutcome::Overlap;
+    out.volume = common;
+  }
+  return out;
+}
+
 }  // namespace
 
-Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress) {
+double press_fit_volume(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol) {
+  double volume = 0;
+  press_fits(a, b, tol, volume);
+  press_fits(b, a, tol, volume);
+  return volume;
+}
+
+Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads) {
   const size_t n = assembly.bodies.size();
   const Tolerances& tol = result.tolerances;
   std::vector<char> dropped(n, 0);  // zero-volume bodies and second copies: no contacts of their own
-  Classifiers classifiers(assembly);
 
   for (size_t i = 0; i < n; ++i) {
     // A solid thinner than the tolerance holds no material (a zero-height box).
@@ -168,49 +256,69 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
     }
   }
 
-  for (size_t k = 0; k < result.body_pairs.size(); ++k) {
-    if (progress && k % 256 == 0 &&
-        !progress->report("interferences", static_cast<double>(k) / result.body_pairs.size()))
-      return Status::failure(StatusCode::Cancelled, "cancelled");
-    const auto [a, b] = result.body_pairs[k];
+  // Pairs whose boxes overlap deeper than the tolerance (the others at most
+  // touch); copies in place found first, in order (a copy drops out of the
+  // rest: its contacts repeat the first copy's).
+  std::vector<std::pair<int, int>> deep;
+  std::vector<Interference> copies;
+  for (const auto& [a, b] : result.body_pairs) {
     if (dropped[a] || dropped[b]) continue;
     const BodyPartitions& pa = result.partitions[a];
     const BodyPartitions& pb = result.partitions[b];
-    if (box_overlap(pa.box, pb.box) <= tol.linear) continue;  // at most touching
-    const TopoDS_Shape& shape_a = assembly.bodies[a].shape;
-    const TopoDS_Shape& shape_b = assembly.bodies[b].shape;
-    try {
-      if (duplicates(pa, pb, tol.linear)) {
-        // Its contacts with third bodies repeat the first copy's.
-        dropped[b] = 1;
-        result.interferences.push_back({a, b, std::abs(shape_volume(shape_a))});
-        result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
-                                  "' are the same solid at the same place: an interference; the contacts of '" +
-                                  assembly.bodies[b].name + "' are not counted");
-        continue;
-      }
-      std::vector<gp_Pnt> probes;
-      press_fit(pa, pb, tol, probes);
-      press_fit(pb, pa, tol, probes);
-      if (probes.empty() || !inside_both(probes, classifiers.of(a), classifiers.of(b), tol.linear)) continue;
-      const double volume = common_volume(shape_a, shape_b, tol.linear);
-      if (volume < 0) {
-        result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
-                                  "' seem to overlap but their common volume could not be computed");
-        continue;
-      }
-      const double smaller = std::min(std::abs(shape_volume(shape_a)), std::abs(shape_volume(shape_b)));
-      if (volume > kMinRelativeVolume * smaller) result.interferences.push_back({a, b, volume});
-    } catch (const Standard_Failure& failure) {
-      result.messages.push_back("interference test of '" + assembly.bodies[a].name + "' and '" +
-                                assembly.bodies[b].name + "' failed: " + failure.GetMessageString());
+    if (box_overlap(pa.box, pb.box) <= tol.linear) continue;
+    if (duplicates(pa, pb, tol.linear)) {
+      dropped[b] = 1;
+      copies.push_back({a, b, -1});
+      result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
+                                "' are the same solid at the same place: an interference; the contacts of '" +
+                                assembly.bodies[b].name + "' are not counted");
+      continue;
     }
+    deep.push_back({a, b});
   }
+  deep.erase(std::remove_if(deep.begin(), deep.end(), [&](const auto& p) { return dropped[p.first] || dropped[p.second]; }),
+             deep.end());
 
-  // Empty bodies and second copies have no contacts. A press-fitted pair keeps
-  // its real ones (a shoulder on its seat: the R08 press's 8 PLF + 7 CLJ).
+  std::vector<PairOutcome> outcomes(deep.size());
+  if (!parallel_for(deep.size(), threads, progress, "interferences", [&](std::size_t k) {
+        const auto [a, b] = deep[k];
+        try {
+          outcomes[k] = test_pair(assembly, result, a, b);
+        } catch (const Standard_Failure& failure) {
+          outcomes[k].kind = PairOutcome::Failed;
+          outcomes[k].message = "interference test of '" + assembly.bodies[a].name + "' and '" +
+                                assembly.bodies[b].name + "' failed: " + failure.GetMessageString();
+        }
+      }))
+    return Status::failure(StatusCode::Cancelled, "cancelled");
+  if (!parallel_for(copies.size(), threads, progress, "interferences", [&](std::size_t k) {
+        copies[k].volume = std::abs(shape_volume(assembly.bodies[copies[k].body_a].shape));
+      }))
+    return Status::failure(StatusCode::Cancelled, "cancelled");
+
+  std::vector<std::pair<int, int>> overlapping;  // general overlaps: their contacts are not contacts
+  for (const Interference& copy : copies) result.interferences.push_back(copy);
+  for (std::size_t k = 0; k < deep.size(); ++k) {
+    const PairOutcome& o = outcomes[k];
+    if (o.kind == PairOutcome::Failed) result.messages.push_back(o.message);
+    if (o.kind != PairOutcome::PressFit && o.kind != PairOutcome::Overlap) continue;
+    result.interferences.push_back({deep[k].first, deep[k].second, o.volume});
+    if (o.kind == PairOutcome::Overlap) overlapping.push_back(deep[k]);
+  }
+  std::sort(result.interferences.begin(), result.interferences.end(),
+            [](const Interference& l, const Interference& r) {
+              return std::tie(l.body_a, l.body_b) < std::tie(r.body_a, r.body_b);
+            });
+
+  // Empty bodies, second copies and bodies overlapping in a general way have
+  // no contacts there. A press-fitted pair keeps its real ones (a shoulder
+  // on its seat: the R08 press's 8 PLF + 7 CLJ).
   result.contacts.erase(std::remove_if(result.contacts.begin(), result.contacts.end(),
-                                       [&](const Contact& c) { return dropped[c.body_a] || dropped[c.body_b]; }),
+                                       [&](const Contact& c) {
+                                         return dropped[c.body_a] || dropped[c.body_b] ||
+                                                std::binary_search(overlapping.begin(), overlapping.end(),
+                                                                   std::make_pair(c.body_a, c.body_b));
+                                       }),
                         result.contacts.end());
   return Status::success();
 }

@@ -1,5 +1,5 @@
 // Internal to the partitions stage: Gauss quadrature on curve pieces, shared by
-// the exact face areas (partitions.cpp) and the plane outlines (outlines.cpp).
+// the exact face areas (face_typing.cpp) and the plane outlines (outlines.cpp).
 #pragma once
 
 #include <algorithm>

@@ -1,11 +1,15 @@
 #include "contactcore/step_check.h"
 
+#include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include <Interface_Check.hxx>
 #include <Interface_ReportEntity.hxx>
 #include <StepBasic_ProductDefinition.hxx>
 #include <StepData_UndefinedEntity.hxx>
+#include <StepGeom_CartesianPoint.hxx>
+#include <StepGeom_Direction.hxx>
 #include <StepRepr_AssemblyComponentUsage.hxx>
 #include <TCollection_HAsciiString.hxx>
 
@@ -43,6 +47,54 @@ void find_damaged(const Handle(StepData_StepModel)& model, StepModelCheck& out) 
       }
     }
     out.damaged.push_back(text);
+  }
+}
+
+// Beyond this a coordinate (mm or inch) is no model: products of two overflow.
+constexpr double kMaxCoordinate = 1e100;
+
+bool usable(double value) { return std::isfinite(value) && std::fabs(value) <= kMaxCoordinate; }
+
+bool usable(const Handle(StepGeom_CartesianPoint)& point) {
+  // (CoordinatesValue, not Coordinates(): OCCT 7.6 copies into an array that is out of range)
+  const Standard_Integer n = point->NbCoordinates();
+  if (n < 1 || n > 3) return false;
+  for (Standard_Integer i = 1; i <= n; ++i)
+    if (!usable(point->CoordinatesValue(i))) return false;
+  return true;
+}
+
+bool usable(const Handle(StepGeom_Direction)& direction) {
+  const Handle(TColStd_HArray1OfReal) ratios = direction->DirectionRatios();
+  if (ratios.IsNull() || ratios->Length() < 1) return false;
+  for (Standard_Integer i = ratios->Lower(); i <= ratios->Upper(); ++i)
+    if (!usable(ratios->Value(i))) return false;
+  return true;
+}
+
+bool coordinates_unreadable(const Handle(StepData_StepModel)& model, Standard_Integer num) {
+  if (!model->IsErrorEntity(num)) return false;
+  const Handle(Interface_ReportEntity) report = model->ReportEntity(num);
+  if (report.IsNull() || report->Check().IsNull()) return true;
+  const Handle(Interface_Check) check = report->Check();
+  for (Standard_Integer i = 1; i <= check->NbFails(); ++i) {
+    const std::string fail = check->Fail(i)->ToCString();
+    if (fail.find("coordinates") != std::string::npos || fail.find("direction_ratios") != std::string::npos)
+      return true;
+  }
+  return false;
+}
+
+void find_non_finite(const Handle(StepData_StepModel)& model, StepModelCheck& out) {
+  for (Standard_Integer num = 1; num <= model->NbEntities(); ++num) {
+    const Handle(Standard_Transient) entity = model->Value(num);
+    const Handle(StepGeom_CartesianPoint) point = Handle(StepGeom_CartesianPoint)::DownCast(entity);
+    const Handle(StepGeom_Direction) direction = Handle(StepGeom_Direction)::DownCast(entity);
+    if (point.IsNull() && direction.IsNull()) continue;
+    // A coordinate that failed to read leaves whatever was there (an unset
+    // name, "$" as some writers put, is harmless).
+    const bool bad = coordinates_unreadable(model, num) || (point.IsNull() ? !usable(direction) : !usable(point));
+    if (bad) out.non_finite.push_back(entity_label(model, entity) + (point.IsNull() ? " (DIRECTION)" : " (CARTESIAN_POINT)"));
   }
 }
 
@@ -109,6 +161,7 @@ StepModelCheck check_step_model(const Handle(StepData_StepModel)& model) {
   StepModelCheck out;
   if (model.IsNull()) return out;
   find_damaged(model, out);
+  find_non_finite(model, out);
   check_assembly_graph(model, out);
   return out;
 }
@@ -118,6 +171,14 @@ std::string describe_damaged(const StepModelCheck& check) {
   for (const std::string& item : check.damaged) text += (text.empty() ? "" : "; ") + item;
   const int more = check.damaged_count - static_cast<int>(check.damaged.size());
   if (more > 0) text += " and " + std::to_string(more) + " more";
+  return text;
+}
+
+std::string describe_non_finite(const StepModelCheck& check) {
+  std::string text;
+  const size_t shown = std::min(check.non_finite.size(), kMaxDamagedListed);
+  for (size_t i = 0; i < shown; ++i) text += (i ? ", " : "") + check.non_finite[i];
+  if (check.non_finite.size() > shown) text += " and " + std::to_string(check.non_finite.size() - shown) + " more";
   return text;
 }
 

@@ -3,6 +3,9 @@
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <GProp_GProps.hxx>
+#include <STEPControl_Writer.hxx>
+#include <fstream>
+#include <sstream>
 #include <TopExp_Explorer.hxx>
 #include <set>
 #include <gp_Ax1.hxx>
@@ -103,6 +106,35 @@ TEST(Bodies, MissingStepFileIsAReadError) {
   const AssemblyResult result = read_step("/nonexistent/file.step");
   EXPECT_EQ(result.status.code, StatusCode::ReadError);
   EXPECT_NE(result.status.describe().find("/nonexistent/file.step"), std::string::npos);
+}
+
+// A NaN in one vertex's point made OCCT 7.6's shape healing loop forever in
+// the transfer, an infinite one dropped the body silently: points and
+// directions that are not finite are refused before it, naming the entity.
+TEST(Bodies, NonFiniteStepPointIsRefusedNamingTheEntity) {
+  const std::string good = ::testing::TempDir() + "contacts_box.step";
+  STEPControl_Writer writer;
+  writer.Transfer(BRepPrimAPI_MakeBox(10, 10, 10).Shape(), STEPControl_AsIs);
+  ASSERT_EQ(writer.Write(good.c_str()), IFSelect_RetDone);
+  ASSERT_TRUE(read_step(good).status.ok());
+  std::stringstream text;
+  text << std::ifstream(good).rdbuf();
+  const std::string box = text.str();
+  const std::string prefix = "CARTESIAN_POINT('',(";
+  const size_t at = box.rfind(prefix);
+  const size_t first = at + prefix.size();
+  const size_t hash = box.rfind('#', at);
+  const std::string entity = box.substr(hash, box.find(' ', hash) - hash);
+  for (const char* value : {"NAN", "1.E+400", "-1.E+400"}) {
+    std::string damaged = box;
+    damaged.replace(first, box.find(',', first) - first, value);
+    const std::string bad = ::testing::TempDir() + "contacts_box_non_finite.step";
+    std::ofstream(bad) << damaged;
+    const AssemblyResult result = read_step(bad);
+    EXPECT_EQ(result.status.code, StatusCode::InvalidInput) << value;
+    EXPECT_NE(result.status.describe().find(entity + " (CARTESIAN_POINT)"), std::string::npos)
+        << value << ": " << result.status.describe();
+  }
 }
 
 // R09 places its second body through a legacy MAPPED_ITEM; a plain reader

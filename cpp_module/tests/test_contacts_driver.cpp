@@ -260,6 +260,50 @@ TEST(Driver, InstancesMovedEqualInstancesPartitioned) {
   }
 }
 
+// Area of an outline loop: Green on the chords plus the bulges.
+double loop_area(const Polygon2& loop) {
+  double twice = 0;
+  for (std::size_t k = 0; k < loop.size(); ++k) {
+    const Point2 &p = loop[k], &q = loop[(k + 1) % loop.size()];
+    twice += p.x * q.y - q.x * p.y + p.bulge;
+  }
+  return twice / 2;
+}
+
+// Plane outlines are stored once: a one-face partition holds its face's
+// loops, an instance its source's (the same storage), and they are the
+// outlines the instance gets when partitioned on its own.
+TEST(Driver, OutlinesAreStoredOnce) {
+  const Assembly rotated = rotated_instances();
+  const ContactsResult shared = run(rotated, 0, true), own = run(rotated, 1, false);
+  int planes = 0;
+  for (std::size_t i = 0; i < rotated.bodies.size(); ++i) {
+    const BodyPartitions& body = shared.partitions[i];
+    const BodyPartitions& source = shared.partitions[shared.instance_of[i]];
+    for (std::size_t f = 0; f < body.faces.size(); ++f) {
+      const Outline& outline = body.faces[f].extent.outline;
+      if (body.faces[f].params.kind != SurfaceKind::Plane) {
+        EXPECT_TRUE(outline.empty());
+        continue;
+      }
+      ++planes;
+      ASSERT_FALSE(outline.empty()) << rotated.bodies[i].name << " Face" << f + 1;
+      EXPECT_EQ(&outline.loops(), &source.faces[f].extent.outline.loops()) << rotated.bodies[i].name;
+      // A turned instance partitioned on its own cuts its arcs elsewhere:
+      // the same loops and area, not the same points.
+      const std::vector<Polygon2>& alone = own.partitions[i].faces[f].extent.outline;
+      ASSERT_EQ(outline.size(), alone.size());
+      for (std::size_t l = 0; l < alone.size(); ++l)
+        EXPECT_NEAR(loop_area(outline[l]), loop_area(alone[l]), 1e-9 * std::abs(loop_area(alone[l])));
+    }
+    for (const Partition& partition : body.partitions) {
+      if (partition.faces.size() == 1 && partition.params.kind == SurfaceKind::Plane)
+        EXPECT_EQ(&partition.extent.outline.loops(), &body.faces[partition.faces[0] - 1].extent.outline.loops());
+    }
+  }
+  EXPECT_EQ(planes, 6 * 6 + 6 * 2);  // a plate (box with a hole): six planar faces; a pin: two
+}
+
 // (OCCT 7.6 forbids scaled and mirrored locations on shapes: Moved raises,
 // so only orientation can tell two placements of one TShape apart.)
 TEST(Driver, ReversedPlacementsArePartitionedOnTheirOwn) {

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <thread>
 #include <cstdlib>
 #include <new>
 #include <set>
@@ -674,4 +676,214 @@ TEST(JointAdapter, BearingHeldToItsAssembledJointStopsOnTheCover) {
     EXPECT_NEAR(loop.proxy().translation().z(), dz < 0 ? 0.0 : dz, 0.02);
     EXPECT_LT(loop.proxy().translation().head<2>().norm(), 1e-9);
   }
+}
+
+// ---- engagement on cones and planes (generated shapes, hand-derived poses)
+
+#include <BRepAlgoAPI_Cut.hxx>
+
+#include "test_helpers.h"
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <gp_Ax2.hxx>
+
+namespace {
+
+// A 40 x 40 x 20 block with a conical through-hole of half-angle 30 degrees
+// (radius 5 at its bottom z = 0, opening upwards), and a conical plug of the
+// same angle 0.1 mm larger in radius, z -3 .. 12 (it hangs out of the hole's
+// bottom, so its ends touch nothing). Seated, the plug stands 0.1 / tan 30
+// = 0.1 sqrt 3 = 0.17320508 mm above its modelled placement.
+struct ConeSeat {
+  contactcore::Assembly assembly;
+  std::unique_ptr<TrialScene> scene;
+};
+ConeSeat& cone_seat_scene() {
+  static ConeSeat seat = [] {
+    const double t = std::tan(kPi / 6);
+    const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, 0), 40, 40, 20).Shape();
+    // The hole runs a little past both faces so the cut is clean: radius 5 + z tan 30.
+    const TopoDS_Shape hole =
+        BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 5 - t, 5 + 21 * t, 22).Shape();
+    const TopoDS_Shape seat_shape = BRepAlgoAPI_Cut(box, hole).Shape();
+    const TopoDS_Shape plug =
+        BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, -3), gp_Dir(0, 0, 1)), 5.1 - 3 * t, 5.1 + 12 * t, 15).Shape();
+    ConeSeat s;
+    s.assembly = contactcore::testing::make_assembly({{"Seat", seat_shape}, {"Plug", plug}});
+    contactcore::Status status;
+    s.scene = TrialScene::build(s.assembly, "Plug", SceneOptions{}, status);
+    EXPECT_TRUE(status.ok()) << status.describe();
+    return s;
+  }();
+  return seat;
+}
+
+// A 10 mm cube resting on a 40 x 40 x 5 plate (the plate's top at z = 0).
+struct Plate {
+  contactcore::Assembly assembly;
+  std::unique_ptr<TrialScene> scene;
+};
+Plate& plate_scene() {
+  static Plate plate = [] {
+    Plate p;
+    p.assembly = contactcore::testing::make_assembly(
+        {{"Plate", BRepPrimAPI_MakeBox(gp_Pnt(-20, -20, -5), 40, 40, 5).Shape()},
+         {"Block", BRepPrimAPI_MakeBox(gp_Pnt(-5, -5, 0), 10, 10, 10).Shape()}});
+    contactcore::Status status;
+    p.scene = TrialScene::build(p.assembly, "Block", SceneOptions{}, status);
+    EXPECT_TRUE(status.ok()) << status.describe();
+    return p;
+  }();
+  return plate;
+}
+
+}  // namespace
+
+TEST(Engagement, ConeSnapsToTheAxisAndSeats) {
+  TrialScene& scene = *cone_seat_scene().scene;
+  const Vec3 c = scene.centre();
+  // 15 mm up, 0.2 mm off the axis and tilted 0.5 degrees: captured on the axis.
+  const Pose start = offset_pose(Vec3(0.2, -0.1, 15), Vec3(rad(0.5), 0, 0), c);
+  JointState joint;
+  ASSERT_TRUE(scene.finder().capture(start, joint));
+  EXPECT_EQ(joint.kind, JointKind::Cylindrical);
+  EXPECT_EQ(joint.contact_type, static_cast<int>(contactcore::ContactType::CJU));
+  EXPECT_NEAR(joint.axis.z(), 1.0, 1e-9);
+  EXPECT_NEAR(joint.point.head<2>().norm(), 0.0, 1e-6);
+  ASSERT_GE(joint.stop_count, 1);
+  // The seat stop: the centre may not go below 0.1 sqrt 3 above its modelled height.
+  EXPECT_NEAR(joint.stops[0].normal.z(), -1.0, 1e-9);
+  EXPECT_NEAR(-joint.stops[0].limit - c.z(), 0.1 * std::sqrt(3.0), 1e-6);
+  // Far off the axis: no seat.
+  EXPECT_FALSE(scene.finder().capture(offset_pose(Vec3(2, 0, 15), Vec3::Zero(), c), joint));
+
+  // The hand pushes 2 mm below the modelled placement, off the axis by 0.36 mm:
+  // the plug slides down the axis and stops on the seat.
+  TrialScript script;
+  script.start.translate = Vec3(0.2, -0.1, 15);
+  script.start.rotate_deg = Vec3(0.5, 0, 0);
+  script.hand = {{0.0, Vec3(0.2, -0.1, 15), Vec3(0.5, 0, 0)}, {2.0, Vec3(0.3, 0.2, -2), Vec3::Zero()}};
+  const TrialResult r = run_trial(scene, script, TrialOptions{});
+  ASSERT_TRUE(r.status.ok());
+  EXPECT_NEAR(r.final_translate.z(), 0.1 * std::sqrt(3.0), 1e-6) << r.final_translate.transpose();
+  EXPECT_LT(r.final_translate.head<2>().norm(), 1e-6);
+  EXPECT_LT(r.final_rotate_deg.head<2>().norm(), 1e-6);
+  EXPECT_LE(r.max_penetration_mm, 1e-6);
+  ASSERT_EQ(r.joints_engaged.size(), 1u);
+  EXPECT_EQ(r.joints_engaged[0].with, "Seat");
+  EXPECT_EQ(r.joints_engaged[0].type, "CJU");
+}
+
+TEST(Engagement, ConeBreaksAwayAbovePullThreshold) {
+  TrialScene& scene = *cone_seat_scene().scene;
+  const Vec3 c = scene.centre();
+  const Pose start = offset_pose(Vec3(0, 0, 5), Vec3::Zero(), c);
+  // The hand pulls 30 mm sideways: its own spring (1 N/mm) and the coupling
+  // (1 N/mm) in series pull 15 N across the axis, above the 8 N threshold.
+  SimulatedHand hand(HandScript({{0.0, start}, {0.3, offset_pose(Vec3(30, 0, 5), Vec3::Zero(), c)}}),
+                     HandParameters{}, c, start);
+  ServoConfig config;
+  config.lockstep = true;
+  config.centre = c;
+  ServoLoop loop(hand, config, start);
+  loop.set_joint_finder(&scene.finder());
+  loop.set_collision(&scene.collision());
+  loop.step_lockstep();
+  ASSERT_TRUE(loop.last().engaged);
+  bool released = false;
+  for (int i = 0; i < 600 && !released; ++i) {
+    loop.step_lockstep();
+    released = !loop.last().engaged;
+  }
+  EXPECT_TRUE(released);
+}
+
+TEST(Engagement, FaceSnapsParallelAndSlidesOnThePlane) {
+  TrialScene& scene = *plate_scene().scene;
+  const Vec3 c = scene.centre();
+  // 0.3 mm above the plate, tilted (1, -0.5) degrees: captured, turned parallel.
+  const Pose start = offset_pose(Vec3(3, 2, 0.3), Vec3(rad(1), rad(-0.5), rad(10)), c);
+  JointState joint;
+  ASSERT_TRUE(scene.finder().capture(start, joint));
+  EXPECT_EQ(joint.kind, JointKind::Planar);
+  EXPECT_NEAR(joint.axis.z(), 1.0, 1e-9);
+  ASSERT_EQ(joint.stop_count, 1);
+  // The block's centre (z = 5) may not go below 5: its face on the plate.
+  EXPECT_NEAR(joint.stops[0].normal.z(), -1.0, 1e-9);
+  EXPECT_NEAR(-joint.stops[0].limit, 5.0, 1e-9);
+  const Pose snapped = snap_to_joint(joint, start);
+  EXPECT_NEAR((snapped.linear() * Vec3::UnitZ()).z(), 1.0, 1e-12);
+  EXPECT_LT(joint_deviation(joint, snapped), 1e-9);
+  // Tilted 5 degrees: past the capture angle, no plane joint.
+  EXPECT_FALSE(scene.finder().capture(offset_pose(Vec3(3, 2, 0.3), Vec3(rad(5), 0, 0), c), joint));
+
+  // The hand slides it to (8, -5), turns it 30 degrees about z and pushes 1 mm
+  // into the plate: it ends on the plate at (8, -5, 0), turned 30 degrees.
+  TrialScript script;
+  script.start.translate = Vec3(3, 2, 0.3);
+  script.start.rotate_deg = Vec3(1, -0.5, 10);
+  script.hand = {{0.0, Vec3(3, 2, 0.3), Vec3(1, -0.5, 10)}, {2.0, Vec3(8, -5, -1), Vec3(0, 0, 30)}};
+  TrialOptions options;
+  options.settle = 2.0;
+  const TrialResult r = run_trial(scene, script, options);
+  ASSERT_TRUE(r.status.ok());
+  EXPECT_NEAR(r.final_translate.z(), 0.0, 1e-9);
+  EXPECT_NEAR(r.final_translate.x(), 8.0, 1e-6) << r.final_translate.transpose();
+  EXPECT_NEAR(r.final_translate.y(), -5.0, 1e-6);
+  EXPECT_NEAR(r.final_rotate_deg.z(), 30.0, 1e-6) << r.final_rotate_deg.transpose();
+  EXPECT_LT(r.final_rotate_deg.head<2>().norm(), 1e-9);
+  EXPECT_LE(r.max_penetration_mm, 1e-9);
+  ASSERT_EQ(r.joints_engaged.size(), 1u);
+  EXPECT_EQ(r.joints_engaged[0].type, "PLF");
+  EXPECT_EQ(r.joints_engaged[0].joint, "Planar");
+}
+
+TEST(Engagement, FaceLiftsOffAndBreaksAwayWhenTilted) {
+  TrialScene& scene = *plate_scene().scene;
+  const Vec3 c = scene.centre();
+  const Pose start = offset_pose(Vec3(0, 0, 0.2), Vec3::Zero(), c);
+  for (const bool tilt : {false, true}) {
+    // Lifted 5 mm (free: it leaves the plane) or tilted 10 degrees (hand and
+    // coupling in series, 1500 N mm/rad: 260 N mm, above 8 N x 10 mm: it breaks away).
+    const Pose goal = tilt ? offset_pose(Vec3(0, 0, 0.2), Vec3(rad(10), 0, 0), c)
+                           : offset_pose(Vec3(0, 0, 5), Vec3::Zero(), c);
+    SimulatedHand hand(HandScript({{0.0, start}, {0.5, goal}}), HandParameters{}, c, start);
+    ServoConfig config;
+    config.lockstep = true;
+    config.centre = c;
+    ServoLoop loop(hand, config, start);
+    loop.set_joint_finder(&scene.finder());
+    loop.set_collision(&scene.collision());
+    loop.step_lockstep();
+    ASSERT_TRUE(loop.last().engaged);
+    for (int i = 0; i < 1500; ++i) loop.step_lockstep();
+    EXPECT_FALSE(loop.last().engaged) << (tilt ? "tilted" : "lifted");
+    if (!tilt) EXPECT_NEAR((loop.proxy() * c - c).z(), 5.0, 0.01);
+  }
+}
+
+// A joint chosen in the GUI reaches the running loop through its mailbox.
+TEST(ServoLoop, HoldRequestsFromAnotherThread) {
+  SimulatedHand hand(HandScript({{0.0, Pose::Identity()}, {0.2, offset_pose(Vec3(3, 4, 5), Vec3::Zero(), Vec3::Zero())}}),
+                     HandParameters{}, Vec3::Zero(), Pose::Identity());
+  ServoConfig config;
+  ServoLoop loop(hand, config, Pose::Identity());
+  ASSERT_TRUE(loop.start());
+  JointState slider;
+  slider.kind = JointKind::Prismatic;
+  slider.axis = Vec3::UnitX();
+  slider.part_axis = Vec3::UnitX();
+  loop.request_hold(slider);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  const ServoSnapshot held = loop.snapshot();
+  loop.request_release();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const ServoSnapshot released = loop.snapshot();
+  loop.stop();
+  EXPECT_TRUE(held.held && held.engaged);
+  EXPECT_EQ(held.joint.kind, JointKind::Prismatic);
+  // Held to the x slide: the part followed the hand along x only.
+  EXPECT_NEAR(held.proxy.translation().x(), 3.0, 0.2);
+  EXPECT_LT(held.proxy.translation().tail<2>().norm(), 1e-9);
+  EXPECT_FALSE(released.held || released.engaged);
 }

@@ -14,14 +14,17 @@ BUILD_DIR = os.environ.get("CONTACTS_BUILD_DIR", os.path.join(REPO, "build"))
 OUT_DIR = os.path.join(BUILD_DIR, "gui-tests")  # screenshots and reports, kept to look at
 
 
-def run_session(tmp_path_factory, script, report_name, env_extra=None, screen="1280x1024x24", timeout=300):
+def run_session(tmp_path_factory, script, report_name, env_extra=None, screen="1280x1024x24", timeout=300,
+                install=True):
+    """install=False: a FreeCAD without the workbench (a home lacking Mod/Contacts)."""
     if not shutil.which("xvfb-run") or not shutil.which("freecad"):
         pytest.skip("xvfb-run or freecad missing (make deps)")
     home = tmp_path_factory.mktemp("home")
     os.makedirs(OUT_DIR, exist_ok=True)
-    subprocess.run([sys.executable, os.path.join(REPO, "tools", "install_workbench.py"), "--build-dir", BUILD_DIR,
-                    "--mod-dir", str(home / ".local/share/FreeCAD/Mod/Contacts"), "--bin-dir", str(home / "bin")],
-                   check=True, capture_output=True)
+    if install:
+        subprocess.run([sys.executable, os.path.join(REPO, "tools", "install_workbench.py"), "--build-dir", BUILD_DIR,
+                        "--mod-dir", str(home / ".local/share/FreeCAD/Mod/Contacts"), "--bin-dir", str(home / "bin")],
+                       check=True, capture_output=True)
     result = os.path.join(OUT_DIR, report_name)
     if os.path.exists(result):
         os.remove(result)

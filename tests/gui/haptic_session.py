@@ -35,6 +35,135 @@ def save_view(name):
     return path
 
 
+def grab_window_with_view(name):
+    """The main window as shown: its grab with the 3D view's own render pasted
+    in place (grabbing a window leaves its OpenGL area blank)."""
+    from PySide2 import QtCore, QtGui
+    main = FreeCADGui.getMainWindow()
+    QtWidgets.QApplication.processEvents()
+    path = os.path.join(out_dir, name)
+    pixmap = main.grab()
+    # The active 3D view's widget: Quarter's (FreeCAD 0.20), an OpenGL viewport,
+    # in the active window of the MDI area (other documents' views are hidden tabs).
+    mdi = main.findChild(QtWidgets.QMdiArea)
+    active = mdi.activeSubWindow() if mdi is not None else None
+    viewers = [w for w in (active or main).findChildren(QtWidgets.QWidget)
+               if w.metaObject().className() == "SIM::Coin3D::Quarter::QuarterWidget" and w.isVisible()]
+    if viewers:
+        area = viewers[0].viewport() if hasattr(viewers[0], "viewport") else viewers[0]
+        rendered = os.path.join(out_dir, "view_" + name)
+        FreeCADGui.activeDocument().activeView().saveImage(rendered, area.width(), area.height(), "Current")
+        painter = QtGui.QPainter(pixmap)
+        painter.drawImage(area.mapTo(main, QtCore.QPoint(0, 0)), QtGui.QImage(rendered))
+        painter.end()
+        report["view_pasted"] = True
+    pixmap.save(path)
+    return path
+
+
+def pick_joints(doc, axis):
+    """Reopens the panel, holds the axis to a chosen joint (not the one found)
+    and checks that the running loop holds it there, then back to the found one."""
+    from contactwb.gui import haptic_panel
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(axis)
+    FreeCADGui.runCommand("Contacts_HapticTrial")
+    wait(0.5)
+    FreeCADGui.Selection.clearSelection()
+    panel = haptic_panel.active_panel
+    report["joint_choices"] = [c["label"] for c in panel.joint_choices]
+    report["joint_combo_items"] = [panel.joint_combo.itemText(i) for i in range(panel.joint_combo.count())]
+    wait(0.3)
+    found = panel.session.snapshot()
+    report["found_joint"] = {"held": found["held"], "with": found["joint_with"], "joint": found["joint"]}
+    index = next(i for i, c in enumerate(panel.joint_choices) if c["with"] == "Bearing-back")
+    panel.joint_combo.setCurrentIndex(index + 1)  # as the user does
+    wait(0.3)
+    chosen = panel.session.snapshot()
+    report["chosen_joint"] = {"held": chosen["held"], "with": chosen["joint_with"], "joint": chosen["joint"],
+                              "axis": chosen["joint_axis"], "point": chosen["joint_point"],
+                              "label": panel.joint_label.text()}
+    # The hand pulls it out along the axis and sideways: held, it slides out on the chosen axis.
+    panel.session.set_hand_target([0.2, 0.1, 12.0], [0.0, 0.0, 0.0])
+    wait(1.5)
+    pulled = panel.session.snapshot()
+    report["chosen_pulled"] = {"translate": pulled["translate"], "rotate_deg": pulled["rotate_deg"],
+                               "held": pulled["held"]}
+    FreeCADGui.activeDocument().activeView().fitAll()
+    report["picker_png"] = grab_window_with_view("haptic_trial_joint_picker.png")
+    panel.choose_joint(None)
+    wait(0.3)
+    back = panel.session.snapshot()
+    report["released_joint"] = {"held": back["held"], "with": back["joint_with"]}
+    panel.reject()
+    FreeCADGui.updateGui()
+
+
+def containers():
+    """A block inside a turned App::Part and a link to it: the panel picks each
+    through its selection path and commits the placement to the right object,
+    in its own (local) frame."""
+    from contactwb import bodies as document_bodies
+    from contactwb.gui import haptic_panel
+    doc = FreeCAD.newDocument("Containers")
+    part = doc.addObject("App::Part", "Assembly")
+    part.Placement = FreeCAD.Placement(FreeCAD.Vector(100, 0, 0), FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), 90))
+    plate = doc.addObject("Part::Box", "Plate")
+    plate.Length, plate.Width, plate.Height = 40, 40, 5
+    plate.Placement.Base = FreeCAD.Vector(-20, -15, -5)
+    block = doc.addObject("Part::Box", "Block")
+    block.Placement.Base = FreeCAD.Vector(0, 5, 0)
+    part.addObject(plate)
+    part.addObject(block)
+    link = doc.addObject("App::Link", "BlockLink")
+    link.LinkedObject = block
+    link.Placement = FreeCAD.Placement(FreeCAD.Vector(0, 0, 50), FreeCAD.Rotation())
+    doc.recompute()
+    FreeCADGui.activeDocument().activeView().viewIsometric()
+    FreeCADGui.activeDocument().activeView().fitAll()
+    block_local = FreeCAD.Placement(block.Placement)
+
+    def move(selection, subname, hand):
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(selection, subname) if subname else FreeCADGui.Selection.addSelection(selection)
+        FreeCADGui.runCommand("Contacts_HapticTrial")
+        wait(0.5)
+        panel = haptic_panel.active_panel
+        FreeCADGui.Selection.clearSelection()
+        panel.session.set_hand_target(hand, [0, 0, 0])
+        wait(1.5)
+        shot = grab_window_with_view(f"haptic_trial_{selection.Name.lower()}.png")
+        seen = {"object": panel.obj.Name, "global_move": panel.session.snapshot()["translate"], "png": shot}
+        panel.accept()
+        FreeCADGui.updateGui()
+        return seen
+
+    # The block, picked inside the part: a global +5 mm along x is -5 mm along its local y.
+    seen = move(part, "Block.", [5, 0, 0])
+    report["container_block"] = dict(seen, local=list(block.Placement.Base),
+                                     local_angle=block.Placement.Rotation.Angle, link=list(link.Placement.Base))
+    import Part
+    report["container_block"]["global_base"] = list(Part.getShape(part, "Block.", needSubElement=False,
+                                                                  transform=True).Placement.Base)
+    report["container_block"]["expected_local"] = list(block_local.Base + FreeCAD.Vector(0, -5, 0))
+    doc.undo()
+    report["container_undo"] = (block.Placement.Base - block_local.Base).Length < 1e-9
+    # The link: its own placement moves, not the block it shows.
+    seen = move(link, "", [0, 3, 0])
+    report["container_link"] = dict(seen, link=list(link.Placement.Base), block=list(block.Placement.Base))
+    # Through a link to the container, the block is every instance's original: refused, with why.
+    part_link = doc.addObject("App::Link", "AssemblyLink")
+    part_link.LinkedObject = part
+    part_link.Placement.Base = FreeCAD.Vector(0, 200, 0)
+    doc.recompute()
+    _, bodies = document_bodies.assembly_from_document(doc)
+    try:
+        haptic_panel._body_to_move(bodies, (part_link, "Block."))
+        report["linked_container_refused"] = ""
+    except Exception as error:  # ContactsError
+        report["linked_container_refused"] = str(error)
+
+
 def run():
     main = FreeCADGui.getMainWindow()
     main.resize(1280, 960)
@@ -74,9 +203,7 @@ def run():
     report["mid_offset"] = placement_offset(axis.Placement)[0]
     report["mid_joint"] = panel.joint_label.text()
     report["mid_png"] = save_view("haptic_trial_mid.png")
-    window_png = os.path.join(out_dir, "haptic_trial_panel.png")
-    main.grab().save(window_png)
-    report["panel_png"] = window_png
+    report["panel_png"] = grab_window_with_view("haptic_trial_panel.png")
     while not panel.script_done():
         wait(0.05)
     wait(2.0)  # settle
@@ -100,6 +227,8 @@ def run():
     report["undo_added"] = [n for n in doc.UndoNames if n not in undo_before] or list(doc.UndoNames)[:1]
     doc.undo()
     report["undo_restores"] = (axis.Placement.Base - original.Base).Length < 1e-9
+    pick_joints(doc, axis)
+    containers()
 
 
 try:

@@ -44,8 +44,53 @@ def test_ok_commits_one_undoable_placement(haptic_report):
     assert haptic_report["undo_restores"]
 
 
+def test_joint_picker_holds_the_part_to_the_chosen_joint(haptic_report):
+    # The axis' assembled joints (joints stage): cylindrical with each body it goes through.
+    assert sorted(haptic_report["joint_choices"]) == sorted(
+        f"Cylindrical with {b} (axis 0, 0, 1)" for b in ("Rotor-front", "Rotor-back", "Bearing-front",
+                                                         "Bearing-back", "Seal"))
+    assert haptic_report["joint_combo_items"][0] == "the joint found (engagement)"
+    # Found: engagement holds it on the bores of all five; chosen: the loop holds it to the back bearing's.
+    found = haptic_report["found_joint"]
+    assert not found["held"] and sorted(found["with"]) == sorted(
+        ["Rotor-front", "Rotor-back", "Bearing-front", "Bearing-back", "Seal"])
+    chosen = haptic_report["chosen_joint"]
+    assert chosen["held"] and chosen["with"] == ["Bearing-back"] and chosen["joint"] == "Cylindrical"
+    assert chosen["axis"] == pytest.approx([0, 0, 1], abs=1e-9)
+    assert chosen["point"][:2] == pytest.approx([0, 0], abs=1e-9)
+    assert chosen["label"].endswith("(chosen)")
+    # Pulled out and sideways by the hand: it slides out along the chosen axis only.
+    pulled = haptic_report["chosen_pulled"]
+    assert pulled["held"]
+    assert pulled["translate"][2] > 5.0
+    assert pulled["translate"][0] == pytest.approx(0.0, abs=0.05)  # the D-flat's centre turns about the axis
+    assert pulled["translate"][1] == pytest.approx(0.0, abs=0.05)
+    assert pulled["rotate_deg"][:2] == pytest.approx([0, 0], abs=1e-6)
+    assert not haptic_report["released_joint"]["held"]
+
+
 def test_screenshots_were_taken(haptic_report):
     from PIL import Image
-    for key in ("mid_png", "end_png", "panel_png"):
+    assert haptic_report["view_pasted"]
+    for key in ("mid_png", "end_png", "panel_png", "picker_png"):
         image = Image.open(haptic_report[key]).convert("RGB")
         assert image.width > 300 and len(set(image.getdata())) > 20
+
+
+def test_parts_inside_containers_and_links(haptic_report):
+    block = haptic_report["container_block"]
+    assert block["object"] == "Block"
+    # Moved 5 mm along global x by the hand (on the plate: a planar joint) ...
+    assert block["global_move"] == pytest.approx([5, 0, 0], abs=0.05)
+    # ... committed to the block in its part's frame (the part is turned 90 degrees about z).
+    assert block["local"] == pytest.approx([block["global_move"][1], 5 - block["global_move"][0], 0], abs=1e-6)
+    assert block["local"] == pytest.approx(block["expected_local"], abs=0.05)
+    assert block["local_angle"] == pytest.approx(0, abs=1e-9)
+    assert block["global_base"] == pytest.approx([95 + block["global_move"][0], block["global_move"][1], 0], abs=1e-6)
+    assert block["link"] == [0, 0, 50]  # the link beside it stays
+    assert haptic_report["container_undo"]
+    link = haptic_report["container_link"]
+    assert link["object"] == "BlockLink"
+    assert link["link"] == pytest.approx([0, 3, 50], abs=0.05)
+    assert link["block"] == pytest.approx([0, 5, 0], abs=1e-9)  # the original does not move
+    assert "inside the linked container 'AssemblyLink'" in haptic_report["linked_container_refused"]

@@ -63,6 +63,13 @@ struct Interference {
   int body_a = 0, body_b = 0;  // body_a < body_b
   double volume = 0;           // mm^3 of the common solid
 };
+// A body whose solid BRepCheck finds invalid (a self-intersecting boundary):
+// its contacts and areas may be wrong.
+struct InvalidBody {
+  int body = 0;
+  std::vector<int> faces;  // 1-based FaceN where the fault lies
+  std::string reason;
+};
 // Same surface type and axis, radii differing by less than the clearance gap
 // (a nut on its bolt): a fit with play, not a contact.
 struct Clearance {
@@ -89,13 +96,14 @@ struct ContactsResult {
   Tolerances tolerances;
   std::vector<BodyPartitions> partitions;  // one per body
   // Per body, the body whose shape it instances (itself when none). An
-  // instance's partitions are its source's moved, without the plane
-  // outlines: those are its source's, in the same plane frame.
+  // instance's partitions are its source's moved; their plane outlines are
+  // its source's (same plane frame), shared, not copied.
   std::vector<int> instance_of;
   std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
   std::size_t candidates = 0;  // candidate partition pairs (those of body pairs placed alike each counted)
   std::vector<Contact> contacts;
   std::vector<Interference> interferences;
+  std::vector<InvalidBody> invalid_bodies;  // in body order
   std::vector<Clearance> clearances;
   std::vector<SkippedPair> skipped;
   std::vector<std::string> messages;  // what was skipped or doubtful, for the user

@@ -24,15 +24,10 @@ gp_Trsf relative_motion(const Body& from, const Body& to);
 // The partitions of `shape`, which is `source_partitions`' shape moved by
 // `motion`: faces are `shape`'s own (FaceN order), surfaces, reference
 // directions and boxes moved; outlines and angular ranges, which are
-// measured in the surfaces' own frames, unchanged (outlines left out unless
-// `with_outlines`: they are the source's, point for point, and the bulk of
-// the memory). Status InvalidInput when the face counts differ (not the
-// same shape).
+// measured in the surfaces' own frames, unchanged (the outlines shared with
+// the source, not copied). Status InvalidInput when the face counts differ
+// (not the same shape).
 BodyPartitions moved_partitions(const BodyPartitions& source_partitions, const gp_Trsf& motion,
-                                const TopoDS_Shape& shape, bool with_outlines = true);
-
-// Plane outlines of an instance's source given to (or taken from) the instance.
-void copy_outlines(const BodyPartitions& from, BodyPartitions& to);
-void drop_outlines(BodyPartitions& body);
+                                const TopoDS_Shape& shape);
 
 }  // namespace contactcore

@@ -4,6 +4,8 @@
 // merged into maximal partitions (the paper's list of merged partitions).
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -64,11 +66,36 @@ struct Point2 {
 };
 using Polygon2 = std::vector<Point2>;
 
+// The loops of a plane outline, stored once: copies of an extent share them
+// (a face and its one-face partition, an instance's faces and its source's,
+// which are in the same plane frame). Immutable once made; read it as a
+// const std::vector<Polygon2>.
+class Outline {
+ public:
+  Outline() = default;
+  Outline(std::vector<Polygon2> loops)  // NOLINT: implicit, as the vector it replaces
+      : loops_(loops.empty() ? nullptr : std::make_shared<const std::vector<Polygon2>>(std::move(loops))) {}
+  const std::vector<Polygon2>& loops() const { return loops_ ? *loops_ : empty_loops(); }
+  operator const std::vector<Polygon2>&() const { return loops(); }  // NOLINT
+  bool empty() const { return loops().empty(); }
+  std::size_t size() const { return loops().size(); }
+  const Polygon2& operator[](std::size_t i) const { return loops()[i]; }
+  std::vector<Polygon2>::const_iterator begin() const { return loops().begin(); }
+  std::vector<Polygon2>::const_iterator end() const { return loops().end(); }
+
+ private:
+  static const std::vector<Polygon2>& empty_loops() {
+    static const std::vector<Polygon2> none;
+    return none;
+  }
+  std::shared_ptr<const std::vector<Polygon2>> loops_;
+};
+
 struct Extent {
   gp_Dir ref_dir;
   double axial_min = 0, axial_max = 0;
   std::vector<AngularInterval> angular;  // revolution surfaces
-  std::vector<Polygon2> outline;         // planes
+  Outline outline;                       // planes
   double angular_span() const;           // sum of the spans, <= 2 pi
 };
 

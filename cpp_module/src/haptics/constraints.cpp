@@ -13,6 +13,7 @@ const char* to_string(JointKind kind) {
     case JointKind::Prismatic: return "Slider";
     case JointKind::Spherical: return "Ball";
     case JointKind::Fixed: return "Fixed";
+    case JointKind::Planar: return "Planar";
   }
   return "?";
 }
@@ -45,6 +46,15 @@ int free_twists(const JointState& joint, const Vec3& c, Eigen::Matrix<double, 6,
     case JointKind::Spherical:
       for (int i = 0; i < 3; ++i) basis.col(i) = rotation_about(Vec3::Unit(i), joint.point);
       return 3;
+    case JointKind::Planar: {
+      // In-plane slides, lift-off along the normal (held by a stop), a turn about the normal.
+      const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+      basis.col(0).head<3>() = e1;
+      basis.col(1).head<3>() = e2;
+      basis.col(2).head<3>() = u;
+      basis.col(3).tail<3>() = u;
+      return 4;
+    }
   }
   return 0;
 }
@@ -57,13 +67,15 @@ Pose snap_to_joint(const JointState& joint, const Pose& pose) {
     out.translation() += joint.point - q;
     return out;
   }
-  // Align the part's axis with the joint's (the nearer of the two senses).
+  // Align the part's axis with the joint's (the nearer of the two senses; a
+  // face on a plane faces it).
   Vec3 d = pose.linear() * joint.part_axis;
   Vec3 u = joint.axis;
-  if (d.dot(u) < 0) u = -u;
+  if (joint.kind == JointKind::Planar || d.dot(u) < 0) u = -u;
   const Mat3 align = Eigen::Quaterniond::FromTwoVectors(d, u).toRotationMatrix();
   out.linear() = align * pose.linear();
   out.translation() = align * (pose.translation() - q) + q;
+  if (joint.kind == JointKind::Planar) return out;
   // Put its point on the line.
   const Vec3 on_line = joint.point + (q - joint.point).dot(joint.axis) * joint.axis;
   out.translation() += on_line - q;
@@ -73,6 +85,10 @@ Pose snap_to_joint(const JointState& joint, const Pose& pose) {
 double joint_deviation(const JointState& joint, const Pose& pose) {
   if (joint.kind == JointKind::Free) return 0;
   if (joint.kind == JointKind::Spherical) return (pose * joint.part_point - joint.point).norm();
+  if (joint.kind == JointKind::Planar) {
+    const double c = std::clamp(-(pose.linear() * joint.part_axis).dot(joint.axis), -1.0, 1.0);
+    return std::sin(std::acos(c)) * joint.part_axial_max;
+  }
   double worst = 0;
   for (double s : {joint.part_axial_min, joint.part_axial_max}) {
     const Vec3 p = pose * (joint.part_point + s * joint.part_axis);

@@ -37,6 +37,23 @@ bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre
       j.kind = JointKind::Spherical;
       j.point = vec(pair.rotations[0].point);
       break;
+    case JointType::Planar: {
+      if (pair.rotations.empty()) return false;
+      j.kind = JointKind::Planar;
+      j.point = vec(pair.rotations[0].point);
+      j.axis = vec(pair.rotations[0].direction);
+      // The plane's normal out of the other body, towards the moving part: the
+      // side a stop lets it leave by (b may move with u . n >= 0).
+      for (const OneSidedStop& stop : pair.stops) {
+        Vec3 free = vec(stop.normal);
+        if (moving == pair.body_a) free = -free;
+        if (std::abs(free.dot(j.axis)) > 1 - 1e-6) {
+          j.axis = free.dot(j.axis) > 0 ? j.axis : Vec3(-j.axis);
+          break;
+        }
+      }
+      break;
+    }
     default:
       return false;
   }
@@ -46,9 +63,9 @@ bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre
   if (j.kind == JointKind::Revolute)
     for (const OneSidedStop& stop : pair.stops)
       if (std::abs(vec(stop.normal).dot(j.axis)) > 1 - 1e-6) j.kind = JointKind::Cylindrical;
-  // Assembled: the part's own axis is the joint's.
+  // Assembled: the part's own axis is the joint's (a face faces its plane).
   j.part_point = j.point;
-  j.part_axis = j.axis;
+  j.part_axis = j.kind == JointKind::Planar ? Vec3(-j.axis) : j.axis;
   double lo = 0, hi = 0;
   if (!part_box.isEmpty()) {
     lo = 1e300;
@@ -61,6 +78,10 @@ bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre
   }
   j.part_axial_min = lo;
   j.part_axial_max = hi;
+  if (j.kind == JointKind::Planar) {  // the face's reach when it tilts: the part's half-diagonal
+    j.part_axial_min = 0;
+    j.part_axial_max = part_box.isEmpty() ? 0.0 : 0.5 * part_box.diagonal().norm();
+  }
   // Stops: b may move with u . n >= 0 at the stop; the moving part's reference
   // point keeps normal . c <= limit, written at the assembled placement.
   for (const OneSidedStop& stop : pair.stops) {
@@ -72,7 +93,9 @@ bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre
   }
   j.bodies[0] = moving == pair.body_a ? pair.body_b : pair.body_a;
   j.body_count = 1;
-  j.contact_type = static_cast<int>(pair.type == JointType::Spherical ? ContactType::SPF : ContactType::CLJ);
+  j.contact_type = static_cast<int>(pair.type == JointType::Spherical ? ContactType::SPF
+                                    : pair.type == JointType::Planar  ? ContactType::PLF
+                                                                      : ContactType::CLJ);
   out = j;
   return true;
 }

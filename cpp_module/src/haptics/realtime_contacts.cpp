@@ -233,33 +233,50 @@ ContactJointFinder::ContactJointFinder(const RealtimeContacts& contacts, std::ve
 
 bool ContactJointFinder::capture(const Pose& pose, JointState& joint) noexcept {
   const int n = contacts_.update(pose, live_.data(), kMaxLive);
-  const LiveContact* best = nullptr;
-  for (int i = 0; i < n; ++i) {
-    const LiveContact& c = live_[i];
-    if (c.type != ContactType::CLJ && c.type != ContactType::SPF) continue;
-    // Cylinders first (they fix more), then the nearest.
-    if (!best || (c.type == ContactType::CLJ && best->type != ContactType::CLJ) ||
-        (c.type == best->type && c.distance < best->distance))
-      best = &c;
+  // The nearest contact of a type.
+  auto nearest = [&](ContactType type) -> const LiveContact* {
+    const LiveContact* best = nullptr;
+    for (int i = 0; i < n; ++i)
+      if (live_[i].type == type && (!best || live_[i].distance < best->distance)) best = &live_[i];
+    return best;
+  };
+  // What fixes more first: a shaft in a bore, a cone in its seat, a ball in a cup, a face on a plane.
+  if (const LiveContact* clj = nearest(ContactType::CLJ)) {
+    fill_axial(*clj, n, joint);
+    add_stops(pose, joint);
+    return true;
   }
-  if (!best) return false;
-  const SurfaceProxy& o = contacts_.surfaces(best->body)[best->other_index];
-  const SurfaceProxy& m = contacts_.moving_surfaces()[best->moving_index];
+  if (cone_seat(pose, joint, nullptr)) {
+    add_stops(pose, joint);
+    return true;
+  }
+  if (const LiveContact* spf = nearest(ContactType::SPF)) {
+    fill_axial(*spf, n, joint);
+    return true;
+  }
+  // Planes: the nearest face that is not tilted past the capture angle.
+  const LiveContact* plf = nearest(ContactType::PLF);
+  return plf && plane_joint(pose, *plf, joint);
+}
+
+void ContactJointFinder::fill_axial(const LiveContact& best, int n, JointState& joint) const noexcept {
+  const SurfaceProxy& o = contacts_.surfaces(best.body)[best.other_index];
+  const SurfaceProxy& m = contacts_.moving_surfaces()[best.moving_index];
   joint = JointState{};
-  joint.kind = best->type == ContactType::CLJ ? JointKind::Cylindrical : JointKind::Spherical;
+  joint.kind = best.type == ContactType::CLJ ? JointKind::Cylindrical : JointKind::Spherical;
   joint.point = o.location;
   joint.axis = o.axis.normalized();
   joint.part_point = m.location;
   joint.part_axis = m.axis.normalized();
   joint.part_axial_min = m.axial_min;
   joint.part_axial_max = m.axial_max;
-  joint.contact_type = static_cast<int>(best->type);
-  const int partition = best->moving_partition;
+  joint.contact_type = static_cast<int>(best.type);
+  const int partition = best.moving_partition;
   joint.group = partition >= 0 && partition < static_cast<int>(groups_.size()) ? groups_[partition] : -1;
   // Every body holding the part on this same axis (all the bores of a shaft).
   for (int i = 0; i < n; ++i) {
     const LiveContact& c = live_[i];
-    if (c.type != best->type) continue;
+    if (c.type != best.type) continue;
     const SurfaceProxy& oc = contacts_.surfaces(c.body)[c.other_index];
     const bool same = joint.kind == JointKind::Spherical
                           ? (oc.location - o.location).norm() < contacts_.tolerances().distance
@@ -270,7 +287,90 @@ bool ContactJointFinder::capture(const Pose& pose, JointState& joint) noexcept {
     for (int k = 0; k < joint.body_count; ++k) listed |= joint.bodies[k] == c.body;
     if (!listed && joint.body_count < kMaxJointBodies) joint.bodies[joint.body_count++] = c.body;
   }
-  if (joint.kind == JointKind::Cylindrical) add_stops(pose, joint);
+}
+
+bool ContactJointFinder::cone_seat(const Pose& pose, JointState& joint, const JointState* same) const noexcept {
+  const CaptureTolerances& tol = contacts_.tolerances();
+  const double cos_tol = std::cos(tol.angle);
+  int near[kMaxLive];
+  const int near_count = contacts_.near_bodies(pose, near, kMaxLive);
+  double best_lateral = 1e300;
+  bool found = false;
+  const auto& moving = contacts_.moving_surfaces();
+  for (int mi = 0; mi < static_cast<int>(moving.size()); ++mi) {
+    const SurfaceProxy& m = moving[mi];
+    if (m.kind != SurfaceKind::Cone) continue;
+    const Vec3 apex = pose * m.location, axis = pose.linear() * m.axis;
+    // The male cone's apex stays on the opening side of the female's: sign +1
+    // when the moving cone is the male (convex), -1 when it is the seat.
+    const double sign = m.side == MaterialSide::Convex ? 1.0 : -1.0;
+    for (int k = 0; k < near_count; ++k) {
+      const auto& others = contacts_.surfaces(near[k]);
+      for (int oi = 0; oi < static_cast<int>(others.size()); ++oi) {
+        const SurfaceProxy& o = others[oi];
+        if (o.kind != SurfaceKind::Cone || !opposite_sides(m.side, o.side)) continue;
+        if (std::abs(m.half_angle - o.half_angle) > tol.angle || axis.dot(o.axis) < cos_tol) continue;
+        const double lateral = line_distance(apex, o.location, o.axis);
+        const double axial = sign * (apex - o.location).dot(o.axis);
+        // Within reach: near the axis, not past the seat, not beyond the other cone's length.
+        if (lateral > tol.distance || axial < -tol.distance || axial > o.axial_max - o.axial_min + tol.distance)
+          continue;
+        if (same && (std::abs(o.axis.dot(same->axis)) < cos_tol ||
+                     line_distance(o.location, same->point, same->axis) > tol.distance))
+          continue;
+        if (lateral >= best_lateral) continue;
+        best_lateral = lateral;
+        found = true;
+        JointState j;
+        j.kind = JointKind::Cylindrical;
+        j.point = o.location;
+        j.axis = o.axis.normalized();
+        j.part_point = m.location;
+        j.part_axis = m.axis.normalized();
+        j.part_axial_min = m.axial_min;
+        j.part_axial_max = m.axial_max;
+        j.contact_type = static_cast<int>(ContactType::CJU);
+        j.group = m.partition >= 0 && m.partition < static_cast<int>(groups_.size()) ? groups_[m.partition] : -1;
+        j.bodies[0] = near[k];
+        j.body_count = 1;
+        // The seat: sign * (apex - o.apex) . u >= 0 with apex - c fixed on the
+        // snapped part (it slides and turns about u): -sign u . c <= sign (k - o.apex . u).
+        const Pose snapped = snap_to_joint(j, pose);
+        const Vec3 u = j.axis;
+        const double offset = (snapped * m.location - snapped * centre_).dot(u);
+        j.add_stop(-sign * u, sign * (offset - o.location.dot(u)));
+        joint = j;
+      }
+    }
+  }
+  return found;
+}
+
+bool ContactJointFinder::plane_joint(const Pose& pose, const LiveContact& contact, JointState& joint) const noexcept {
+  const SurfaceProxy& o = contacts_.surfaces(contact.body)[contact.other_index];
+  const SurfaceProxy& m = contacts_.moving_surfaces()[contact.moving_index];
+  JointState j;
+  j.kind = JointKind::Planar;
+  j.point = o.location;
+  j.axis = o.axis.normalized();  // out of the other body's material, towards the part
+  j.part_point = m.location;
+  j.part_axis = m.axis.normalized();
+  // The face's size about its point: how far its rim goes when it tilts.
+  double rim = 0;
+  for (const auto& loop : m.loops)
+    for (const Vec3& p : loop) rim = std::max(rim, (p - m.location).norm());
+  j.part_axial_min = 0;
+  j.part_axial_max = rim;
+  j.contact_type = static_cast<int>(ContactType::PLF);
+  j.group = m.partition >= 0 && m.partition < static_cast<int>(groups_.size()) ? groups_[m.partition] : -1;
+  j.bodies[0] = contact.body;
+  j.body_count = 1;
+  // One-sided: the face stays on its side of the plane. Its point's height
+  // above the plane less the centre's is fixed under the joint's motions.
+  const Pose snapped = snap_to_joint(j, pose);
+  const double offset = (snapped * m.location - snapped * centre_).dot(j.axis);
+  j.add_stop(-j.axis, offset - o.location.dot(j.axis));
+  joint = j;
   return true;
 }
 
@@ -311,16 +411,25 @@ void ContactJointFinder::add_stops(const Pose& pose, JointState& joint) const no
 }
 
 bool ContactJointFinder::still_engaged(const Pose& pose, const JointState& joint) noexcept {
+  const double cos_tol = std::cos(contacts_.tolerances().angle);
+  if (joint.contact_type == static_cast<int>(ContactType::CJU)) {
+    JointState again;
+    return cone_seat(pose, again, &joint);
+  }
   const int n = contacts_.update(pose, live_.data(), kMaxLive);
   for (int i = 0; i < n; ++i) {
     const LiveContact& c = live_[i];
     const SurfaceProxy& o = contacts_.surfaces(c.body)[c.other_index];
     if (joint.kind == JointKind::Cylindrical && c.type == ContactType::CLJ &&
-        std::abs(o.axis.dot(joint.axis)) > std::cos(contacts_.tolerances().angle) &&
+        std::abs(o.axis.dot(joint.axis)) > cos_tol &&
         line_distance(o.location, joint.point, joint.axis) < contacts_.tolerances().distance)
       return true;
     if (joint.kind == JointKind::Spherical && c.type == ContactType::SPF &&
         (o.location - joint.point).norm() < contacts_.tolerances().distance)
+      return true;
+    // A face stays on its plane while within the capture distance of it.
+    if (joint.kind == JointKind::Planar && c.type == ContactType::PLF && o.axis.dot(joint.axis) > cos_tol &&
+        std::abs((o.location - joint.point).dot(joint.axis)) < contacts_.tolerances().radius * 10)
       return true;
   }
   return false;
@@ -333,18 +442,35 @@ CollisionGroups collision_groups(const RealtimeContacts& contacts) {
   for (const auto& s : moving) max_partition = std::max(max_partition, s.partition);
   groups.moving_group.assign(max_partition + 1, -1);
   const double rtol = contacts.tolerances().radius;
+  const double cos_tol = std::cos(contacts.tolerances().angle);
   std::vector<const SurfaceProxy*> representatives;  // one per group
   for (const SurfaceProxy& m : moving) {
-    // Joints the loop engages (CLJ, SPF); cones match too loosely by angle alone.
-    if (m.kind != SurfaceKind::Cylinder && m.kind != SurfaceKind::Sphere) continue;
-    // Partners anywhere: same kind and radius, opposite side.
+    // Partners: cylinders and spheres of the same radius anywhere (opposite
+    // side); cones and planes only where they meet at the assembled placement
+    // (same angle and coaxial; coplanar and facing), since cones of one angle
+    // (chamfers) and planes are everywhere.
     std::vector<std::vector<int>> partners(contacts.body_count());
     bool any = false;
     for (int b = 0; b < contacts.body_count(); ++b) {
       if (b == contacts.moving()) continue;
       for (const SurfaceProxy& o : contacts.surfaces(b)) {
-        if (o.kind != m.kind || !opposite_sides(m.side, o.side)) continue;
-        if (std::abs(o.radius - m.radius) > rtol) continue;
+        if (o.kind != m.kind) continue;
+        if (m.kind == SurfaceKind::Cylinder || m.kind == SurfaceKind::Sphere) {
+          if (!opposite_sides(m.side, o.side) || std::abs(o.radius - m.radius) > rtol) continue;
+        } else if (m.kind == SurfaceKind::Cone) {
+          if (!opposite_sides(m.side, o.side) || std::abs(o.half_angle - m.half_angle) > contacts.tolerances().angle ||
+              m.axis.dot(o.axis) < cos_tol || (m.location - o.location).norm() > contacts.tolerances().distance)
+            continue;
+        } else if (m.kind == SurfaceKind::Plane) {
+          Eigen::AlignedBox3d box = m.box;
+          box.min() -= Vec3::Constant(rtol * 10);
+          box.max() += Vec3::Constant(rtol * 10);
+          if (m.axis.dot(o.axis) > -cos_tol || std::abs((m.location - o.location).dot(o.axis)) > rtol * 10 ||
+              !box.intersects(o.box))
+            continue;
+        } else {
+          continue;
+        }
         partners[b].push_back(o.partition);
         any = true;
       }
@@ -354,11 +480,18 @@ CollisionGroups collision_groups(const RealtimeContacts& contacts) {
     int group = -1;
     for (int g = 0; g < static_cast<int>(representatives.size()); ++g) {
       const SurfaceProxy& r = *representatives[g];
-      if (r.kind == m.kind && std::abs(r.radius - m.radius) <= rtol &&
-          std::abs(r.axis.dot(m.axis)) > std::cos(contacts.tolerances().angle) &&
-          line_distance(m.location, r.location, r.axis) < rtol * 10 &&
-          (m.kind != SurfaceKind::Sphere || (m.location - r.location).norm() < rtol * 10))
+      if (r.kind != m.kind) continue;
+      if (m.kind == SurfaceKind::Plane) {
+        if (r.axis.dot(m.axis) > cos_tol && std::abs((m.location - r.location).dot(r.axis)) < rtol * 10) group = g;
+      } else if (m.kind == SurfaceKind::Cone) {
+        if (std::abs(r.half_angle - m.half_angle) <= contacts.tolerances().angle && r.axis.dot(m.axis) > cos_tol &&
+            (m.location - r.location).norm() < rtol * 10)
+          group = g;
+      } else if (std::abs(r.radius - m.radius) <= rtol && std::abs(r.axis.dot(m.axis)) > cos_tol &&
+                 line_distance(m.location, r.location, r.axis) < rtol * 10 &&
+                 (m.kind != SurfaceKind::Sphere || (m.location - r.location).norm() < rtol * 10)) {
         group = g;
+      }
     }
     if (group < 0) {
       group = static_cast<int>(representatives.size());

@@ -79,6 +79,20 @@ void ServoLoop::release_joint() {
   joint_ = JointState{};
 }
 
+void ServoLoop::request_hold(const JointState& joint) {
+  HoldRequest r;
+  r.serial = ++request_serial_;
+  r.hold = true;
+  r.joint = joint;
+  hold_requests_.write(r);
+}
+
+void ServoLoop::request_release() {
+  HoldRequest r;
+  r.serial = ++request_serial_;
+  hold_requests_.write(r);
+}
+
 void ServoLoop::engage(const JointState& joint, double now) {
   joint_ = joint;
   engaged_ = true;
@@ -158,6 +172,14 @@ void ServoLoop::tick(double now) {
   const double dt = period_;
   const Vec3 c = config_.centre;
   const DeviceSample sample = device_.read(now);
+  {
+    const HoldRequest& request = hold_requests_.read();  // one atomic load when nothing is new
+    if (request.serial != applied_serial_) {
+      applied_serial_ = request.serial;
+      if (request.hold) hold_to(request.joint);
+      else release_joint();
+    }
+  }
 
   Watchdog reason = Watchdog::None;
   const bool enabled = enabled_.load(std::memory_order_relaxed);
@@ -224,6 +246,12 @@ void ServoLoop::tick(double now) {
       Vec3 across = pull;
       if (joint_.kind == JointKind::Cylindrical || joint_.kind == JointKind::Prismatic)
         across -= pull.dot(joint_.axis) * joint_.axis;
+      if (joint_.kind == JointKind::Planar) {
+        // Every force is free (slides, lift-off) or held by the stop: the
+        // hand breaks a face away by tilting it (torque over the length scale).
+        const Vec3 tilt = -coupling.torque;
+        across = (tilt - tilt.dot(joint_.axis) * joint_.axis) / config_.length_scale;
+      }
       if (across.norm() > config_.breakaway_force) {
         engaged_ = false;
         rearm_ = false;
@@ -237,7 +265,8 @@ void ServoLoop::tick(double now) {
   }
 
   const Wrench rendered = reason == Watchdog::None ? clamp_to_device(coupling, caps_) : Wrench{};
-  device_.write(rendered);
+  if (reason == Watchdog::None) device_.write(rendered);
+  else device_.halt();
 
   double penetration = engaged_ ? joint_deviation(joint_, proxy_) : 0.0;
   for (int i = 0; engaged_ && i < joint_.stop_count; ++i)
@@ -260,6 +289,7 @@ void ServoLoop::tick(double now) {
   last_.coupling = coupling;
   last_.joint = joint_;
   last_.engaged = engaged_;
+  last_.held = held_;
   last_.device_connected = sample.connected;
   last_.enabled = enabled;
   last_.watchdog = reason;
@@ -321,7 +351,7 @@ void ServoLoop::run() {
     if (after >= next) next = after;  // behind: no burst of catch-up ticks
     else std::this_thread::sleep_until(next);
   }
-  device_.write(Wrench{});
+  device_.halt();
 }
 
 double ServoLoop::rate_hz() const {

@@ -1,6 +1,7 @@
 #include "contactcore/haptics/trial.h"
 
 #include <chrono>
+#include <cmath>
 #include <set>
 #include <thread>
 
@@ -82,6 +83,37 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
   scene->setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   status = Status::success();
   return scene;
+}
+
+void TrialScene::attach_collision_group(JointState& joint) const {
+  joint.group = -1;
+  const double tol = contacts_->tolerances().distance, cos_tol = std::cos(contacts_->tolerances().angle);
+  for (const SurfaceProxy& m : contacts_->moving_surfaces()) {
+    if (m.partition < 0 || m.partition >= static_cast<int>(groups_.moving_group.size())) continue;
+    const int group = groups_.moving_group[m.partition];
+    if (group < 0) continue;
+    const Vec3 r = m.location - joint.point;
+    bool on = false;
+    switch (joint.kind) {
+      case JointKind::Cylindrical:
+      case JointKind::Revolute:
+        on = (m.kind == SurfaceKind::Cylinder || m.kind == SurfaceKind::Cone) &&
+             std::abs(m.axis.dot(joint.axis)) > cos_tol && (r - r.dot(joint.axis) * joint.axis).norm() < tol;
+        break;
+      case JointKind::Spherical:
+        on = m.kind == SurfaceKind::Sphere && r.norm() < tol;
+        break;
+      case JointKind::Planar:
+        on = m.kind == SurfaceKind::Plane && m.axis.dot(joint.axis) < -cos_tol && std::abs(r.dot(joint.axis)) < tol;
+        break;
+      default:
+        break;
+    }
+    if (on) {
+      joint.group = group;
+      return;
+    }
+  }
 }
 
 TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialOptions& options, bool realtime) {

@@ -12,7 +12,10 @@
 
 namespace contactcore::haptics {
 
-enum class JointKind { Free, Cylindrical, Revolute, Prismatic, Spherical, Fixed };
+// Planar: a face on a plane (axis: the plane's normal, out of the material the
+// part rests on; part_axis: the part's face normal). It slides in the plane,
+// turns about the normal and may lift off (a one-sided stop keeps it out).
+enum class JointKind { Free, Cylindrical, Revolute, Prismatic, Spherical, Fixed, Planar };
 const char* to_string(JointKind kind);
 
 // A one-sided stop: the reference point c of the part keeps normal . c <= limit
@@ -54,11 +57,13 @@ int free_twists(const JointState& joint, const Vec3& c, Eigen::Matrix<double, 6,
 
 // `pose` moved the least onto the joint: the part's axis made the joint's axis
 // (sign kept), its point put on the line (Cylindrical, Revolute, Prismatic),
-// its centre on the centre (Spherical).
+// its centre on the centre (Spherical); for Planar, the part's face turned
+// parallel to the plane (about the face's point; the normal stays free).
 Pose snap_to_joint(const JointState& joint, const Pose& pose);
 
 // Largest distance from the joint's axis line of the part's axis over its
-// extent (mm): how far the pose is from the joint (0 when snapped).
+// extent (mm): how far the pose is from the joint (0 when snapped). Planar:
+// how far the face's rim (radius part_axial_max) is off parallel.
 double joint_deviation(const JointState& joint, const Pose& pose);
 
 // Engagement: the joint near `pose` within the capture distance and angle.

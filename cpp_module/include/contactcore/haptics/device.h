@@ -61,6 +61,9 @@ class Device {
   // Renders `wrench` (already clamped to the limits) or does nothing on a
   // device without force output.
   virtual void write(const Wrench& wrench) noexcept = 0;
+  // The watchdog tripped (overrun, stale, unplugged, disabled): render nothing
+  // until the next write (a HID PID device sends "stop all effects").
+  virtual void halt() noexcept { write(Wrench{}); }
 };
 
 // Limits a wrench to the device: force and torque norms clamped, directions kept.

@@ -10,7 +10,7 @@ namespace contactcore::haptics {
 
 // `moving` is pair.body_a or pair.body_b; `centre` the moving part's reference
 // point and `part_box` its box (assembled placement). False for joint types
-// the loop does not hold (planar, sphere-in-cylinder, general, helical).
+// the loop does not hold (sphere-in-cylinder, general, helical).
 bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre,
                            const Eigen::AlignedBox3d& part_box, JointState& out);
 

@@ -75,10 +75,16 @@ class RealtimeContacts {
   CaptureTolerances tolerances_;
 };
 
-// Engagement from the real-time contacts: a shaft-in-bore (CLJ) contact within
-// capture captures the part on the bore's axis (Cylindrical); a ball in a cup
-// (SPF) on its centre (Ball). Stops come from planes of the part facing planes
-// of the partners along the axis, over a common radial band.
+// Engagement from the real-time contacts, in this order: a shaft-in-bore (CLJ)
+// contact within capture captures the part on the bore's axis (Cylindrical); a
+// cone in a cone of the same angle (a conical seat: axes within the capture
+// angle and distance, the part's cone inside the other's axial range, not past
+// its apex) on the common axis, with a one-sided stop where the apexes meet
+// (the seat); a ball in a cup (SPF) on its centre (Ball); a face on a plane
+// (PLF within the capture distance and angle) turned parallel (Planar: slides
+// in the plane, turns about its normal, a one-sided stop on the plane). Stops
+// on an axis come from planes of the part facing planes of the partners along
+// it, over a common radial band.
 class ContactJointFinder : public JointFinder {
  public:
   // `partition_groups[i]` is the collision group of moving partition i (-1:
@@ -90,6 +96,10 @@ class ContactJointFinder : public JointFinder {
 
  private:
   void add_stops(const Pose& pose, JointState& joint) const noexcept;
+  void fill_axial(const LiveContact& best, int live_count, JointState& joint) const noexcept;
+  // A conical seat near `pose` (the one on `same`'s axis when given).
+  bool cone_seat(const Pose& pose, JointState& joint, const JointState* same) const noexcept;
+  bool plane_joint(const Pose& pose, const LiveContact& contact, JointState& joint) const noexcept;
   const RealtimeContacts& contacts_;
   std::vector<int> groups_;
   Vec3 centre_;

@@ -77,6 +77,7 @@ struct ServoSnapshot {
   Wrench coupling;                  // before clamping
   JointState joint;
   bool engaged = false;
+  bool held = false;                // the joint was chosen (hold_to), not found
   bool device_connected = false;
   bool enabled = false;
   Watchdog watchdog = Watchdog::None;
@@ -108,8 +109,13 @@ class ServoLoop {
   void set_joint_finder(JointFinder* finder) { finder_ = finder; }
   void set_collision(CollisionQuery* collision) { collision_ = collision; }
   // Holds the part to a given joint (tests, or a joint chosen in the panel).
+  // Call when the loop is stopped or from its thread; from another thread
+  // (the GUI) while it runs, request_hold / request_release: applied at the
+  // next tick through a lock-free mailbox.
   void hold_to(const JointState& joint);
   void release_joint();
+  void request_hold(const JointState& joint);
+  void request_release();
 
   // Thread mode on the steady clock.
   bool start();
@@ -186,6 +192,14 @@ class ServoLoop {
   std::vector<EngagementEvent> events_;  // reserved up front; full: later ones dropped
   ServoSnapshot last_;
   TripleBuffer<ServoSnapshot> snapshots_;
+  struct HoldRequest {
+    std::uint64_t serial = 0;  // 0: none yet
+    bool hold = false;
+    JointState joint;
+  };
+  TripleBuffer<HoldRequest> hold_requests_;
+  std::uint64_t request_serial_ = 0;  // writer's (GUI)
+  std::uint64_t applied_serial_ = 0;  // loop's
 };
 
 }  // namespace contactcore::haptics

@@ -35,6 +35,10 @@ class TrialScene {
   ContactJointFinder& finder() { return *finder_; }
   StageCollision& collision() { return *collision_; }
   const std::vector<std::string>& body_names() const { return names_; }
+  // Sets `joint.group` to the collision group of the part's surfaces on that
+  // joint (a chosen joint, say from the joints stage): a cylinder or cone on
+  // its axis, a sphere on its centre, a face on its plane; -1 when none.
+  void attach_collision_group(JointState& joint) const;
   double setup_seconds() const { return setup_seconds_; }
 
  private:

@@ -1,0 +1,226 @@
+// Interferences: bodies whose material overlaps, with hand-derived volumes,
+// never counted as contacts; touching bodies are not interferences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <GProp_GProps.hxx>
+#include <gp_Ax2.hxx>
+
+#include "contactcore/contacts.h"
+#include "contactcore/interferences.h"
+#include "contactcore/separation.h"
+#include "test_helpers.h"
+
+using namespace contactcore;
+using namespace contactcore::testing;
+
+namespace {
+
+TopoDS_Shape box(double x0, double y0, double z0, double dx, double dy, double dz) {
+  return BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), dx, dy, dz).Shape();
+}
+
+TopoDS_Shape cylinder(double radius, double height, const gp_Pnt& base) {
+  return BRepPrimAPI_MakeCylinder(gp_Ax2(base, gp::DZ()), radius, height).Shape();
+}
+
+double volume_of(const TopoDS_Shape& shape) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props);
+  return props.Mass();
+}
+
+ContactsResult with_threads(const Assembly& assembly, int threads) {
+  ContactOptions options;
+  options.threads = threads;
+  ContactsResult result = find_contacts(assembly, options);
+  EXPECT_TRUE(result.status.ok()) << result.status.describe();
+  return result;
+}
+
+// The same interferences (pairs, volumes) and contacts whatever the threads.
+void expect_same_serial_and_parallel(const Assembly& assembly) {
+  const ContactsResult serial = with_threads(assembly, 1);
+  const ContactsResult parallel = with_threads(assembly, 3);
+  ASSERT_EQ(serial.interferences.size(), parallel.interferences.size());
+  for (std::size_t i = 0; i < serial.interferences.size(); ++i) {
+    EXPECT_EQ(serial.interferences[i].body_a, parallel.interferences[i].body_a);
+    EXPECT_EQ(serial.interferences[i].body_b, parallel.interferences[i].body_b);
+    EXPECT_DOUBLE_EQ(serial.interferences[i].volume, parallel.interferences[i].volume);
+  }
+  EXPECT_EQ(serial.contacts.size(), parallel.contacts.size());
+}
+
+}  // namespace
+
+TEST(Interferences, BoxesOverlappingByOneMillimetre) {
+  // [0,10]^3 and [9,19]x[0,10]x[0,10]: a 1 x 10 x 10 slab in common; their
+  // coplanar sides face the same way, so no planar fit either.
+  const Assembly assembly = make_assembly({{"a", box(0, 0, 0, 10, 10, 10)}, {"b", box(9, 0, 0, 10, 10, 10)}});
+  const ContactsResult result = contacts_of(assembly);
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, 100.0, 1e-6);
+  EXPECT_TRUE(result.contacts.empty());
+  expect_same_serial_and_parallel(assembly);
+}
+
+TEST(Interferences, BoxesOverlappingOnACorner) {
+  // Shifted by (9, 0.5, 0.5): 1 x 9.5 x 9.5 in common, no face coplanar.
+  const ContactsResult result =
+      contacts_of(make_assembly({{"a", box(0, 0, 0, 10, 10, 10)}, {"b", box(9, 0.5, 0.5, 10, 10, 10)}}));
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, 1 * 9.5 * 9.5, 1e-6);
+  EXPECT_TRUE(result.contacts.empty());
+}
+
+TEST(Interferences, PinThroughPlateWithoutHole) {
+  // A pin of radius 3 through a 5 mm plate that has no hole: pi r^2 t.
+  const Assembly assembly = make_assembly({{"plate", box(-20, -20, 0, 40, 40, 5)},
+                                           {"pin", cylinder(3, 30, gp_Pnt(0, 0, -10))}});
+  const ContactsResult result = contacts_of(assembly);
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, M_PI * 9 * 5, 1e-6);
+  EXPECT_TRUE(result.contacts.empty());
+  expect_same_serial_and_parallel(assembly);
+}
+
+TEST(Interferences, SphereSunkIntoAPlane) {
+  // Radius 5, centre 3 above the top face: a cap of height h = 2 below it,
+  // pi h^2 (3 R - h) / 3.
+  const ContactsResult result = contacts_of(make_assembly(
+      {{"block", box(-20, -20, -10, 40, 40, 10)}, {"ball", BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 3), 5).Shape()}}));
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, M_PI * 4 * (15 - 2) / 3, 1e-6);
+  EXPECT_TRUE(result.contacts.empty());
+}
+
+TEST(Interferences, TouchingBodiesAreContactsNotInterferences) {
+  // A plate on a base, a shaft in the plate's bore of its radius standing on
+  // the base, a collar on the plate and the shaft's top.
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const Assembly assembly = make_assembly({{"base", box(-20, -20, -10, 40, 40, 10)},
+                                           {"plate", plate},
+                                           {"shaft", cylinder(5, 10, gp_Pnt(0, 0, 0))},
+                                           {"collar", cylinder(8, 5, gp_Pnt(0, 0, 10))}});
+  const ContactsResult result = contacts_of(assembly);
+  EXPECT_TRUE(result.interferences.empty());
+  // base/plate, base/shaft, plate/collar, shaft/collar PLF; plate/shaft CLJ.
+  int plf = 0, clj = 0;
+  for (const Contact& c : result.contacts) (c.type == ContactType::PLF ? plf : clj) += 1;
+  EXPECT_EQ(plf, 4);
+  EXPECT_EQ(clj, 1);
+  expect_same_serial_and_parallel(assembly);
+}
+
+TEST(Interferences, PressFitRingMeasuredWithoutBooleanEqualsTheBoolean) {
+  // A shaft of radius 5.05 in a bore of radius 5 through a 10 mm plate.
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const TopoDS_Shape shaft = cylinder(5.05, 30, gp_Pnt(0, 0, -10));
+  const Assembly assembly = make_assembly({{"plate", plate}, {"shaft", shaft}});
+  const ContactsResult result = contacts_of(assembly);
+  ASSERT_EQ(result.interferences.size(), 1u);
+  const double ring = M_PI * (5.05 * 5.05 - 5 * 5) * 10;
+  EXPECT_NEAR(result.interferences[0].volume, ring, 1e-9 * ring);
+  EXPECT_NEAR(press_fit_volume(result.partitions[0], result.partitions[1], result.tolerances), ring, 1e-9 * ring);
+  const double boolean = volume_of(BRepAlgoAPI_Common(plate, shaft).Shape());
+  EXPECT_NEAR(result.interferences[0].volume, boolean, 1e-6 * boolean);
+  EXPECT_TRUE(result.contacts.empty());
+}
+
+TEST(Interferences, ShaftFarLargerThanACoaxialBoreIsNoPressFit) {
+  // A tube (outer 24) around a thin ring whose bore is 4: coaxial, but a bore
+  // of radius 4 holds no shaft of radius 24, and they share no material.
+  const TopoDS_Shape tube = BRepAlgoAPI_Cut(cylinder(24, 20, gp_Pnt(0, 0, 0)), cylinder(10, 20, gp_Pnt(0, 0, 0))).Shape();
+  const TopoDS_Shape ring = BRepAlgoAPI_Cut(cylinder(9, 10, gp_Pnt(0, 0, 5)), cylinder(4, 10, gp_Pnt(0, 0, 5))).Shape();
+  const ContactsResult result = contacts_of(make_assembly({{"tube", tube}, {"ring", ring}}));
+  EXPECT_TRUE(result.interferences.empty());
+}
+
+TEST(Interferences, DuplicateInPlaceIsOneInterference) {
+  const TopoDS_Shape part = box(0, 0, 0, 10, 20, 30);
+  const ContactsResult result =
+      contacts_of(make_assembly({{"base", box(0, 0, -5, 10, 20, 5)}, {"part", part}, {"copy", part}}));
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_EQ(result.interferences[0].body_a, 1);
+  EXPECT_EQ(result.interferences[0].body_b, 2);
+  EXPECT_NEAR(result.interferences[0].volume, 6000.0, 1e-6);
+  EXPECT_EQ(result.contacts.size(), 1u);  // base/part only: the copy's repeats it
+}
+
+TEST(Interferences, MotorHasNone) {
+  const AssemblyResult read = read_step(sample("motor.step"));
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  const ContactsResult result = contacts_of(read.assembly);
+  EXPECT_TRUE(result.interferences.empty());
+  EXPECT_EQ(result.contacts.size(), 35u);
+  expect_same_serial_and_parallel(read.assembly);
+}
+
+TEST(Interferences, SharedPressHasItsThree) {
+  const std::string path = shared_step("R08_presse_asm.step");
+  CONTACTS_REQUIRE_FILE(path);
+  const AssemblyResult read = read_step(path);
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  const ContactsResult result = contacts_of(read.assembly);
+  ASSERT_EQ(result.interferences.size(), 3u);
+  for (const Interference& i : result.interferences) {
+    // Each ring against the Boolean common of the two solids: the rings leave
+    // out what the chamfers beyond the cylinders share (at most 6 % here).
+    const double boolean =
+        volume_of(BRepAlgoAPI_Common(read.assembly.bodies[i.body_a].shape, read.assembly.bodies[i.body_b].shape).Shape());
+    EXPECT_LE(i.volume, boolean * (1 + 1e-6));
+    EXPECT_GE(i.volume, 0.9 * boolean);
+  }
+  expect_same_serial_and_parallel(read.assembly);
+}
+
+namespace {
+
+bool apart(const ContactsResult& result, int a, int b) {
+  return provably_apart(result.partitions[a], result.partitions[result.instance_of[a]], result.partitions[b],
+                        result.partitions[result.instance_of[b]], result.tolerances);
+}
+
+}  // namespace
+
+TEST(Separation, NeverClaimsOverlappingBodiesApart) {
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const std::vector<std::pair<TopoDS_Shape, TopoDS_Shape>> overlapping = {
+      {box(0, 0, 0, 10, 10, 10), box(9, 0.5, 0.5, 10, 10, 10)},
+      {box(-20, -20, 0, 40, 40, 5), cylinder(3, 30, gp_Pnt(0, 0, -10))},
+      {box(-20, -20, -10, 40, 40, 10), BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 3), 5).Shape()},
+      {plate, cylinder(5.05, 30, gp_Pnt(0, 0, -10))},
+      {plate, cylinder(5, 30, gp_Pnt(0.5, 0, -10))},  // a shaft off its bore's axis
+  };
+  for (const auto& [first, second] : overlapping) {
+    const ContactsResult result = contacts_of(make_assembly({{"first", first}, {"second", second}}));
+    EXPECT_FALSE(apart(result, 0, 1));
+  }
+}
+
+TEST(Separation, ProvesTheMotorsTouchingPairsApart) {
+  // Every motor pair whose boxes overlap touches only: each is proven apart
+  // from the partitions (no point classification, no Boolean).
+  const AssemblyResult read = read_step(sample("motor.step"));
+  ASSERT_TRUE(read.status.ok());
+  const ContactsResult result = contacts_of(read.assembly);
+  int deep = 0;
+  for (const auto& [a, b] : result.body_pairs) {
+    double a_[6], b_[6];
+    result.partitions[a].box.Get(a_[0], a_[1], a_[2], a_[3], a_[4], a_[5]);
+    result.partitions[b].box.Get(b_[0], b_[1], b_[2], b_[3], b_[4], b_[5]);
+    double depth = 1e300;
+    for (int k = 0; k < 3; ++k) depth = std::min(depth, std::min(a_[k + 3], b_[k + 3]) - std::max(a_[k], b_[k]));
+    if (depth <= result.tolerances.linear) continue;  // boxes only touch: not looked at
+    ++deep;
+    EXPECT_TRUE(apart(result, a, b)) << read.assembly.bodies[a].name << " / " << read.assembly.bodies[b].name;
+  }
+  EXPECT_EQ(deep, 44);  // of its 51 body pairs
+}

@@ -1,0 +1,142 @@
+"""Runs inside the FreeCAD GUI under Xvfb for tests/gui/test_gui_documents.py:
+documents with contacts and joints saved, reopened, opened without the
+workbench and brought back. $CONTACTS_DOC_STEP says which part:
+
+- "make": builds a plate, a shaft in its bore and a block on it, finds their
+  contacts and joints (make_contact_analysis), saves to $CONTACTS_DOC_SAVED,
+  closes and reopens it; then opens the version 1 fixture made headless
+  ($CONTACTS_DOC_V1: no view providers saved, old properties).
+- "without" (no workbench installed): opens $CONTACTS_DOC_SAVED, saves it as
+  $CONTACTS_DOC_WITHOUT.
+- "back": opens $CONTACTS_DOC_WITHOUT with the workbench installed again.
+
+Each step reports the proxies, view providers, what is drawn and the Report
+view's text to $CONTACTS_GUI_RESULT (JSON). Nothing of contactwb is imported
+at module level: in the "without" step it must not be importable."""
+import importlib.util
+import json
+import os
+import traceback
+
+import FreeCAD
+import FreeCADGui
+from PySide2 import QtWidgets
+
+out_dir = os.environ["CONTACTS_GUI_OUT"]
+step = os.environ["CONTACTS_DOC_STEP"]
+report = {"errors": [], "step": step, "workbench_importable": importlib.util.find_spec("contactwb") is not None}
+
+
+def class_name(proxy):
+    # FreeCAD 0.20 puts an int in a Python view provider that has no proxy
+    return None if proxy is None or isinstance(proxy, int) else type(proxy).__name__
+
+
+def settle():
+    for _ in range(5):  # deferred work: view providers attached, drawings rebuilt
+        FreeCADGui.updateGui()
+
+
+def describe(doc):
+    """Every object's type, proxy, view provider and what its view provider draws."""
+    objects = {}
+    for obj in doc.Objects:
+        vobj = obj.ViewObject
+        entry = {"type": obj.TypeId, "label": obj.Label, "proxy": class_name(getattr(obj, "Proxy", None)),
+                 "view_provider": class_name(getattr(vobj, "Proxy", None)) if vobj else None,
+                 "version": getattr(obj, "ProxyVersion", None), "state": list(obj.State)}
+        if hasattr(obj, "Shape"):
+            entry["volume"] = round(obj.Shape.Volume, 6)
+        for name in ("ContactCount", "JointCount", "Text", "JointType", "ContactType"):
+            if hasattr(obj, name):
+                entry[name] = getattr(obj, name)
+        proxy = getattr(vobj, "Proxy", None) if vobj else None
+        if hasattr(proxy, "overlay"):
+            entry["contacts_drawn"] = len(proxy.overlay.names)
+            entry["triangles"] = proxy.overlay.triangles
+        if hasattr(proxy, "axes"):
+            entry["glyph_axes"] = proxy.axes
+        objects[obj.Name] = entry
+    return objects
+
+
+def report_view():
+    texts = []
+    for dock in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDockWidget):
+        if dock.objectName() == "Report view":
+            texts += [edit.toPlainText() for edit in dock.findChildren(QtWidgets.QTextEdit)]
+    return "\n".join(texts)
+
+
+def screenshot(name):
+    """The plate alone: its sides of the contacts face the camera."""
+    doc = FreeCAD.ActiveDocument
+    for part in ("Block", "Shaft"):
+        doc.getObject(part).ViewObject.Visibility = False
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewIsometric()
+    view.fitAll()
+    FreeCADGui.updateGui()
+    path = os.path.join(out_dir, name)
+    view.saveImage(path, 800, 600, "White")
+    return path
+
+
+def make():
+    import Part
+    from contactwb.make import make_contact_analysis
+    doc = FreeCAD.newDocument("ContactsDoc")
+    plate = doc.addObject("Part::Feature", "Plate")
+    plate.Shape = Part.makeBox(40, 40, 10, FreeCAD.Vector(-20, -20, 0)).cut(Part.makeCylinder(5, 10))
+    shaft = doc.addObject("Part::Feature", "Shaft")
+    shaft.Shape = Part.makeCylinder(5, 30, FreeCAD.Vector(0, 0, -10))
+    block = doc.addObject("Part::Box", "Block")
+    block.Length, block.Width, block.Height = 10, 10, 5
+    block.Placement.Base = FreeCAD.Vector(8, 8, 10)
+    note = doc.addObject("App::FeaturePython", "Note")
+    note.addProperty("App::PropertyString", "Text", "Note", "")
+    note.Text = "kept"
+    doc.recompute()
+    make_contact_analysis(doc, derive_joints=True)
+    doc.recompute()
+    settle()
+    report["made"] = describe(doc)
+    path = os.environ["CONTACTS_DOC_SAVED"]
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(path)
+    settle()
+    report["reopened"] = describe(doc)
+    report["reopened_png"] = screenshot("documents_reopened.png")
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(os.environ["CONTACTS_DOC_V1"])
+    settle()
+    report["version_1"] = describe(doc)
+    FreeCAD.closeDocument(doc.Name)
+
+
+def without():
+    doc = FreeCAD.openDocument(os.environ["CONTACTS_DOC_SAVED"])
+    settle()
+    report["opened"] = describe(doc)
+    report["without_png"] = screenshot("documents_without_workbench.png")
+    doc.saveAs(os.environ["CONTACTS_DOC_WITHOUT"])
+    FreeCAD.closeDocument(doc.Name)
+
+
+def back():
+    doc = FreeCAD.openDocument(os.environ["CONTACTS_DOC_WITHOUT"])
+    settle()
+    report["opened"] = describe(doc)
+    report["back_png"] = screenshot("documents_back.png")
+    FreeCAD.closeDocument(doc.Name)
+
+
+try:
+    {"make": make, "without": without, "back": back}[step]()
+except Exception:  # the report carries it to the test, which fails on it
+    report["errors"].append(traceback.format_exc())
+report["report_view"] = report_view()
+with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
+    json.dump(report, stream, indent=1)
+os._exit(0)  # FreeCAD's own shutdown is slow and may prompt; the report is written

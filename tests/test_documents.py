@@ -1,0 +1,207 @@
+"""Issue 14, documents: a document with a contact analysis (contacts and
+joints) saves and reopens intact; opens in a FreeCAD without the workbench
+with nothing lost; comes back working once the workbench is installed again;
+files of the previous version (tests/data/contacts_v1.FCStd, saved by the
+code before proxy versions) are migrated."""
+import json
+import os
+import subprocess
+import sys
+import zipfile
+
+import pytest
+
+import FreeCAD
+import Part
+from contactwb.make import make_contact_analysis
+from contactwb.objects import contact_objects
+from contactwb.objects.contact_objects import PROXY_VERSION
+from document_session import proxy_name, snapshot  # tests/ is on sys.path
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+V1_FIXTURE = os.path.join(REPO, "tests", "data", "contacts_v1.FCStd")
+BUILD_DIR = os.path.join(REPO, "build")
+PROXIES = {"Contacts": "ContactAnalysis", "CLJ": "Contact", "PLF": "Contact", "Joint": "Joint", "Joint001": "Joint"}
+LABELS = ["CLJ 1: Plate \u2013 Shaft", "J1 cylindrical: Plate \u2013 Shaft",
+          "J2 planar: Plate \u2013 Block", "PLF 2: Plate \u2013 Block"]
+
+
+def build_document(path):
+    """A plate with a shaft in its bore (CLJ, cylindrical joint) and a block on
+    it (PLF, planar joint), plus an object of no workbench; saved at `path`."""
+    doc = FreeCAD.newDocument("ContactsDoc")
+    plate = doc.addObject("Part::Feature", "Plate")
+    plate.Shape = Part.makeBox(40, 40, 10, FreeCAD.Vector(-20, -20, 0)).cut(Part.makeCylinder(5, 10))
+    shaft = doc.addObject("Part::Feature", "Shaft")
+    shaft.Shape = Part.makeCylinder(5, 30, FreeCAD.Vector(0, 0, -10))
+    block = doc.addObject("Part::Box", "Block")
+    block.Length, block.Width, block.Height = 10, 10, 5
+    block.Placement.Base = FreeCAD.Vector(8, 8, 10)
+    note = doc.addObject("App::FeaturePython", "Note")
+    note.addProperty("App::PropertyString", "Text", "Note", "")
+    note.Text = "kept"
+    doc.recompute()
+    make_contact_analysis(doc, derive_joints=True)
+    doc.recompute()
+    doc.saveAs(str(path))
+    return doc
+
+
+def document_snapshot(doc):
+    return {obj.Name: snapshot(obj) for obj in doc.Objects}
+
+
+def test_document_saves_and_reopens_intact(tmp_path):
+    doc = build_document(tmp_path / "contacts.FCStd")
+    before = document_snapshot(doc)
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(str(tmp_path / "contacts.FCStd"))
+    try:
+        assert document_snapshot(doc) == before
+        assert sorted(o.Label for o in doc.Contacts.Group) == LABELS
+        for name, kind in PROXIES.items():
+            obj = doc.getObject(name)
+            assert proxy_name(obj) == f"contactwb.objects.contact_objects.{kind}"
+            assert (obj.ProxyType, obj.ProxyVersion) == (kind, PROXY_VERSION)
+            assert "Touched" not in obj.State
+        assert (doc.Contacts.ContactCount, doc.Contacts.JointCount) == (2, 2)
+        # still live: the block moved off the plate loses its contact and joint
+        doc.Block.Placement.Base = FreeCAD.Vector(100, 100, 10)
+        doc.recompute()
+        assert sorted(o.Label for o in doc.Contacts.Group) == LABELS[:2]
+        assert (doc.Contacts.ContactCount, doc.Contacts.JointCount) == (1, 1)
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_fixture_is_a_version_1_file():
+    with zipfile.ZipFile(V1_FIXTURE) as archive:
+        xml = archive.read("Document.xml").decode()
+    assert "contactwb.objects.contact_objects" in xml
+    assert "ProxyVersion" not in xml and "ContactCount" not in xml
+
+
+def test_version_1_document_is_migrated(tmp_path):
+    doc = FreeCAD.openDocument(V1_FIXTURE)
+    try:
+        group = doc.Contacts
+        assert sorted(o.Label for o in group.Group) == LABELS
+        assert group.ProxyVersion == PROXY_VERSION
+        # the counts added by version 2, from the saved children
+        assert (group.ContactCount, group.JointCount) == (2, 2)
+        assert group.Summary == ["CLJ: 1", "PLF: 1"]
+        for name, kind in PROXIES.items():
+            assert (doc.getObject(name).ProxyType, doc.getObject(name).ProxyVersion) == (kind, PROXY_VERSION)
+        # the migrated properties are saved as such
+        migrated = document_snapshot(doc)
+        doc.saveAs(str(tmp_path / "migrated.FCStd"))
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(str(tmp_path / "migrated.FCStd"))
+        assert document_snapshot(doc) == migrated
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_newer_version_is_kept_not_downgraded(tmp_path):
+    doc = build_document(tmp_path / "newer.FCStd")
+    for name in PROXIES:
+        doc.getObject(name).ProxyVersion = PROXY_VERSION + 1
+    doc.save()
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(str(tmp_path / "newer.FCStd"))
+    try:
+        assert {doc.getObject(n).ProxyVersion for n in PROXIES} == {PROXY_VERSION + 1}
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def run_session(home, source, target, *extra):
+    """tests/document_session.py in its own FreeCAD with HOME=home: nothing of
+    this checkout on its path, so the workbench is there only if installed in home."""
+    report = os.path.join(os.path.dirname(target), os.path.basename(target) + ".json")
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "CONTACTS_PYTHON_DIR")}
+    env["HOME"] = str(home)
+    done = subprocess.run([sys.executable, os.path.join(REPO, "tests", "document_session.py"),
+                           source, target, report, *extra],
+                          env=env, capture_output=True, text=True, timeout=300, cwd=str(home))
+    assert done.returncode == 0, done.stderr[-3000:]
+    with open(report) as stream:
+        return json.load(stream)
+
+
+@pytest.fixture(scope="module")
+def homes(tmp_path_factory):
+    """(a HOME without the workbench, a HOME with it installed)."""
+    bare = tmp_path_factory.mktemp("home_without")
+    installed = tmp_path_factory.mktemp("home_with")
+    subprocess.run([sys.executable, os.path.join(REPO, "tools", "install_workbench.py"), "--build-dir", BUILD_DIR,
+                    "--mod-dir", str(installed / ".local/share/FreeCAD/Mod/Contacts"),
+                    "--bin-dir", str(installed / "bin")], check=True, capture_output=True)
+    return bare, installed
+
+
+def check_round_trip(homes, tmp_path, source, expected):
+    """Opens `source` without the workbench, saves it there, reopens it with
+    the workbench: `expected` (name -> properties) is what must come back."""
+    bare, installed = homes
+    without = run_session(bare, source, str(tmp_path / "without.FCStd"))
+    assert without["workbench_importable"] is False
+    objects = without["objects"]
+    # every object there, every property kept; Contacts objects only lose their proxy
+    assert sorted(objects) == sorted(expected)
+    for name, properties in expected.items():
+        kept = {k: v for k, v in objects[name]["properties"].items() if k in properties}
+        assert kept == properties, name
+    # FreeCAD 0.20 keeps the properties but cannot make the proxies
+    assert all(objects[name]["proxy"] is None for name in PROXIES)
+    assert objects["Plate"]["volume"] == pytest.approx(40 * 40 * 10 - 3.141592653589793 * 25 * 10)
+    assert objects["Note"]["properties"]["Text"] == "kept"
+
+    back = run_session(installed, str(tmp_path / "without.FCStd"), str(tmp_path / "back.FCStd"))
+    assert back["workbench_importable"] is True
+    for name, kind in PROXIES.items():
+        assert back["objects"][name]["proxy"] == f"contactwb.objects.contact_objects.{kind}"
+        assert back["objects"][name]["properties"]["ProxyVersion"] == PROXY_VERSION
+        assert "Touched" not in back["objects"][name]["state"]
+    for name, properties in expected.items():
+        restored = {k: v for k, v in back["objects"][name]["properties"].items() if k in properties}
+        assert restored == properties, name
+    # and the analysis works: moving the block away loses its contact and joint
+    moved = run_session(installed, str(tmp_path / "back.FCStd"), str(tmp_path / "unused.FCStd"), "--move-block")
+    assert moved["after_move"] == {"labels": LABELS[:2], "ContactCount": 1, "invalid": []}
+    return back
+
+
+def test_document_survives_a_freecad_without_the_workbench(homes, tmp_path):
+    doc = build_document(tmp_path / "contacts.FCStd")
+    expected = document_snapshot(doc)
+    FreeCAD.closeDocument(doc.Name)
+    back = check_round_trip(homes, tmp_path, str(tmp_path / "contacts.FCStd"), expected)
+    assert {name: back["objects"][name]["properties"] for name in expected} == expected
+
+
+def test_version_1_document_survives_a_freecad_without_the_workbench(homes, tmp_path):
+    doc = FreeCAD.openDocument(V1_FIXTURE)
+    # what the version 1 file holds (read here with the workbench, less the version-2 additions)
+    added = {"ProxyType", "ProxyVersion", "ContactCount", "JointCount"}
+    expected = {name: {k: v for k, v in props.items() if k not in added}
+                for name, props in document_snapshot(doc).items()}
+    FreeCAD.closeDocument(doc.Name)
+    back = check_round_trip(homes, tmp_path, V1_FIXTURE, expected)
+    # recognised by its properties alone (no ProxyType in a version 1 file), then migrated
+    assert back["objects"]["Contacts"]["properties"]["ContactCount"] == 2
+    assert back["objects"]["Contacts"]["properties"]["JointCount"] == 2
+
+
+def test_recovery_recognises_only_contacts_objects():
+    doc = FreeCAD.newDocument("Recognise")
+    try:
+        other = doc.addObject("App::FeaturePython", "Other")
+        other.addProperty("App::PropertyString", "ContactType", "X", "")  # one signature property is not enough
+        from contactwb.objects import recovery
+        assert recovery.proxy_type(other) is None
+        assert recovery.restore_proxies(doc) == []
+        assert contact_objects.is_contact(other) is False
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
