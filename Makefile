@@ -60,6 +60,7 @@ samples:
 
 bench: build
 	$(PYTHON) bench/run_benchmarks.py --build-dir $(BUILD_DIR)
+	$(PYTHON) bench/bench_bad_inputs.py --build-dir $(BUILD_DIR)
 
 test: deps build
 	@bash tests/run_all.sh $(BUILD_DIR)
