@@ -20,9 +20,10 @@ DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   libocct-visualization-dev libcoin-dev libhidapi-dev pybind11-dev python3-pybind11 \
   python3-dev python3-pytest cmake make g++ googletest libgtest-dev libbenchmark-dev \
   libtbb-dev python3-pil xvfb xauth \
-  libeigen3-dev graphviz libfcl-dev pkg-config
+  libeigen3-dev graphviz libfcl-dev pkg-config \
+  clang-14 clang libclang-rt-14-dev ccache
 
-.PHONY: run test deps build install uninstall samples bench test-cpp test-python test-gui clean
+.PHONY: run test deps build install uninstall samples bench test-cpp test-python test-gui clean fuzz sanitize
 
 # Installs only the packages that are missing (dpkg says "install ok installed").
 deps:
@@ -72,6 +73,32 @@ test-python: build
 
 test-gui: build
 	CONTACTS_BUILD_DIR=$(abspath $(BUILD_DIR)) $(PYTHON) -m pytest -q tests/gui
+
+# Reliability builds (docs/reliability.md), separate from `make test`: the core
+# and its tests or fuzz targets only (no Python extension), with -O1 -g.
+SANITIZE_DIR ?= build-sanitize
+FUZZ_DIR     ?= build-fuzz
+FUZZ_SECONDS ?= 60
+CHECK_FLAGS  := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+  -DCONTACTS_BUILD_PYTHON=OFF -DCONTACTS_BUILD_BENCH=OFF $(LAUNCHER)
+
+# AddressSanitizer + UBSan build of the core and its GoogleTest suites, run by
+# ctest (and by the build's test discovery); suppressions, for Debian's
+# uninstrumented libraries only, in fuzz/*.supp.
+SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1 \
+  LSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/lsan.supp:print_suppressions=0 \
+  UBSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/ubsan.supp:print_stacktrace=1:halt_on_error=1
+sanitize:
+	cmake -S . -B $(SANITIZE_DIR) -DCONTACTS_SANITIZE=ON $(CHECK_FLAGS)
+	$(SANITIZER_ENV) cmake --build $(SANITIZE_DIR) -j $(JOBS) --target contactcore_tests fuzz_replay_tests
+	cd $(SANITIZE_DIR) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
+
+# libFuzzer targets (clang 14) run $(FUZZ_SECONDS) s each on a copy of the
+# seed corpus in fuzz/corpus/; fails on any crash, leak, timeout or OOM.
+fuzz:
+	CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_DIR) -DCONTACTS_FUZZ=ON -DCONTACTS_BUILD_TESTS=OFF $(CHECK_FLAGS)
+	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_step fuzz_brep fuzz_hid
+	bash fuzz/run_fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD_DIR)

@@ -5,6 +5,7 @@
 #include "contactcore/instances.h"
 #include "contactcore/parallel.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -32,6 +34,7 @@
 #include <Interface_Static.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
+#include <Standard_CString.hxx>
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
@@ -265,6 +268,28 @@ Status check_brep_text(const std::string& brep) {
   } catch (const std::exception&) {
     return fail("bad TShapes count");
   }
+  // OCCT reads a damaged number in the geometry sections as 0 and goes on:
+  // Booleans on such a face then spin for minutes (make fuzz).
+  static constexpr std::string_view sections[] = {
+      "Locations", "Curve2ds", "Curves", "Polygon3D", "PolygonOnTriangulations", "Surfaces", "Triangulations"};
+  const size_t geometry = brep.find("Locations");
+  if (geometry == std::string::npos || geometry > table) return fail("no Locations section");
+  for (size_t pos = geometry; pos < table;) {
+    const size_t start = brep.find_first_not_of(" \t\r\n", pos);
+    if (start == std::string::npos || start >= table) break;
+    const size_t end = std::min(brep.find_first_of(" \t\r\n", start), table);
+    const std::string_view token(brep.data() + start, end - start);
+    pos = end;
+    if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) continue;
+    char* stop = nullptr;
+    // As OCCT reads it, whatever the locale. NaN and inf are numbers: the
+    // bodies' boxes catch them later, naming the body.
+    Strtod(brep.c_str() + start, &stop);
+    if (stop != brep.c_str() + end) {
+      const long line = 1 + std::count(brep.begin(), brep.begin() + static_cast<long>(start), '\n');
+      return fail("damaged number '" + std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
+    }
+  }
   long records = 0;
   while (line_start != std::string::npos && records < expected) {
     const size_t next = brep.find('\n', line_start + 1);
@@ -401,12 +426,17 @@ Status shape_from_brep(const std::string& brep, TopoDS_Shape& shape) {
   try {
     OCC_CATCH_SIGNALS
     std::istringstream stream(brep);
+    // OCCT 7.6's reader loops forever on a failed stream (a damaged number
+    // in an edge record, found by make fuzz): a failed read throws instead.
+    stream.exceptions(std::ios::failbit | std::ios::badbit);
     BRep_Builder builder;
     BRepTools::Read(shape, stream, builder);
   } catch (const Standard_Failure& failure) {
     const char* text = failure.GetMessageString();
     return Status::failure(StatusCode::InvalidInput, std::string("unreadable BRep: ") +
                                                          (text && *text ? text : failure.DynamicType()->Name()));
+  } catch (const std::ios_base::failure&) {
+    return Status::failure(StatusCode::InvalidInput, "unreadable BRep: damaged text (a value where OCCT's reader expects another)");
   }
   if (shape.IsNull()) return Status::failure(StatusCode::InvalidInput, "unreadable BRep: no shape");
   return Status::success();

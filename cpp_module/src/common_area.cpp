@@ -119,13 +119,17 @@ class EdgeGrid {
   }
 
  private:
+  // Clamped as a double: a coordinate far outside the grid (or NaN) is no int
+  // (UBSan, make fuzz: -2e296 from a damaged shape).
+  static int cell(double t, int n) {
+    if (!(t > 0)) return 0;
+    return t >= n - 1 ? n - 1 : static_cast<int>(t);
+  }
   std::pair<int, int> columns(double x0, double x1) const {
-    return {std::clamp(static_cast<int>(std::floor((x0 - box_.xmin) / cell_w_)), 0, nx_ - 1),
-            std::clamp(static_cast<int>(std::floor((x1 - box_.xmin) / cell_w_)), 0, nx_ - 1)};
+    return {cell((x0 - box_.xmin) / cell_w_, nx_), cell((x1 - box_.xmin) / cell_w_, nx_)};
   }
   std::pair<int, int> rows(double y0, double y1) const {
-    return {std::clamp(static_cast<int>(std::floor((y0 - box_.ymin) / cell_h_)), 0, ny_ - 1),
-            std::clamp(static_cast<int>(std::floor((y1 - box_.ymin) / cell_h_)), 0, ny_ - 1)};
+    return {cell((y0 - box_.ymin) / cell_h_, ny_), cell((y1 - box_.ymin) / cell_h_, ny_)};
   }
 
   double tol_;

@@ -234,7 +234,8 @@ double uv_area(const TopoDS_Face& face, Primitive primitive_of_j) {
 // r d(theta) dh on a cylinder and s sin(a) d(theta) ds on a cone (s the
 // distance from the apex), so Green needs G = r h or s^2 sin(a) / 2.
 double fitted_revolution_area(const TopoDS_Face& face, const SurfaceParams& params) {
-  const auto [e1, e2] = perpendicular_basis(params.axis);
+  const auto basis = perpendicular_basis(params.axis);
+  const gp_XYZ e1 = basis.first, e2 = basis.second;  // not a structured binding: lambdas below use them (clang 14)
   const gp_XYZ origin = params.location.XYZ(), axis = params.axis.XYZ();
   const bool cone = params.kind == SurfaceKind::Cone;
   const double half_sin = std::sin(params.half_angle) / 2;

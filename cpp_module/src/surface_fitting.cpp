@@ -303,7 +303,8 @@ std::optional<Fit> fit_cylinder(const Samples& s) {
   const gp_Dir axis(eig.vectors[0]);
   const auto circle = axis_circle(s.points, axis);
   if (!circle) return std::nullopt;
-  const auto [centre, radius] = *circle;
+  const gp_XYZ centre = circle->first;  // not a structured binding: a lambda below uses it (clang 14)
+  const double radius = circle->second;
   Fit fit;
   fit.params.kind = SurfaceKind::Cylinder;
   fit.params.location = gp_Pnt(centre);
@@ -398,7 +399,8 @@ std::optional<Fit> fit_torus(const BRepAdaptor_Surface& surface, const Samples& 
     const gp_Dir axis(eig.vectors[0]);
     const auto circle = axis_circle(centres, axis);
     if (!circle) continue;
-    const auto [centre, major] = *circle;
+    const gp_XYZ centre = circle->first;  // not a structured binding: a lambda below uses it (clang 14)
+    const double major = circle->second;
     Fit fit;
     fit.params.kind = SurfaceKind::Torus;
     fit.params.location = gp_Pnt(centre);

@@ -1,0 +1,7 @@
+// libFuzzer target (make fuzz): see run_hid_input in fuzz_inputs.h.
+#include "fuzz_inputs.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  contactcore::fuzz::run_hid_input(data, size);
+  return 0;
+}
