@@ -281,6 +281,7 @@ Status check_brep_text(const std::string& brep) {
     const std::string_view token(brep.data() + start, end - start);
     pos = end;
     if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) continue;
+    if (token == "p") continue;  // a polygon on triangulation's "has parameters" mark (a meshed shape)
     char* stop = nullptr;
     // As OCCT reads it, whatever the locale. NaN and inf are numbers: the
     // bodies' boxes catch them later, naming the body.

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <BRepGProp.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <GProp_GProps.hxx>
 #include <STEPControl_Writer.hxx>
@@ -41,6 +43,18 @@ TEST(Bodies, BadBrepIsAnErrorNotACrash) {
   TopoDS_Shape shape;
   const Status status = shape_from_brep("this is not a BRep", shape);
   EXPECT_EQ(status.code, StatusCode::InvalidInput);
+}
+
+TEST(Bodies, MeshedShapeBrepIsReadable) {
+  // A shape meshed once (meshes, simulation models) carries its triangulation
+  // into its BRep text, with "p" marks the damaged-number check must accept.
+  const TopoDS_Shape cylinder = BRepPrimAPI_MakeCylinder(2.0, 5.0).Shape();
+  BRepMesh_IncrementalMesh(cylinder, 0.05);
+  const std::string text = shape_to_brep(cylinder);
+  ASSERT_NE(text.find("\np "), std::string::npos);
+  TopoDS_Shape back;
+  ASSERT_TRUE(shape_from_brep(text, back).ok());
+  EXPECT_NEAR(mass_properties(back).volume, M_PI * 4.0 * 5.0, 1e-6);
 }
 
 TEST(Bodies, CompoundChildrenBecomeNamedBodies) {
