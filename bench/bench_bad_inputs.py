@@ -16,6 +16,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from markdown_sections import write_section  # noqa: E402
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 # (seconds, MB) per case; the rest of the corpus: small files, one bound.
@@ -65,21 +68,6 @@ def table(rows):
     return "\n".join(lines)
 
 
-BEGIN, END = "<!-- bad inputs bench: begin -->", "<!-- bad inputs bench: end -->"
-
-
-def write_section(path, text):
-    """Replaces this script's section of the Markdown file, keeping the rest."""
-    old = open(path).read()
-    section = f"{BEGIN}\n{text}\n{END}"
-    if BEGIN in old and END in old:
-        new = old[:old.index(BEGIN)] + section + old[old.index(END) + len(END):]
-    else:
-        new = old.rstrip("\n") + "\n\n" + section + "\n"
-    with open(path, "w") as stream:
-        stream.write(new)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default=os.path.join(REPO, "build"))
@@ -112,7 +100,7 @@ def main():
         table(rows)])
     print(text)
     if args.write:
-        write_section(args.write, text)
+        write_section(args.write, "bad inputs bench", text)
 
 
 if __name__ == "__main__":

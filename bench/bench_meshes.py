@@ -10,6 +10,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from markdown_sections import write_section  # noqa: E402
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, REPO)
 
@@ -82,22 +85,8 @@ def main():
     text = "\n".join(lines)
     print(text)
     if args.write:
-        write_section(args.write, text)
+        write_section(args.write, "meshes bench", text)
 
-
-BEGIN, END = "<!-- meshes bench: begin -->", "<!-- meshes bench: end -->"
-
-
-def write_section(path, text):
-    """Replaces this script's section of the Markdown file (between its markers), keeping the rest."""
-    old = open(path).read() if os.path.isfile(path) else "# Benchmarks\n"
-    section = f"{BEGIN}\n{text}\n{END}"
-    if BEGIN in old and END in old:
-        new = old[:old.index(BEGIN)] + section + old[old.index(END) + len(END):]
-    else:
-        new = old.rstrip("\n") + "\n\n" + section + "\n"
-    with open(path, "w") as stream:
-        stream.write(new)
 
 if __name__ == "__main__":
     main()

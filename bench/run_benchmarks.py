@@ -24,6 +24,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from markdown_sections import write_section  # noqa: E402
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(REPO, "tests"))  # the brute-force checker
 sys.path.insert(0, os.path.join(REPO, "tools"))  # the sample families
@@ -298,26 +301,10 @@ def main():
     text = "\n".join(report)
     print(text)
     if args.write:
-        write_section(args.write, text)
+        write_section(args.write, "contacts bench", "`make bench` (bench/run_benchmarks.py) prints these tables.\n\n" + text)
     # Meshes, collision and disassembly: their own program and section (bench/bench_meshes.py).
     subprocess.run([sys.executable, os.path.join(REPO, "bench", "bench_meshes.py"), "--build-dir", build_dir]
                    + (["--write", args.write] if args.write else []), check=True)
-
-
-BEGIN, END = "<!-- contacts bench: begin -->", "<!-- contacts bench: end -->"
-
-
-def write_section(path, text):
-    """Replaces this script's section of the Markdown file (between its
-    markers), keeping the other sections."""
-    old = open(path).read() if os.path.isfile(path) else "# Benchmarks\n"
-    section = f"{BEGIN}\n`make bench` (bench/run_benchmarks.py) prints these tables.\n\n{text}\n{END}"
-    if BEGIN in old and END in old:
-        new = old[:old.index(BEGIN)] + section + old[old.index(END) + len(END):]
-    else:
-        new = old.rstrip("\n") + "\n\n" + section + "\n"
-    with open(path, "w") as stream:
-        stream.write(new)
 
 
 if __name__ == "__main__":
