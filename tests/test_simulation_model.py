@@ -57,6 +57,13 @@ def test_collision_model_of_the_front_cover_with_the_bearing_joint_switched_off(
             assert list(restored.MeshTriangles) == list(model.MeshTriangles)
             assert list(restored.SwitchedOff) == list(model.SwitchedOff)
             assert restored.Body[0].Label == "Front-cover" and restored.FollowedPart[0].Label == "Bearing-front"
+            assert (restored.ProxyType, restored.ProxyVersion) == ("SimulationModel", 2)
+            # As a FreeCAD without the workbench leaves it (proxy gone, properties kept):
+            # the workbench gives it its proxy back.
+            from contactwb.objects import recovery
+            restored.Proxy = None
+            assert recovery.restore_proxies(copy) == [restored.Name]
+            assert is_simulation_model(restored) and list(restored.MeshTriangles) == list(model.MeshTriangles)
         finally:
             FreeCAD.closeDocument(copy.Name)
         # The view model: every feature, finer.

@@ -14,12 +14,13 @@ Python observers have no "restore finished" slot, but a document opened is
 activated once it is fully restored."""
 import FreeCAD
 
-from contactwb.objects import contact_objects
+from contactwb.objects import contact_objects, simulation_model
 
 PROXY_CLASSES = {
     "ContactAnalysis": contact_objects.ContactAnalysis,
     "Contact": contact_objects.Contact,
     "Joint": contact_objects.Joint,
+    "SimulationModel": simulation_model.SimulationModel,
 }
 # Version 1 files have no ProxyType: the properties only that kind has.
 SIGNATURES = (
@@ -95,7 +96,7 @@ def attach_view_providers(doc_name):
     doc = FreeCAD.listDocuments().get(doc_name)
     if doc is None:
         return
-    from contactwb.gui import joint_view, view_providers
+    from contactwb.gui import joint_view, simulation_model_view, view_providers
     for obj in doc.Objects:
         if getattr(obj, "ViewObject", None) is None or getattr(obj, "Proxy", None) is None:
             continue
@@ -108,6 +109,9 @@ def attach_view_providers(doc_name):
                 obj.ViewObject.Proxy.rebuild()
         elif contact_objects.is_joint(obj) and _give_view_provider(obj, joint_view.ViewProviderJoint):
             obj.ViewObject.Proxy.redraw()
+        elif simulation_model.is_simulation_model(obj) and \
+                _give_view_provider(obj, simulation_model_view.ViewProviderSimulationModel):
+            obj.ViewObject.Proxy.rebuild()
 
 
 class _RestoreWatcher:

@@ -7,6 +7,8 @@ Saved files name `contactwb.objects.simulation_model.SimulationModel`: a
 permanent name. The mesh is stored in the object (hidden properties), so a
 re-opened file shows it without meshing again; the view provider only draws
 it (contactwb/gui/simulation_model_view.py)."""
+from contactwb.objects.contact_objects import _add, _versioned  # one way to add and version properties
+
 
 MODELS = ["Collision", "View"]
 
@@ -16,15 +18,8 @@ def is_simulation_model(obj):
     return getattr(getattr(obj, "Proxy", None), "Type", None) == "SimulationModel"
 
 
-def _add(obj, kind, name, group, doc, mode=None):
-    """Adds a property unless the object has it (files saved by older versions)."""
-    if name not in obj.PropertiesList:
-        obj.addProperty(kind, name, group, doc)
-    if mode is not None:
-        obj.setEditorMode(name, mode)
-
-
 def _properties(obj):
+    _versioned(obj, "SimulationModel")  # new in version 2: nothing to migrate yet
     _add(obj, "App::PropertyXLinkSub", "Body", "Model", "The body (its top-level object and path)")
     _add(obj, "App::PropertyEnumeration", "Model", "Model",
          "Collision: small features removed, coarser (what collision queries use); View: every feature")
