@@ -58,6 +58,30 @@ def _versioned(obj, proxy_type):
     return saved
 
 
+class _VersionedProxy:
+    """What every Contacts proxy does on creation and restore: keep its type,
+    add or migrate its version records, then its own properties (added only
+    where missing, so older files gain the new ones)."""
+    TYPE = None  # each proxy sets TYPE and add_properties(obj)
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.Type = self.TYPE
+        _versioned(obj, self.TYPE)
+        self.add_properties(obj)
+
+    def onDocumentRestored(self, obj):
+        obj.Proxy = self
+        _versioned(obj, self.TYPE)
+        self.add_properties(obj)
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        self.Type = self.TYPE
+
+
 # Inputs the user sets (task panel or property editor), results shown read-only.
 ANALYSIS_RESULTS = ("LinearTolerance", "AngularTolerance", "BodyCount", "Summary", "Messages")
 
@@ -178,25 +202,10 @@ def _contact_properties(obj):
             obj.setEditorMode(name, 1)
 
 
-class Contact:
+class Contact(_VersionedProxy):
     """One functional contact: its type, the two bodies and their faces."""
-
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.Type = "Contact"
-        _versioned(obj, self.Type)
-        _contact_properties(obj)
-
-    def onDocumentRestored(self, obj):
-        obj.Proxy = self
-        _versioned(obj, "Contact")  # version 2 added only the version records
-        _contact_properties(obj)
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        self.Type = "Contact"
+    TYPE = "Contact"  # version 2 added only the version records
+    add_properties = staticmethod(_contact_properties)
 
 
 class _BodyWatcher:
@@ -305,22 +314,7 @@ def _joint_properties(obj):
             obj.setEditorMode(name, 1)
 
 
-class Joint:
+class Joint(_VersionedProxy):
     """The kinematic joint two bodies' contacts allow (contactcore.find_joints)."""
-
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.Type = "Joint"
-        _versioned(obj, self.Type)
-        _joint_properties(obj)
-
-    def onDocumentRestored(self, obj):
-        obj.Proxy = self
-        _versioned(obj, "Joint")  # version 2 added only the version records
-        _joint_properties(obj)
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        self.Type = "Joint"
+    TYPE = "Joint"  # version 2 added only the version records
+    add_properties = staticmethod(_joint_properties)

@@ -7,7 +7,7 @@ Saved files name `contactwb.objects.simulation_model.SimulationModel`: a
 permanent name. The mesh is stored in the object (hidden properties), so a
 re-opened file shows it without meshing again; the view provider only draws
 it (contactwb/gui/simulation_model_view.py)."""
-from contactwb.objects.contact_objects import _add, _versioned  # one way to add and version properties
+from contactwb.objects.contact_objects import _add, _VersionedProxy
 
 
 MODELS = ["Collision", "View"]
@@ -19,7 +19,6 @@ def is_simulation_model(obj):
 
 
 def _properties(obj):
-    _versioned(obj, "SimulationModel")  # new in version 2: nothing to migrate yet
     _add(obj, "App::PropertyXLinkSub", "Body", "Model", "The body (its top-level object and path)")
     _add(obj, "App::PropertyEnumeration", "Model", "Model",
          "Collision: small features removed, coarser (what collision queries use); View: every feature")
@@ -54,24 +53,11 @@ def _properties(obj):
     _add(obj, "App::PropertyIntegerList", "MeshFaces", "Mesh", "FaceN of each triangle", 2)
 
 
-class SimulationModel:
+class SimulationModel(_VersionedProxy):
     """A body's view or collision model; recomputed when the body or the options change."""
-
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.Type = "SimulationModel"
-        _properties(obj)
-
-    def onDocumentRestored(self, obj):
-        obj.Proxy = self
-        _properties(obj)
+    TYPE = "SimulationModel"  # new in version 2: nothing to migrate yet
+    add_properties = staticmethod(_properties)
 
     def execute(self, obj):
         from contactwb.make.make_simulation_model import update_simulation_model
         update_simulation_model(obj)
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        self.Type = "SimulationModel"
