@@ -19,6 +19,7 @@
 #include <TopoDS.hxx>
 #include <gp_Ax1.hxx>
 
+#include "contactcore/boundary_crossing.h"
 #include "contactcore/parallel.h"
 #include "contactcore/separation.h"
 
@@ -216,7 +217,10 @@ PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, in
   if (provably_apart(pa, outlines(a), pb, outlines(b), tol)) return out;
   const TopoDS_Shape& shape_a = assembly.bodies[a].shape;
   const TopoDS_Shape& shape_b = assembly.bodies[b].shape;
-  if (!sample_inside(shape_a, shape_b, pb.box, tol.linear) && !sample_inside(shape_b, shape_a, pa.box, tol.linear))
+  // No sample strictly inside: they share volume only if their boundaries
+  // cross (boundary_crossing.h, complete for solids).
+  if (!sample_inside(shape_a, shape_b, pb.box, tol.linear) && !sample_inside(shape_b, shape_a, pa.box, tol.linear) &&
+      !boundaries_cross(shape_a, shape_b, tol.linear, tol.angular))
     return out;
   const double common = common_volume(shape_a, shape_b, tol.linear);
   if (common < 0) {

@@ -10,9 +10,11 @@
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
 #include <GProp_GProps.hxx>
 #include <gp_Ax2.hxx>
 
+#include "contactcore/boundary_crossing.h"
 #include "contactcore/contacts.h"
 #include "contactcore/interferences.h"
 #include "contactcore/separation.h"
@@ -89,6 +91,112 @@ TEST(Interferences, PinThroughPlateWithoutHole) {
   EXPECT_NEAR(result.interferences[0].volume, M_PI * 9 * 5, 1e-6);
   EXPECT_TRUE(result.contacts.empty());
   expect_same_serial_and_parallel(assembly);
+}
+
+TEST(Interferences, ThinPlateCrossingAPinBetweenItsSamples) {
+  // A pin of radius 3 from z = -10 to 20 (its samples at z = -10, 5, 20) and
+  // a 1 mm plate at z in [7, 8] whose middle (x = 10) is off the pin: no
+  // sample of either lies in the other. Common: pi r^2 t = 9 pi.
+  const Assembly assembly = make_assembly({{"plate", box(-10, -20, 7, 40, 40, 1)},
+                                           {"pin", cylinder(3, 30, gp_Pnt(0, 0, -10))}});
+  const ContactsResult result = contacts_of(assembly);
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, M_PI * 9 * 1, 1e-6);
+  EXPECT_TRUE(result.contacts.empty());
+  expect_same_serial_and_parallel(assembly);
+}
+
+TEST(Interferences, TwoBallsOverlappingInALens) {
+  // Equal radii R = 5, centres d = 6 apart along y (each ball's samples, its
+  // poles on z and seam and face points on x, stay out of the other): the
+  // lens pi (4R + d)(2R - d)^2 / 12 = pi 26 * 16 / 12.
+  const Assembly assembly = make_assembly({{"a", BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 5).Shape()},
+                                           {"b", BRepPrimAPI_MakeSphere(gp_Pnt(0, 6, 0), 5).Shape()}});
+  const ContactsResult result = contacts_of(assembly);
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, M_PI * 26 * 16 / 12, 1e-7 * M_PI * 26 * 16 / 12);
+  EXPECT_TRUE(result.contacts.empty());
+  expect_same_serial_and_parallel(assembly);
+}
+
+TEST(Interferences, PerpendicularCylindersCrossingInsideTheirLengths) {
+  // Radius 3 along z over [-40, 10] and along x over [-40, 10], axes meeting
+  // at the origin, away from the middles (z, x = -15) where the samples are:
+  // the Steinmetz bicylinder 16 r^3 / 3 = 144.
+  const Assembly assembly = make_assembly(
+      {{"upright", cylinder(3, 50, gp_Pnt(0, 0, -40))},
+       {"crossbar", BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-40, 0, 0), gp::DX()), 3, 50).Shape()}});
+  const ContactsResult result = contacts_of(assembly);
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, 16.0 * 27 / 3, 1e-6);
+  EXPECT_TRUE(result.contacts.empty());
+  expect_same_serial_and_parallel(assembly);
+}
+
+TEST(Interferences, BarsCrossingWithNoVertexInside) {
+  // A 3D cross of two bars, [-10, 5] x [-1, 1] x [-1, 1] and
+  // [-1, 1] x [-10, 5] x [-2, 2]: no vertex, edge middle or face middle of
+  // either inside the other. Common: 2 x 2 x 2 = 8.
+  const Assembly assembly =
+      make_assembly({{"along_x", box(-10, -1, -1, 15, 2, 2)}, {"along_y", box(-1, -10, -2, 2, 15, 4)}});
+  const ContactsResult result = contacts_of(assembly);
+  ASSERT_EQ(result.interferences.size(), 1u);
+  EXPECT_NEAR(result.interferences[0].volume, 8.0, 1e-6);
+  EXPECT_TRUE(result.contacts.empty());
+}
+
+TEST(Interferences, TouchingBodiesHaveNoneWhereverTheirSamplesLie) {
+  // A ball on a plate, a shaft in a bore with 0.5 mm clearance, a block on
+  // the plate overhanging its edge: each touches (or misses) its neighbour.
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const Assembly assembly = make_assembly({{"plate", plate},
+                                           {"ball", BRepPrimAPI_MakeSphere(gp_Pnt(12, 12, 15), 5).Shape()},
+                                           {"shaft", cylinder(4.5, 30, gp_Pnt(0, 0, -10))},
+                                           {"block", box(10, -15, 10, 15, 5, 5)}});
+  const ContactsResult result = contacts_of(assembly);
+  EXPECT_TRUE(result.interferences.empty());
+  // The block's bottom on the plate's top: one PLF; the ball's touch is a point.
+  ASSERT_EQ(result.contacts.size(), 1u);
+  EXPECT_EQ(result.contacts[0].type, ContactType::PLF);
+  expect_same_serial_and_parallel(assembly);
+}
+
+TEST(BoundaryCrossing, TouchingBoundariesDoNotCross) {
+  // Decided by the crossing test alone, whatever steps 1-3 would prove first.
+  const double linear = 1e-4, angular = 1e-4;
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const TopoDS_Shape base = box(-20, -20, -10, 40, 40, 10);
+  // Face to face, flush.
+  EXPECT_FALSE(boundaries_cross(plate, base, linear, angular));
+  // Face to face, the upper block smaller and inside the lower's top.
+  EXPECT_FALSE(boundaries_cross(box(-5, -5, 10, 10, 10, 10), plate, linear, angular));
+  // A ball on a plane.
+  EXPECT_FALSE(boundaries_cross(BRepPrimAPI_MakeSphere(gp_Pnt(12, 12, 15), 5).Shape(), plate, linear, angular));
+  // A shaft in the bore with clearance, and one of the bore's radius.
+  EXPECT_FALSE(boundaries_cross(cylinder(4.5, 30, gp_Pnt(0, 0, -10)), plate, linear, angular));
+  EXPECT_FALSE(boundaries_cross(cylinder(5, 10, gp_Pnt(0, 0, 0)), plate, linear, angular));
+  // A collar on the plate's top around the bore.
+  EXPECT_FALSE(boundaries_cross(cylinder(8, 5, gp_Pnt(0, 0, 10)), plate, linear, angular));
+}
+
+TEST(BoundaryCrossing, CrossingBoundariesCross) {
+  const double linear = 1e-4, angular = 1e-4;
+  EXPECT_TRUE(boundaries_cross(box(-10, -20, 7, 40, 40, 1), cylinder(3, 30, gp_Pnt(0, 0, -10)), linear, angular));
+  EXPECT_TRUE(boundaries_cross(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 5).Shape(),
+                               BRepPrimAPI_MakeSphere(gp_Pnt(0, 6, 0), 5).Shape(), linear, angular));
+  EXPECT_TRUE(boundaries_cross(cylinder(3, 50, gp_Pnt(0, 0, -40)),
+                               BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-40, 0, 0), gp::DX()), 3, 50).Shape(), linear,
+                               angular));
+  EXPECT_TRUE(boundaries_cross(box(-10, -1, -1, 15, 2, 2), box(-1, -10, -2, 2, 15, 4), linear, angular));
+  // Bars of equal height crossing: their sides cross along vertical lines
+  // whose ends are where their edges meet (an edge through an edge).
+  EXPECT_TRUE(boundaries_cross(box(-10, -1, -1, 15, 2, 2), box(-1, -10, -1, 2, 15, 2), linear, angular));
+  // A ball on a torus's tube circle, wider than the tube.
+  EXPECT_TRUE(boundaries_cross(BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, 0), gp::DZ()), 10, 2).Shape(),
+                               BRepPrimAPI_MakeSphere(gp_Pnt(0, 10, 0), 2.5).Shape(), linear, angular));
+  // Apart, boxes meeting: no crossing.
+  EXPECT_FALSE(boundaries_cross(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 5).Shape(),
+                                BRepPrimAPI_MakeSphere(gp_Pnt(0, 7.5, 7.5), 5).Shape(), linear, angular));
 }
 
 TEST(Interferences, SphereSunkIntoAPlane) {
