@@ -8,6 +8,7 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
@@ -28,33 +29,33 @@
 #include <gp_Vec.hxx>
 
 // Why this test is complete. Let A and B be closed solids sharing volume,
-// neither the same solid as the other (step 1) nor holding a vertex of the
-// other strictly inside (step 4's samples).
+// neither the same solid as the other (step 1) nor holding a vertex or an
+// edge's middle of the other strictly inside (step 4's samples).
 //  1. A point of A's boundary lies inside B, or of B's inside A: otherwise
 //     B's interior, connected and meeting no point of A's boundary, lies all
 //     inside A or all outside; sharing volume, inside; likewise A's inside B,
 //     and A = B.
-//  2. Say a face F of A has a point inside B. If an edge E of F has one, E
-//     leaves B's interior before reaching its ends (vertices are not inside
-//     B), so it meets a face G of B at a point away from its ends: (a), an
-//     edge meeting a face with a transition other than tangent, inside the
-//     face or on its edges (an edge through an edge counts).
-//  3. Otherwise the part of F inside B lies away from F's edges and is bounded
-//     by curves where F meets faces G of B. Where such a curve runs along an
-//     edge of G, that edge meets F away from its ends: (a) with the roles
-//     swapped. Where it runs inside both faces, F and G cross there: (b),
-//     their intersection curves sampled at points inside both faces where
-//     their normals are not parallel. A closed curve inside both (balls, a
-//     ball in a torus) is a whole intersection curve, so any of its samples
-//     finds it; a piece shorter than the samples' spacing ends on edges of G,
-//     found by (a).
-// Parallel planes never cross, and faces that meet only where their normals
-// are parallel (coincident faces, a shaft in its bore, a ball on a plane)
-// touch. Left out: surfaces crossing while tangent all along the crossing
-// (z = 0 and z = x^3), which no tangency test tells from a touch.
-// Each witness is sound too: an edge crossing into B or two faces crossing
-// transversally have a wedge of A inside B next to them (a positive volume,
-// which the Boolean common then measures).
+//  2. If an edge of either has a point inside the other: (a) cuts the edge
+//     wherever it meets the other's faces, and the piece holding that point
+//     lies inside, its middle too (an edge never cut is the sample already
+//     classified).
+//  3. Otherwise a face F of A (say) has a point inside B while its edges, and
+//     B's edges, stay outside the other's interior. The part of F inside B
+//     lies away from F's edges and is bounded by curves where F crosses faces
+//     G of B, away from G's edges too, unless an edge of G lies exactly in F:
+//     (b) samples the intersection curves of F and G for a point inside both
+//     where their normals are not parallel. Such a curve is closed and inside
+//     both faces (balls in a lens, a ball in a torus), a whole intersection
+//     curve, so every one of its samples finds it.
+// Parallel planes never cross, and faces meeting only where their normals are
+// parallel touch (coincident faces, a shaft in its bore, a ball on a plane).
+// Not covered: an edge of one lying exactly in a face of the other where the
+// crossing runs along it with no edge of either entering the other, and
+// surfaces crossing while tangent all along the crossing (z = 0 and z = x^3);
+// both are borderline positions, and the intersectors' own tolerances apply.
+// Each witness is sound: a point strictly inside the other, or two faces
+// crossing transversally (a wedge of each inside the other next to them);
+// the Boolean common then measures the volume.
 
 namespace contactcore {
 
@@ -106,27 +107,42 @@ std::vector<EdgeEntry> edges_of(const TopoDS_Shape& shape, double linear) {
   return edges;
 }
 
+bool boxes_meet(const Bnd_Box& a, const Bnd_Box& b) { return !a.IsVoid() && !b.IsVoid() && !a.IsOut(b); }
+
 Bnd_Box box_of(const std::vector<FaceEntry>& faces) {
   Bnd_Box box;
   for (const FaceEntry& f : faces) box.Add(f.box);
   return box;
 }
 
-// (a): an edge of one body meets a face of the other away from the edge's
-// ends, entering or leaving (not tangent), inside the face or on its edges.
-bool edge_meets_face(const EdgeEntry& e, FaceEntry& f, double linear) {
-  if (!f.intersector) f.intersector = std::make_unique<IntCurvesFace_Intersector>(f.face, linear);
+// (a): an edge of `from` cut at every point where it meets a face of `into`
+// (inside the face, on its edges, crossing or tangent): each piece lies
+// wholly inside `into` or wholly outside, as its middle does. A middle
+// strictly inside proves the overlap; so an edge resting on a face, or lying
+// in it, proves nothing.
+bool edge_enters(const EdgeEntry& e, std::vector<FaceEntry>& faces, const TopoDS_Shape& into,
+                 std::unique_ptr<BRepClass3d_SolidClassifier>& classifier, double linear) {
   Handle(BRepAdaptor_Curve) curve = new BRepAdaptor_Curve(e.edge);
   const double first = curve->FirstParameter(), last = curve->LastParameter();
-  const gp_Pnt start = curve->Value(first), end = curve->Value(last);
-  f.intersector->Perform(curve, first, last);
-  if (!f.intersector->IsDone()) return true;  // undecided: the Boolean settles it
-  for (int i = 1; i <= f.intersector->NbPnt(); ++i) {
-    const IntCurveSurface_TransitionOnCurve transition = f.intersector->Transition(i);
-    if (transition != IntCurveSurface_In && transition != IntCurveSurface_Out) continue;
-    const gp_Pnt& p = f.intersector->Pnt(i);
-    if (p.Distance(start) <= linear || p.Distance(end) <= linear) continue;  // an end resting on the face
-    return true;
+  std::vector<double> cuts = {first, last};
+  for (FaceEntry& f : faces) {
+    if (!boxes_meet(e.box, f.box)) continue;
+    if (!f.intersector) f.intersector = std::make_unique<IntCurvesFace_Intersector>(f.face, linear);
+    f.intersector->Perform(curve, first, last);
+    if (!f.intersector->IsDone()) return true;  // undecided: the Boolean settles it
+    for (int i = 1; i <= f.intersector->NbPnt(); ++i)
+      cuts.push_back(std::clamp(f.intersector->WParameter(i), first, last));
+  }
+  // No cut: the whole edge is in or out, as its middle, one of step 4's samples.
+  if (cuts.size() == 2) return false;
+  std::sort(cuts.begin(), cuts.end());
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const gp_Pnt from = curve->Value(cuts[k]), to = curve->Value(cuts[k + 1]);
+    const gp_Pnt middle = curve->Value(0.5 * (cuts[k] + cuts[k + 1]));
+    if (middle.Distance(from) <= linear && middle.Distance(to) <= linear) continue;  // a piece within the tolerance
+    if (!classifier) classifier = std::make_unique<BRepClass3d_SolidClassifier>(into);
+    classifier->Perform(middle, linear);
+    if (classifier->State() == TopAbs_IN) return true;
   }
   return false;
 }
@@ -215,16 +231,12 @@ bool faces_cross(const FaceEntry& fa, const FaceEntry& fb, double linear, double
   return false;
 }
 
-bool boxes_meet(const Bnd_Box& a, const Bnd_Box& b) { return !a.IsVoid() && !b.IsVoid() && !a.IsOut(b); }
-
 // (a) for the edges of `from` against the faces of `into`.
-bool edges_meet_faces(const std::vector<EdgeEntry>& edges, std::vector<FaceEntry>& faces, const Bnd_Box& into_box,
-                      double linear) {
-  for (const EdgeEntry& e : edges) {
-    if (!boxes_meet(e.box, into_box)) continue;
-    for (FaceEntry& f : faces)
-      if (boxes_meet(e.box, f.box) && edge_meets_face(e, f, linear)) return true;
-  }
+bool edges_enter(const std::vector<EdgeEntry>& edges, std::vector<FaceEntry>& faces, const TopoDS_Shape& into,
+                 const Bnd_Box& into_box, double linear) {
+  std::unique_ptr<BRepClass3d_SolidClassifier> classifier;
+  for (const EdgeEntry& e : edges)
+    if (boxes_meet(e.box, into_box) && edge_enters(e, faces, into, classifier, linear)) return true;
   return false;
 }
 
@@ -234,8 +246,8 @@ bool boundaries_cross(const TopoDS_Shape& a, const TopoDS_Shape& b, double linea
   std::vector<FaceEntry> faces_a = faces_of(a, linear), faces_b = faces_of(b, linear);
   const Bnd_Box box_a = box_of(faces_a), box_b = box_of(faces_b);
   if (!boxes_meet(box_a, box_b)) return false;
-  if (edges_meet_faces(edges_of(a, linear), faces_b, box_b, linear)) return true;
-  if (edges_meet_faces(edges_of(b, linear), faces_a, box_a, linear)) return true;
+  if (edges_enter(edges_of(a, linear), faces_b, b, box_b, linear)) return true;
+  if (edges_enter(edges_of(b, linear), faces_a, a, box_a, linear)) return true;
   const Handle(IntTools_Context) context = new IntTools_Context();
   for (const FaceEntry& fa : faces_a) {
     if (!boxes_meet(fa.box, box_b)) continue;

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
@@ -179,6 +181,31 @@ TEST(BoundaryCrossing, TouchingBoundariesDoNotCross) {
   EXPECT_FALSE(boundaries_cross(cylinder(8, 5, gp_Pnt(0, 0, 10)), plate, linear, angular));
 }
 
+TEST(BoundaryCrossing, TouchingStaysTouchingUnderRigidMotions) {
+  // The touching pairs above moved by 20 random rotations and translations
+  // (no face aligned with the coordinate axes any more), and a crossing one.
+  const double linear = 1e-4, angular = 1e-4;
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const std::vector<TopoDS_Shape> touching = {box(-20, -20, -10, 40, 40, 10), box(-5, -5, 10, 10, 10, 10),
+                                              BRepPrimAPI_MakeSphere(gp_Pnt(12, 12, 15), 5).Shape(),
+                                              cylinder(4.5, 30, gp_Pnt(0, 0, -10)), cylinder(5, 10, gp_Pnt(0, 0, 0)),
+                                              box(10, -15, 10, 15, 5, 5)};
+  const TopoDS_Shape crossing = box(-10, -20, 4, 40, 40, 1);  // through the bore's wall
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (int trial = 0; trial < 20; ++trial) {
+    gp_Trsf rotation, translation;
+    rotation.SetRotation(gp_Ax1(gp::Origin(), gp_Dir(unit(rng), unit(rng), unit(rng) + 2)), M_PI * unit(rng));
+    translation.SetTranslation(gp_Vec(50 * unit(rng), 50 * unit(rng), 50 * unit(rng)));
+    const gp_Trsf motion = translation * rotation;
+    const auto moved = [&](const TopoDS_Shape& s) { return BRepBuilderAPI_Transform(s, motion, true).Shape(); };
+    const TopoDS_Shape moved_plate = moved(plate);
+    for (std::size_t k = 0; k < touching.size(); ++k)
+      EXPECT_FALSE(boundaries_cross(moved(touching[k]), moved_plate, linear, angular)) << trial << " " << k;
+    EXPECT_TRUE(boundaries_cross(moved(crossing), moved_plate, linear, angular)) << trial;
+  }
+}
+
 TEST(BoundaryCrossing, CrossingBoundariesCross) {
   const double linear = 1e-4, angular = 1e-4;
   EXPECT_TRUE(boundaries_cross(box(-10, -20, 7, 40, 40, 1), cylinder(3, 30, gp_Pnt(0, 0, -10)), linear, angular));
@@ -197,6 +224,54 @@ TEST(BoundaryCrossing, CrossingBoundariesCross) {
   // Apart, boxes meeting: no crossing.
   EXPECT_FALSE(boundaries_cross(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 5).Shape(),
                                 BRepPrimAPI_MakeSphere(gp_Pnt(0, 7.5, 7.5), 5).Shape(), linear, angular));
+}
+
+namespace {
+
+// A box, a ball or a cylinder of random size, place and axis.
+TopoDS_Shape random_solid(std::mt19937& rng) {
+  std::uniform_real_distribution<double> size(1, 8), place(-4, 4), unit(-1, 1);
+  const gp_Pnt at(place(rng), place(rng), place(rng));
+  gp_Vec axis(unit(rng), unit(rng), unit(rng));
+  if (axis.Magnitude() < 0.1) axis = gp_Vec(0, 0, 1);
+  const gp_Ax2 frame(at, gp_Dir(axis));
+  switch (rng() % 3) {
+    case 0: return BRepPrimAPI_MakeBox(frame, size(rng), size(rng), size(rng)).Shape();
+    case 1: return BRepPrimAPI_MakeSphere(at, 0.5 * size(rng)).Shape();
+    default: return BRepPrimAPI_MakeCylinder(frame, 0.5 * size(rng), 2 * size(rng)).Shape();
+  }
+}
+
+}  // namespace
+
+TEST(Interferences, RandomPairsAgreeWithTheBoolean) {
+  // Boxes, balls and cylinders at random places and angles: an interference
+  // exactly when the Boolean common of the two holds material, and then its
+  // volume (to 1e-3: the fuzzy Boolean and the plain one integrate slightly
+  // different faces). Pairs whose common is near the noise threshold would be
+  // left out.
+  std::mt19937 rng(14);
+  int compared = 0, overlapping = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    const TopoDS_Shape a = random_solid(rng), b = random_solid(rng);
+    const double common = volume_of(BRepAlgoAPI_Common(a, b).Shape());
+    const double smaller = std::min(volume_of(a), volume_of(b));
+    if (common > 1e-7 * smaller && common < 1e-4 * smaller) continue;
+    const ContactsResult result = contacts_of(make_assembly({{"a", a}, {"b", b}}));
+    ++compared;
+    if (common >= 1e-4 * smaller) {
+      ++overlapping;
+      EXPECT_EQ(result.interferences.size(), 1u) << "trial " << trial << ", common " << common;
+      if (result.interferences.size() != 1) continue;
+      EXPECT_NEAR(result.interferences[0].volume, common, 1e-3 * common) << "trial " << trial;
+    } else {
+      EXPECT_TRUE(result.interferences.empty()) << "trial " << trial;
+    }
+  }
+  // All 120 compared; 47 overlap, 8 of them with no sample point of either
+  // body inside the other (found by the boundary crossing alone).
+  EXPECT_EQ(compared, 120);
+  EXPECT_EQ(overlapping, 47);
 }
 
 TEST(Interferences, SphereSunkIntoAPlane) {

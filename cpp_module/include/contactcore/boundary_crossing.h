@@ -8,15 +8,16 @@
 
 namespace contactcore {
 
-// True when the boundaries of the solids `a` and `b` may cross: an edge of
-// one meets a face of the other transversally away from the edge's ends, or
-// two faces (not parallel planes) cross transversally at a point inside
-// both. Touching (faces against faces, a shaft in a bore, a ball on a plane,
-// an edge or vertex resting on a face) is no crossing. False proves that
-// they share no volume when neither holds a vertex of the other strictly
-// inside (see the comment in boundary_crossing.cpp); true is then settled by
-// the Boolean common. `linear`: the distance below which points coincide;
-// `angular`: normals closer than this are parallel (a touch).
+// True when the boundaries of the solids `a` and `b` cross: a piece of an
+// edge of one, between the points where it meets the other's faces, lies
+// strictly inside the other, or two faces (not parallel planes) cross
+// transversally at a point inside both. Touching (faces against faces, a
+// shaft in a bore, a ball on a plane, an edge resting on or lying in a face)
+// is no crossing. False proves that they share no volume when neither holds
+// a vertex or edge middle of the other strictly inside (the argument is in
+// boundary_crossing.cpp); true is then measured by the Boolean common.
+// `linear`: the distance below which points coincide; `angular`: normals
+// closer than this are parallel (a touch).
 bool boundaries_cross(const TopoDS_Shape& a, const TopoDS_Shape& b, double linear, double angular);
 
 }  // namespace contactcore
