@@ -52,6 +52,60 @@ def test_pin_through_plate_without_hole():
     assert result.contacts == []
 
 
+def _single_interference(named_shapes):
+    result = analysis.find_contacts_in_shapes(named_shapes)
+    assert len(result.interferences) == 1
+    assert result.contacts == []
+    return result.interferences[0][2]
+
+
+def test_thin_plate_crossing_a_pin_between_its_samples():
+    # The pin's samples sit at z = -10, 5, 20 and the plate's middle off the
+    # pin: only the boundaries' crossing shows the overlap, pi r^2 t.
+    import FreeCAD
+    Part = _part()
+    plate = Part.makeBox(40, 40, 1, FreeCAD.Vector(-10, -20, 7))
+    pin = Part.makeCylinder(3, 30, FreeCAD.Vector(0, 0, -10))
+    volume = _single_interference([("plate", plate), ("pin", pin)])
+    assert volume == pytest.approx(math.pi * 3 ** 2 * 1, rel=1e-9)
+    assert volume == pytest.approx(plate.common(pin).Volume, rel=1e-6)
+
+
+def test_two_balls_overlapping_in_a_lens():
+    # R = 5, centres d = 6 apart: pi (4R + d)(2R - d)^2 / 12.
+    import FreeCAD
+    Part = _part()
+    a = Part.makeSphere(5)
+    b = Part.makeSphere(5, FreeCAD.Vector(0, 6, 0))
+    volume = _single_interference([("a", a), ("b", b)])
+    assert volume == pytest.approx(math.pi * (4 * 5 + 6) * (2 * 5 - 6) ** 2 / 12, rel=1e-7)
+
+
+def test_perpendicular_cylinders_crossing_inside_their_lengths():
+    # The Steinmetz bicylinder of radius r: 16 r^3 / 3.
+    import FreeCAD
+    Part = _part()
+    upright = Part.makeCylinder(3, 50, FreeCAD.Vector(0, 0, -40))
+    crossbar = Part.makeCylinder(3, 50, FreeCAD.Vector(-40, 0, 0), FreeCAD.Vector(1, 0, 0))
+    volume = _single_interference([("upright", upright), ("crossbar", crossbar)])
+    assert volume == pytest.approx(16 * 3 ** 3 / 3, rel=1e-7)
+
+
+def test_touching_bodies_give_no_interference():
+    # Face to face (a block on a plate, overhanging it), a shaft in the
+    # plate's bore with 0.5 mm clearance, a ball resting on the plate.
+    import FreeCAD
+    Part = _part()
+    plate = Part.makeBox(40, 40, 10, FreeCAD.Vector(-20, -20, 0)).cut(Part.makeCylinder(5, 10))
+    shapes = [("plate", plate),
+              ("block", Part.makeBox(15, 5, 5, FreeCAD.Vector(10, -15, 10))),
+              ("shaft", Part.makeCylinder(4.5, 30, FreeCAD.Vector(0, 0, -10))),
+              ("ball", Part.makeSphere(5, FreeCAD.Vector(12, 12, 15)))]
+    result = analysis.find_contacts_in_shapes(shapes)
+    assert result.interferences == []
+    assert dict(result.counts()) == {"PLF": 1}
+
+
 def test_self_intersecting_solid_is_named_in_json(tmp_path):
     # An .FCStd keeps the shape as it is (a STEP reader heals it into 8 faces).
     import FreeCAD
