@@ -5,27 +5,33 @@
 #include <memory>
 #include <vector>
 
+#include <Bnd_Box.hxx>
+#include <BRep_Tool.hxx>
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
-#include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
-#include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <GeomLProp_SLProps.hxx>
 #include <Geom_Line.hxx>
 #include <Geom_Surface.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <GeomLProp_SLProps.hxx>
 #include <IntCurvesFace_Intersector.hxx>
 #include <IntTools_Context.hxx>
 #include <IntTools_Curve.hxx>
 #include <IntTools_FaceFace.hxx>
 #include <Precision.hxx>
 #include <TopExp.hxx>
-#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Circ.hxx>
+#include <gp_Lin.hxx>
 #include <gp_Vec.hxx>
 
 // Why this test is complete. Let A and B be closed solids sharing volume,
@@ -63,10 +69,13 @@ namespace {
 
 struct FaceEntry {
   TopoDS_Face face;
-  Bnd_Box box;  // enlarged by the tolerance
-  bool plane = false;
-  gp_Dir normal;  // planes
+  SurfaceParams params;  // the partitions' typing (free-form faces recognised)
+  Bnd_Box box;           // enlarged by the tolerance
   std::unique_ptr<IntCurvesFace_Intersector> intersector;  // built on first use
+  // Locating points on the face, built on first use.
+  std::unique_ptr<GeomAPI_ProjectPointOnSurf> projector;
+  std::unique_ptr<BRepTopAdaptor_FClass2d> bounds;
+  double uv_tolerance = 0;
 };
 
 struct EdgeEntry {
@@ -74,20 +83,14 @@ struct EdgeEntry {
   Bnd_Box box;
 };
 
-std::vector<FaceEntry> faces_of(const TopoDS_Shape& shape, double linear) {
-  TopTools_IndexedMapOfShape map;
-  TopExp::MapShapes(shape, TopAbs_FACE, map);
-  std::vector<FaceEntry> faces(map.Extent());
-  for (int i = 1; i <= map.Extent(); ++i) {
-    FaceEntry& entry = faces[i - 1];
-    entry.face = TopoDS::Face(map(i));
+std::vector<FaceEntry> faces_of(const BodyPartitions& body, double linear) {
+  std::vector<FaceEntry> faces(body.faces.size());
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    FaceEntry& entry = faces[i];
+    entry.face = body.faces[i].face;
+    entry.params = body.faces[i].params;
     BRepBndLib::Add(entry.face, entry.box, Standard_False);
     entry.box.Enlarge(linear);
-    const BRepAdaptor_Surface surface(entry.face, Standard_False);
-    if (surface.GetType() == GeomAbs_Plane) {
-      entry.plane = true;
-      entry.normal = surface.Plane().Axis().Direction();
-    }
   }
   return faces;
 }
@@ -115,31 +118,60 @@ Bnd_Box box_of(const std::vector<FaceEntry>& faces) {
   return box;
 }
 
+// Where a point near a face's surface lies in the face (IN, ON its edges or
+// OUT), with its surface parameters; OUT when farther than `max_distance`
+// from the surface.
+TopAbs_State locate(FaceEntry& f, const gp_Pnt& p, double max_distance, double linear, double& u, double& v) {
+  if (f.box.IsOut(p)) return TopAbs_OUT;
+  if (!f.projector) {
+    const BRepAdaptor_Surface adaptor(f.face);
+    f.projector = std::make_unique<GeomAPI_ProjectPointOnSurf>();
+    f.projector->Init(BRep_Tool::Surface(f.face), adaptor.FirstUParameter(), adaptor.LastUParameter(),
+                      adaptor.FirstVParameter(), adaptor.LastVParameter());
+    f.uv_tolerance = std::max(Precision::PConfusion(),
+                              std::min(adaptor.UResolution(linear), adaptor.VResolution(linear)));
+    f.bounds = std::make_unique<BRepTopAdaptor_FClass2d>(f.face, f.uv_tolerance);
+  }
+  f.projector->Perform(p);
+  if (!f.projector->IsDone() || f.projector->NbPoints() == 0 || f.projector->LowerDistance() > max_distance)
+    return TopAbs_OUT;
+  f.projector->LowerDistanceParameters(u, v);
+  return f.bounds->Perform(gp_Pnt2d(u, v));
+}
+
 // (a): an edge of `from` cut at every point where it meets a face of `into`
 // (inside the face, on its edges, crossing or tangent): each piece lies
 // wholly inside `into` or wholly outside, as its middle does. A middle
 // strictly inside proves the overlap; so an edge resting on a face, or lying
-// in it, proves nothing.
+// in it, proves nothing (a piece lying on the face that cut it is skipped
+// without classifying it: a ball's seam along its groove cuts into a hundred).
 bool edge_enters(const EdgeEntry& e, std::vector<FaceEntry>& faces, const TopoDS_Shape& into,
                  std::unique_ptr<BRepClass3d_SolidClassifier>& classifier, double linear) {
   Handle(BRepAdaptor_Curve) curve = new BRepAdaptor_Curve(e.edge);
   const double first = curve->FirstParameter(), last = curve->LastParameter();
-  std::vector<double> cuts = {first, last};
-  for (FaceEntry& f : faces) {
+  std::vector<std::pair<double, int>> cuts = {{first, -1}, {last, -1}};  // parameter, face cutting there
+  for (std::size_t i = 0; i < faces.size(); ++i) {
+    FaceEntry& f = faces[i];
     if (!boxes_meet(e.box, f.box)) continue;
     if (!f.intersector) f.intersector = std::make_unique<IntCurvesFace_Intersector>(f.face, linear);
     f.intersector->Perform(curve, first, last);
     if (!f.intersector->IsDone()) return true;  // undecided: the Boolean settles it
-    for (int i = 1; i <= f.intersector->NbPnt(); ++i)
-      cuts.push_back(std::clamp(f.intersector->WParameter(i), first, last));
+    for (int k = 1; k <= f.intersector->NbPnt(); ++k)
+      cuts.push_back({std::clamp(f.intersector->WParameter(k), first, last), static_cast<int>(i)});
   }
   // No cut: the whole edge is in or out, as its middle, one of step 4's samples.
   if (cuts.size() == 2) return false;
   std::sort(cuts.begin(), cuts.end());
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const gp_Pnt from = curve->Value(cuts[k]), to = curve->Value(cuts[k + 1]);
-    const gp_Pnt middle = curve->Value(0.5 * (cuts[k] + cuts[k + 1]));
+    const gp_Pnt from = curve->Value(cuts[k].first), to = curve->Value(cuts[k + 1].first);
+    const gp_Pnt middle = curve->Value(0.5 * (cuts[k].first + cuts[k + 1].first));
     if (middle.Distance(from) <= linear && middle.Distance(to) <= linear) continue;  // a piece within the tolerance
+    bool on_boundary = false;
+    for (const int face : {cuts[k].second, cuts[k + 1].second}) {
+      double u, v;
+      if (face >= 0 && !on_boundary) on_boundary = locate(faces[face], middle, linear, linear, u, v) != TopAbs_OUT;
+    }
+    if (on_boundary) continue;
     if (!classifier) classifier = std::make_unique<BRepClass3d_SolidClassifier>(into);
     classifier->Perform(middle, linear);
     if (classifier->State() == TopAbs_IN) return true;
@@ -147,21 +179,12 @@ bool edge_enters(const EdgeEntry& e, std::vector<FaceEntry>& faces, const TopoDS
   return false;
 }
 
-// Where a point on a face's surface lies: IN the face farther than `linear`
-// from its edges, with the surface normal there.
-bool strictly_inside(const TopoDS_Face& face, const gp_Pnt& p, double linear, gp_Dir& normal) {
-  const Handle(Geom_Surface) surface = BRep_Tool::Surface(face);
-  const BRepAdaptor_Surface adaptor(face);
-  GeomAPI_ProjectPointOnSurf projection(p, surface, adaptor.FirstUParameter(), adaptor.LastUParameter(),
-                                        adaptor.FirstVParameter(), adaptor.LastVParameter());
-  if (!projection.IsDone() || projection.NbPoints() == 0 || projection.LowerDistance() > 10 * linear) return false;
+// A point on a face's surface strictly inside the face (ON within the
+// tolerance of its edges is not), with the surface normal there.
+bool strictly_inside(FaceEntry& f, const gp_Pnt& p, double linear, gp_Dir& normal) {
   double u, v;
-  projection.LowerDistanceParameters(u, v);
-  const double uv_tolerance = std::max(Precision::PConfusion(),
-                                       std::min(adaptor.UResolution(linear), adaptor.VResolution(linear)));
-  BRepTopAdaptor_FClass2d classifier(face, uv_tolerance);
-  if (classifier.Perform(gp_Pnt2d(u, v)) != TopAbs_IN) return false;
-  GeomLProp_SLProps props(surface, u, v, 1, Precision::Confusion());
+  if (locate(f, p, 10 * linear, linear, u, v) != TopAbs_IN) return false;
+  GeomLProp_SLProps props(BRep_Tool::Surface(f.face), u, v, 1, Precision::Confusion());
   if (!props.IsNormalDefined()) return false;  // a pole: no crossing decided there
   normal = props.Normal();
   return true;
@@ -189,18 +212,77 @@ bool clip_line(const gp_Lin& line, const Bnd_Box& box, double& t0, double& t1) {
   return t0 < t1;
 }
 
+// The distance from a point, line or circle to a face (BRepExtrema).
+double distance_to(const TopoDS_Shape& core, const TopoDS_Shape& face) {
+  BRepExtrema_DistShapeShape distance(core, face);
+  return distance.IsDone() && distance.NbSolution() > 0 ? distance.Value() : 0;
+}
+
+// Signed distances of a box's corners to a plane (or their positions along
+// a line): their range.
+void box_sides(const Bnd_Box& box, const gp_Pnt& origin, const gp_Dir& normal, double& low, double& high) {
+  double x[2], y[2], z[2];
+  box.Get(x[0], y[0], z[0], x[1], y[1], z[1]);
+  low = Precision::Infinite();
+  high = -Precision::Infinite();
+  for (int i = 0; i < 8; ++i) {
+    const double d = gp_Vec(origin, gp_Pnt(x[i & 1], y[(i >> 1) & 1], z[(i >> 2) & 1])).Dot(gp_Vec(normal));
+    low = std::min(low, d);
+    high = std::max(high, d);
+  }
+}
+
+// False when face g cannot cross the surface of face f transversally inside
+// both: crossing a surface needs points strictly on both of its sides, so g
+// staying outside a sphere's, cylinder's or torus tube's open inside, or on
+// one side of a plane, proves it (a ball in its groove, a shaft end on a
+// face, parallel planes). Cheap cases first; true when undecided.
+bool may_cross(const FaceEntry& f, const FaceEntry& g, double linear, double angular) {
+  const SurfaceParams& p = f.params;
+  const SurfaceParams& q = g.params;
+  switch (p.kind) {
+    case SurfaceKind::Plane: {
+      if (q.kind == SurfaceKind::Plane && p.axis.IsParallel(q.axis, angular)) return false;
+      const double centre = gp_Vec(p.location, q.location).Dot(gp_Vec(p.axis));
+      if (q.kind == SurfaceKind::Sphere) return std::abs(centre) < q.radius - linear;
+      if (q.kind == SurfaceKind::Cylinder && p.axis.IsNormal(q.axis, angular))
+        return std::abs(centre) < q.radius - linear;
+      if (q.kind == SurfaceKind::Torus && p.axis.IsParallel(q.axis, angular))
+        return std::abs(centre) < q.minor_radius - linear;
+      double low, high;
+      // g's box, enlarged by the tolerance (at most 1.8 of it along any
+      // direction): g on one side, up to twice the tolerance, never crosses.
+      box_sides(g.box, p.location, p.axis, low, high);
+      return low < -2 * linear && high > 2 * linear;
+    }
+    case SurfaceKind::Sphere:
+      return distance_to(BRepBuilderAPI_MakeVertex(p.location).Vertex(), g.face) < p.radius - linear;
+    case SurfaceKind::Cylinder: {
+      // The axis as a segment over the projection of g's box onto it.
+      double t0, t1;
+      box_sides(g.box, p.location, p.axis, t0, t1);
+      return distance_to(BRepBuilderAPI_MakeEdge(gp_Lin(p.location, p.axis), t0, t1).Edge(), g.face) <
+             p.radius - linear;
+    }
+    case SurfaceKind::Torus: {
+      const gp_Circ tube(gp_Ax2(p.location, p.axis), p.radius);
+      return distance_to(BRepBuilderAPI_MakeEdge(tube).Edge(), g.face) < p.minor_radius - linear;
+    }
+    default:
+      return true;
+  }
+}
+
 // (b): two faces cross at a point inside both where their normals are not
 // parallel, found on their intersection curves (9 points each, clipped to
 // the boxes' common part).
-bool faces_cross(const FaceEntry& fa, const FaceEntry& fb, double linear, double angular,
+bool faces_cross(FaceEntry& fa, FaceEntry& fb, double linear, double angular,
                  const Handle(IntTools_Context)& context) {
-  if (fa.plane && fb.plane && fa.normal.IsParallel(fb.normal, angular)) return false;
-  IntTools_FaceFace intersection;
-  intersection.SetContext(context);
-  intersection.SetParameters(Standard_True, Standard_False, Standard_False, 1e-7);
-  intersection.Perform(fa.face, fb.face);
-  if (!intersection.IsDone()) return true;  // undecided: the Boolean settles it
-  if (intersection.TangentFaces()) return false;  // coincident surfaces touch
+  if (!may_cross(fa, fb, linear, angular) || !may_cross(fb, fa, linear, angular)) return false;
+  // Free-form faces: apart faces never cross (cheaper than intersecting them).
+  if ((fa.params.kind == SurfaceKind::Other || fb.params.kind == SurfaceKind::Other) &&
+      distance_to(fa.face, fb.face) > linear)
+    return false;
   Bnd_Box common;  // where both faces can be
   {
     double a[6], b[6];
@@ -210,6 +292,34 @@ bool faces_cross(const FaceEntry& fa, const FaceEntry& fb, double linear, double
                   std::min(a[4], b[4]), std::min(a[5], b[5]));
   }
   const double min_sine = std::sin(angular);
+  constexpr int kSamples = 9;
+  // A crossing at one of kSamples points of a curve, over [t0, t1].
+  const auto crossing_on = [&](const Handle(Geom_Curve)& curve, double t0, double t1) {
+    for (int k = 0; k < kSamples; ++k) {
+      const gp_Pnt p = curve->Value(t0 + (k + 0.5) / kSamples * (t1 - t0));
+      gp_Dir na, nb;
+      if (!strictly_inside(fa, p, linear, na) || !strictly_inside(fb, p, linear, nb)) continue;
+      if (gp_Vec(na).Crossed(gp_Vec(nb)).Magnitude() > min_sine) return true;
+    }
+    return false;
+  };
+  if (fa.params.kind == SurfaceKind::Plane && fb.params.kind == SurfaceKind::Plane) {
+    // Two planes (stored as free-form surfaces too) meet in a line: no
+    // surface intersector needed. Its point closest to fa's origin.
+    const gp_Vec n1(fa.params.axis), n2(fb.params.axis);
+    const gp_Vec direction = n1.Crossed(n2);
+    const double d1 = n1.Dot(gp_Vec(fa.params.location.XYZ())), d2 = n2.Dot(gp_Vec(fb.params.location.XYZ()));
+    const gp_Vec through = (n2.Crossed(direction) * d1 + direction.Crossed(n1) * d2) / direction.SquareMagnitude();
+    const gp_Lin line(gp_Pnt(through.XYZ()), gp_Dir(direction));
+    double t0, t1;
+    return clip_line(line, common, t0, t1) && crossing_on(new Geom_Line(line), t0, t1);
+  }
+  IntTools_FaceFace intersection;
+  intersection.SetContext(context);
+  intersection.SetParameters(Standard_True, Standard_False, Standard_False, 1e-7);
+  intersection.Perform(fa.face, fb.face);
+  if (!intersection.IsDone()) return true;  // undecided: the Boolean settles it
+  if (intersection.TangentFaces()) return false;  // coincident surfaces touch
   const IntTools_SequenceOfCurves& curves = intersection.Lines();
   for (int c = 1; c <= curves.Length(); ++c) {
     const Handle(Geom_Curve) curve = curves(c).Curve();
@@ -220,13 +330,7 @@ bool faces_cross(const FaceEntry& fa, const FaceEntry& fb, double linear, double
       if (line.IsNull()) return true;  // an unbounded curve other than a line: undecided
       if (!clip_line(line->Lin(), common, t0, t1)) continue;
     }
-    constexpr int kSamples = 9;
-    for (int k = 0; k < kSamples; ++k) {
-      const gp_Pnt p = curve->Value(t0 + (k + 0.5) / kSamples * (t1 - t0));
-      gp_Dir na, nb;
-      if (!strictly_inside(fa.face, p, linear, na) || !strictly_inside(fb.face, p, linear, nb)) continue;
-      if (gp_Vec(na).Crossed(gp_Vec(nb)).Magnitude() > min_sine) return true;
-    }
+    if (crossing_on(curve, t0, t1)) return true;
   }
   return false;
 }
@@ -242,16 +346,18 @@ bool edges_enter(const std::vector<EdgeEntry>& edges, std::vector<FaceEntry>& fa
 
 }  // namespace
 
-bool boundaries_cross(const TopoDS_Shape& a, const TopoDS_Shape& b, double linear, double angular) {
-  std::vector<FaceEntry> faces_a = faces_of(a, linear), faces_b = faces_of(b, linear);
+bool boundaries_cross(const TopoDS_Shape& a, const BodyPartitions& typed_a, const TopoDS_Shape& b,
+                      const BodyPartitions& typed_b, const Tolerances& tol) {
+  const double linear = tol.linear, angular = tol.angular;
+  std::vector<FaceEntry> faces_a = faces_of(typed_a, linear), faces_b = faces_of(typed_b, linear);
   const Bnd_Box box_a = box_of(faces_a), box_b = box_of(faces_b);
   if (!boxes_meet(box_a, box_b)) return false;
   if (edges_enter(edges_of(a, linear), faces_b, b, box_b, linear)) return true;
   if (edges_enter(edges_of(b, linear), faces_a, a, box_a, linear)) return true;
   const Handle(IntTools_Context) context = new IntTools_Context();
-  for (const FaceEntry& fa : faces_a) {
+  for (FaceEntry& fa : faces_a) {
     if (!boxes_meet(fa.box, box_b)) continue;
-    for (const FaceEntry& fb : faces_b)
+    for (FaceEntry& fb : faces_b)
       if (boxes_meet(fa.box, fb.box) && faces_cross(fa, fb, linear, angular, context)) return true;
   }
   return false;

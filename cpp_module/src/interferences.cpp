@@ -220,7 +220,7 @@ PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, in
   // No sample strictly inside: they share volume only if their boundaries
   // cross (boundary_crossing.h, complete for solids).
   if (!sample_inside(shape_a, shape_b, pb.box, tol.linear) && !sample_inside(shape_b, shape_a, pa.box, tol.linear) &&
-      !boundaries_cross(shape_a, shape_b, tol.linear, tol.angular))
+      !boundaries_cross(shape_a, pa, shape_b, pb, tol))
     return out;
   const double common = common_volume(shape_a, shape_b, tol.linear);
   if (common < 0) {

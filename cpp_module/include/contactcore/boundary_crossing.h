@@ -6,6 +6,8 @@
 
 #include <TopoDS_Shape.hxx>
 
+#include "contactcore/partitions.h"
+
 namespace contactcore {
 
 // True when the boundaries of the solids `a` and `b` cross: a piece of an
@@ -16,8 +18,10 @@ namespace contactcore {
 // is no crossing. False proves that they share no volume when neither holds
 // a vertex or edge middle of the other strictly inside (the argument is in
 // boundary_crossing.cpp); true is then measured by the Boolean common.
-// `linear`: the distance below which points coincide; `angular`: normals
-// closer than this are parallel (a touch).
-bool boundaries_cross(const TopoDS_Shape& a, const TopoDS_Shape& b, double linear, double angular);
+// `typed_a`, `typed_b`: the bodies' partitions (their faces' surface types,
+// free-form faces recognised). `tol.linear`: the distance below which points
+// coincide; `tol.angular`: normals closer than this are parallel (a touch).
+bool boundaries_cross(const TopoDS_Shape& a, const BodyPartitions& typed_a, const TopoDS_Shape& b,
+                      const BodyPartitions& typed_b, const Tolerances& tol);
 
 }  // namespace contactcore
