@@ -23,8 +23,10 @@ namespace contactcore {
 //  3. a proof from the partitions that they share no material (separation.h):
 //     the common case, touching bodies, ends here;
 //  4. otherwise vertices, edge midpoints and face points of each body
-//     classified in the other; one inside: the Boolean common gives the
-//     volume. An overlap holding none of those points is not seen.
+//     classified in the other; none inside: whether their boundaries cross
+//     (boundary_crossing.h, complete for solids). A point inside or a
+//     crossing: the Boolean common gives the volume (below 1e-6 of the
+//     smaller body: a touch).
 Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress = nullptr,
                           int threads = 0);
 
