@@ -118,6 +118,56 @@ Bnd_Box box_of(const std::vector<FaceEntry>& faces) {
   return box;
 }
 
+// The distance from a point, line or circle to a face or edge (BRepExtrema).
+double distance_to(const TopoDS_Shape& core, const TopoDS_Shape& face) {
+  BRepExtrema_DistShapeShape distance(core, face);
+  return distance.IsDone() && distance.NbSolution() > 0 ? distance.Value() : 0;
+}
+
+// Signed distances of a box's corners to a plane (or their positions along
+// a line): their range.
+void box_sides(const Bnd_Box& box, const gp_Pnt& origin, const gp_Dir& normal, double& low, double& high) {
+  double x[2], y[2], z[2];
+  box.Get(x[0], y[0], z[0], x[1], y[1], z[1]);
+  low = Precision::Infinite();
+  high = -Precision::Infinite();
+  for (int i = 0; i < 8; ++i) {
+    const double d = gp_Vec(origin, gp_Pnt(x[i & 1], y[(i >> 1) & 1], z[(i >> 2) & 1])).Dot(gp_Vec(normal));
+    low = std::min(low, d);
+    high = std::max(high, d);
+  }
+}
+
+// The core of a face's surface, whose distance tells whether a shape enters
+// the surface's open inside: a sphere's centre, a cylinder's axis (a segment
+// over `span`'s projection), a torus's tube circle; null for other kinds.
+TopoDS_Shape surface_core(const SurfaceParams& p, const Bnd_Box& span, double& inside_radius) {
+  switch (p.kind) {
+    case SurfaceKind::Sphere:
+      inside_radius = p.radius;
+      return BRepBuilderAPI_MakeVertex(p.location).Vertex();
+    case SurfaceKind::Cylinder: {
+      double t0, t1;
+      box_sides(span, p.location, p.axis, t0, t1);
+      inside_radius = p.radius;
+      return BRepBuilderAPI_MakeEdge(gp_Lin(p.location, p.axis), t0, t1).Edge();
+    }
+    case SurfaceKind::Torus:
+      inside_radius = p.minor_radius;
+      return BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(p.location, p.axis), p.radius)).Edge();
+    default:
+      return TopoDS_Shape();
+  }
+}
+
+// False when `shape` stays outside the open inside of f's sphere, cylinder or
+// torus tube: it cannot cross f's surface (it may touch it).
+bool may_enter(const FaceEntry& f, const TopoDS_Shape& shape, const Bnd_Box& shape_box, double linear) {
+  double inside_radius = 0;
+  const TopoDS_Shape core = surface_core(f.params, shape_box, inside_radius);
+  return core.IsNull() || distance_to(core, shape) < inside_radius - linear;
+}
+
 // Where a point near a face's surface lies in the face (IN, ON its edges or
 // OUT), with its surface parameters; OUT when farther than `max_distance`
 // from the surface.
@@ -152,7 +202,9 @@ bool edge_enters(const EdgeEntry& e, std::vector<FaceEntry>& faces, const TopoDS
   std::vector<std::pair<double, int>> cuts = {{first, -1}, {last, -1}};  // parameter, face cutting there
   for (std::size_t i = 0; i < faces.size(); ++i) {
     FaceEntry& f = faces[i];
-    if (!boxes_meet(e.box, f.box)) continue;
+    // An edge staying outside a sphere's, cylinder's or torus tube's inside
+    // only touches the face: the pieces on either side are in or out alike.
+    if (!boxes_meet(e.box, f.box) || !may_enter(f, e.edge, e.box, linear)) continue;
     if (!f.intersector) f.intersector = std::make_unique<IntCurvesFace_Intersector>(f.face, linear);
     f.intersector->Perform(curve, first, last);
     if (!f.intersector->IsDone()) return true;  // undecided: the Boolean settles it
@@ -212,26 +264,6 @@ bool clip_line(const gp_Lin& line, const Bnd_Box& box, double& t0, double& t1) {
   return t0 < t1;
 }
 
-// The distance from a point, line or circle to a face (BRepExtrema).
-double distance_to(const TopoDS_Shape& core, const TopoDS_Shape& face) {
-  BRepExtrema_DistShapeShape distance(core, face);
-  return distance.IsDone() && distance.NbSolution() > 0 ? distance.Value() : 0;
-}
-
-// Signed distances of a box's corners to a plane (or their positions along
-// a line): their range.
-void box_sides(const Bnd_Box& box, const gp_Pnt& origin, const gp_Dir& normal, double& low, double& high) {
-  double x[2], y[2], z[2];
-  box.Get(x[0], y[0], z[0], x[1], y[1], z[1]);
-  low = Precision::Infinite();
-  high = -Precision::Infinite();
-  for (int i = 0; i < 8; ++i) {
-    const double d = gp_Vec(origin, gp_Pnt(x[i & 1], y[(i >> 1) & 1], z[(i >> 2) & 1])).Dot(gp_Vec(normal));
-    low = std::min(low, d);
-    high = std::max(high, d);
-  }
-}
-
 // False when face g cannot cross the surface of face f transversally inside
 // both: crossing a surface needs points strictly on both of its sides, so g
 // staying outside a sphere's, cylinder's or torus tube's open inside, or on
@@ -256,18 +288,9 @@ bool may_cross(const FaceEntry& f, const FaceEntry& g, double linear, double ang
       return low < -2 * linear && high > 2 * linear;
     }
     case SurfaceKind::Sphere:
-      return distance_to(BRepBuilderAPI_MakeVertex(p.location).Vertex(), g.face) < p.radius - linear;
-    case SurfaceKind::Cylinder: {
-      // The axis as a segment over the projection of g's box onto it.
-      double t0, t1;
-      box_sides(g.box, p.location, p.axis, t0, t1);
-      return distance_to(BRepBuilderAPI_MakeEdge(gp_Lin(p.location, p.axis), t0, t1).Edge(), g.face) <
-             p.radius - linear;
-    }
-    case SurfaceKind::Torus: {
-      const gp_Circ tube(gp_Ax2(p.location, p.axis), p.radius);
-      return distance_to(BRepBuilderAPI_MakeEdge(tube).Edge(), g.face) < p.minor_radius - linear;
-    }
+    case SurfaceKind::Cylinder:
+    case SurfaceKind::Torus:
+      return may_enter(f, g.face, g.box, linear);
     default:
       return true;
   }
