@@ -53,8 +53,10 @@
 //     where their normals are not parallel. Such a curve is closed and inside
 //     both faces (balls in a lens, a ball in a torus), a whole intersection
 //     curve, so every one of its samples finds it.
-// Parallel planes never cross, and faces meeting only where their normals are
-// parallel touch (coincident faces, a shaft in its bore, a ball on a plane).
+// Pairs are dropped only where no crossing can be (may_cross, may_enter: a
+// face or edge outside a surface's inside never crosses it). Parallel planes
+// never cross, and faces that meet only where their normals are parallel
+// touch (coincident faces, a shaft in its bore, a ball on a plane).
 // Not covered: an edge of one lying exactly in a face of the other where the
 // crossing runs along it with no edge of either entering the other, and
 // surfaces crossing while tangent all along the crossing (z = 0 and z = x^3);
