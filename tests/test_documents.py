@@ -12,11 +12,10 @@ import zipfile
 import pytest
 
 import FreeCAD
-import Part
-from contactwb.make import make_contact_analysis
 from contactwb.objects import contact_objects
 from contactwb.objects.contact_objects import PROXY_VERSION
-from document_session import proxy_name, snapshot  # tests/ is on sys.path
+from contacts_document import build_contacts_document  # tests/ is on sys.path
+from document_session import proxy_name, snapshot
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 V1_FIXTURE = os.path.join(REPO, "tests", "data", "contacts_v1.FCStd")
@@ -27,22 +26,8 @@ LABELS = ["CLJ 1: Plate \u2013 Shaft", "J1 cylindrical: Plate \u2013 Shaft",
 
 
 def build_document(path):
-    """A plate with a shaft in its bore (CLJ, cylindrical joint) and a block on
-    it (PLF, planar joint), plus an object of no workbench; saved at `path`."""
-    doc = FreeCAD.newDocument("ContactsDoc")
-    plate = doc.addObject("Part::Feature", "Plate")
-    plate.Shape = Part.makeBox(40, 40, 10, FreeCAD.Vector(-20, -20, 0)).cut(Part.makeCylinder(5, 10))
-    shaft = doc.addObject("Part::Feature", "Shaft")
-    shaft.Shape = Part.makeCylinder(5, 30, FreeCAD.Vector(0, 0, -10))
-    block = doc.addObject("Part::Box", "Block")
-    block.Length, block.Width, block.Height = 10, 10, 5
-    block.Placement.Base = FreeCAD.Vector(8, 8, 10)
-    note = doc.addObject("App::FeaturePython", "Note")
-    note.addProperty("App::PropertyString", "Text", "Note", "")
-    note.Text = "kept"
-    doc.recompute()
-    make_contact_analysis(doc, derive_joints=True)
-    doc.recompute()
+    """The document of tests/contacts_document.py, saved at `path`."""
+    doc = build_contacts_document()
     doc.saveAs(str(path))
     return doc
 

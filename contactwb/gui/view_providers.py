@@ -169,10 +169,27 @@ TYPE_NAMES = {
 }
 
 
+def _left_out_of_fit_all():
+    """An empty group that FreeCAD's View > Fit all leaves out: its own
+    SoSkipBoundingGroup, which View3DInventorViewer::viewAll switches to
+    EXCLUDE_BBOX while it fits. Held by Python as pivy holds the nodes it
+    makes (one reference, dropped with the Python object)."""
+    kind = coin.SoType.fromName(coin.SbName("SoSkipBoundingGroup"))
+    if kind.isBad():  # pivy without FreeCAD's GUI loaded: no view to fit
+        return coin.SoGroup()
+    group = kind.createInstance()
+    group.ref()
+    group.thisown = True
+    return group
+
+
 def legend_node(entries, name="ContactsLegend"):
     """A legend drawn over the view's top-left corner: one line of text per
-    (text, (r, g, b)) entry, in its colour. An annotation with its own
-    camera, so it stays put whatever the view's camera does; unpickable."""
+    (text, (r, g, b)) entry, in its colour. An annotation (named `name`) with
+    its own camera, so it stays put whatever the view's camera does;
+    unpickable. Its text would count at the legend camera's coordinates (near
+    the origin) in the scene's bounding box and pull Fit all off the model:
+    it is wrapped in a group Fit all leaves out, which is returned."""
     legend = coin.SoAnnotation()
     legend.setName(name)
     pick = coin.SoPickStyle()
@@ -200,7 +217,9 @@ def legend_node(entries, name="ContactsLegend"):
         step.translation.setValue(0, -0.055, 0)
         for node in (base, label, step):
             legend.addChild(node)
-    return legend
+    left_out = _left_out_of_fit_all()
+    left_out.addChild(legend)
+    return left_out
 
 
 def _circle_points(centre, axis, radius, segments=CIRCLE_SEGMENTS):

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
+#include <string>
+#include <utility>
 
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
@@ -358,20 +361,54 @@ TEST(Interferences, MotorHasNone) {
   expect_same_serial_and_parallel(read.assembly);
 }
 
+// R08's three press fits are rings between coaxial cylinders (all on the
+// world y axis, x = z = 0, full turns): 1/2 * 2 pi * (r_s^2 - r_b^2) * L.
+// Radii and lengths come from the STEP file's entities (part coordinates),
+// the axial overlap from where OCCT's reader places the parts (world y, read
+// once with FreeCAD's Part.read: the faces' bounding boxes).
+namespace {
+
+double ring(double shaft_radius, double bore_radius, double length) {
+  return M_PI * (shaft_radius * shaft_radius - bore_radius * bore_radius) * length;
+}
+
+}  // namespace
+
 TEST(Interferences, SharedPressHasItsThree) {
   const std::string path = shared_step("R08_presse_asm.step");
   CONTACTS_REQUIRE_FILE(path);
   const AssemblyResult read = read_step(path);
   ASSERT_TRUE(read.status.ok()) << read.status.describe();
   const ContactsResult result = contacts_of(read.assembly);
+  // CAPTEUR_FORCE in SOLID.5: the shaft r 8 (CYLINDRICAL_SURFACE #3514, #3529; faces #3524, #3537 from
+  // y -24 to -10: 14 long, world y 350..364) lies wholly in the bore r 7.25 (#8549, #8564; faces #8559,
+  // #8572, x 101.5..121.5, world y 345..365): L = 14.
+  // CORPS_AMMOVIBLE in PRT0001: the shaft r 12 (#8152, #8167; x 7..80, world y 134.28..207.28) spans the
+  // whole bore r 9.646875 (#9469, #9484; z 1.353125..31.646875, world y 156.85..187.15): L = 30.29375.
+  // CORPS_AMMOVIBLE in SOLID.6: the shaft r 8 (#8042, #8096; x -20.4999698039..-7) in the bore r 7.5
+  // (#9884, #9899; z -32.5..-2.5). The parts sit shoulder to shoulder: the end x = 0 of the shaft's r 10
+  // step (#7970, #7985; x -5..0) on the end z = -42.5 of the bore's r 10 step (#9840, #9855; z -42.5..-32.5),
+  // both at world y 127.284. The shaft starts 20.4999698039 before that shoulder, the bore r 7.5 ends 10
+  // before it (z -32.5): L = 10.4999698039 (world y 106.784..117.284).
+  const std::map<std::pair<std::string, std::string>, double> expected = {
+      {{"CAPTEUR_FORCE", "SOLID.5"}, ring(8, 7.25, 14)},                      // 503.0475
+      {{"CORPS_AMMOVIBLE", "PRT0001"}, ring(12, 9.646875, 30.29375)},         // 4847.782
+      {{"CORPS_AMMOVIBLE", "SOLID.6"}, ring(8, 7.5, 20.4999698039 - 10)}};    // 255.6464
   ASSERT_EQ(result.interferences.size(), 3u);
+  std::map<std::pair<std::string, std::string>, double> found;
+  for (const Interference& i : result.interferences)
+    found[{read.assembly.bodies[i.body_a].name, read.assembly.bodies[i.body_b].name}] = i.volume;
+  ASSERT_EQ(found.size(), 3u);
+  for (const auto& [pair, volume] : expected) {
+    ASSERT_TRUE(found.count(pair)) << pair.first << " / " << pair.second;
+    EXPECT_NEAR(found[pair], volume, 1e-6 * volume) << pair.first << " / " << pair.second;
+  }
   for (const Interference& i : result.interferences) {
-    // Each ring against the Boolean common of the two solids: the rings leave
-    // out what the chamfers beyond the cylinders share (at most 6 % here).
+    // The ring is part of the Boolean common of the two solids, which also
+    // holds what the chamfers beyond the cylinders share.
     const double boolean =
         volume_of(BRepAlgoAPI_Common(read.assembly.bodies[i.body_a].shape, read.assembly.bodies[i.body_b].shape).Shape());
     EXPECT_LE(i.volume, boolean * (1 + 1e-6));
-    EXPECT_GE(i.volume, 0.9 * boolean);
   }
   expect_same_serial_and_parallel(read.assembly);
 }

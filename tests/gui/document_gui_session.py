@@ -3,7 +3,8 @@ documents with contacts and joints saved, reopened, opened without the
 workbench and brought back. $CONTACTS_DOC_STEP says which part:
 
 - "make": builds a plate, a shaft in its bore and a block on it, finds their
-  contacts and joints (make_contact_analysis), saves to $CONTACTS_DOC_SAVED,
+  contacts and joints (tests/contacts_document.py, as tests/test_documents.py
+  does headless), saves to $CONTACTS_DOC_SAVED,
   closes and reopens it; then opens the version 1 fixture made headless
   ($CONTACTS_DOC_V1: no view providers saved, old properties).
 - "without" (no workbench installed): opens $CONTACTS_DOC_SAVED, saves it as
@@ -16,11 +17,16 @@ at module level: in the "without" step it must not be importable."""
 import importlib.util
 import json
 import os
+import sys
 import traceback
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtWidgets
+
+# tests/, for the document builder shared with tests/test_documents.py (FreeCAD runs this file with
+# only its own and the workbenches' folders on sys.path)
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 step = os.environ["CONTACTS_DOC_STEP"]
@@ -83,22 +89,8 @@ def screenshot(name):
 
 
 def make():
-    import Part
-    from contactwb.make import make_contact_analysis
-    doc = FreeCAD.newDocument("ContactsDoc")
-    plate = doc.addObject("Part::Feature", "Plate")
-    plate.Shape = Part.makeBox(40, 40, 10, FreeCAD.Vector(-20, -20, 0)).cut(Part.makeCylinder(5, 10))
-    shaft = doc.addObject("Part::Feature", "Shaft")
-    shaft.Shape = Part.makeCylinder(5, 30, FreeCAD.Vector(0, 0, -10))
-    block = doc.addObject("Part::Box", "Block")
-    block.Length, block.Width, block.Height = 10, 10, 5
-    block.Placement.Base = FreeCAD.Vector(8, 8, 10)
-    note = doc.addObject("App::FeaturePython", "Note")
-    note.addProperty("App::PropertyString", "Text", "Note", "")
-    note.Text = "kept"
-    doc.recompute()
-    make_contact_analysis(doc, derive_joints=True)
-    doc.recompute()
+    from contacts_document import build_contacts_document
+    doc = build_contacts_document()
     settle()
     report["made"] = describe(doc)
     path = os.environ["CONTACTS_DOC_SAVED"]

@@ -40,6 +40,17 @@ def face_sets(node):
     return [node.getChild(i) for i in range(node.getNumChildren()) if isinstance(node.getChild(i), coin.SoIndexedFaceSet)]
 
 
+def centre_on_screen(view, model):
+    """Where the centre of the model's bounding box (from its MeshPoints, not the scene graph) lands in
+    the view: (x, y) with (0, 0) bottom left and (1, 1) top right."""
+    points = [(p.x, p.y, p.z) for p in model.MeshPoints]
+    centre = [(min(c) + max(c)) / 2 for c in zip(*points)]
+    region = view.getViewer().getSoRenderManager().getViewportRegion()
+    volume = view.getCameraNode().getViewVolume(region.getViewportAspectRatio())
+    screen = volume.projectToScreen(coin.SbVec3f(*centre))
+    return list(screen.getValue())[:2]
+
+
 def run():
     main = FreeCADGui.getMainWindow()
     main.resize(1280, 960)
@@ -102,9 +113,11 @@ def run():
     path = os.path.join(out_dir, "simulation_model_front_cover.png")
     view.saveImage(path, 900, 700, "White")
     report["png"] = path
+    report["centre_on_screen"] = centre_on_screen(view, model)
     view.viewTop()
     view.fitAll()
     wait(0.3)
+    report["centre_on_screen_top"] = centre_on_screen(view, model)
     path = os.path.join(out_dir, "simulation_model_front_cover_top.png")
     view.saveImage(path, 900, 700, "White")
     report["png_top"] = path
