@@ -6,9 +6,11 @@
 //
 // Real-time use (the haptic servo loop): a CollisionModel is immutable after
 // build and can be shared by any number of threads; a CollisionPair holds the
-// per-pair state (partition masks, preallocated FCL requests and results,
-// scratch buffers) and serves one query at a time. After the first queries
-// have grown the scratch buffers, queries do not allocate.
+// per-pair state (partition masks, traversal stacks, the warm-start cache of
+// its last closest pair) and serves one query at a time: the thread that
+// queries it (the servo thread) owns it; give each thread its own pairs.
+// After the first queries have grown the scratch buffers, queries do not
+// allocate.
 #pragma once
 
 #include <array>
@@ -104,6 +106,15 @@ class CollisionPair {
              QueryResult& out);
 
   const CollisionModel& model(int side) const;
+
+  // Temporal coherence (on by default): a Distance query (and Penetration when apart) starts from
+  // the closest triangle pair of the pair's previous query, measured at the new placements, as its
+  // bound, so consecutive queries of a moving body traverse little more than the contact region.
+  // The traversal still visits every pair below that bound, so the answer is the cold one: the
+  // same distance, and the same closest points and partitions whenever the closest pair is unique
+  // (under an exact tie, e.g. parallel facets, either of the tied pairs). Switching partitions off
+  // or on needs nothing: a cached pair in a switched-off partition is not used.
+  void set_warm_start(bool enabled);
 
   // How deep a world point is inside body `side` (0: A, 1: B) placed by `place`: its distance to
   // that body's whole surface (switched-off partitions included) when inside, else 0. Inside is
