@@ -76,6 +76,8 @@ TaggedMesh sphere_mesh(double radius, std::size_t target_triangles) {
 struct Latency {
   double p50 = 0, p99 = 0, max = 0, per_second = 0;
   double cpu_p50 = 0, cpu_p99 = 0;  // the calling thread's CPU time: what the query costs on a busy machine
+  double bv_tests = 0, triangle_tests = 0;  // per query, mean: the work, whatever the machine's load
+  double bv_tests_p99 = 0;
 };
 
 double thread_cpu_micros() {
@@ -94,13 +96,19 @@ Latency time_queries(CollisionPair& pair, QueryKind kind, const std::vector<Rigi
   for (std::size_t i = 0; i < std::min<std::size_t>(100, placements.size()); ++i)
     pair.query(fixed, placements[i], kind, result);
   const auto all = Clock::now();
+  const CollisionPair::Counts before = pair.counts();
+  std::vector<double> tests;
+  tests.reserve(placements.size());
   for (const RigidTransform& place : placements) {
+    const std::size_t tests_before = pair.counts().bv_tests;
     const double cpu_start = thread_cpu_micros();
     const auto start = Clock::now();
     pair.query(fixed, place, kind, result);
     micros.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
     cpu.push_back(thread_cpu_micros() - cpu_start);
+    tests.push_back(static_cast<double>(pair.counts().bv_tests - tests_before));
   }
+  const CollisionPair::Counts after = pair.counts();
   const double total = seconds_since(all);
   std::sort(micros.begin(), micros.end());
   std::sort(cpu.begin(), cpu.end());
@@ -111,13 +119,19 @@ Latency time_queries(CollisionPair& pair, QueryKind kind, const std::vector<Rigi
   latency.per_second = placements.size() / total;
   latency.cpu_p50 = cpu[cpu.size() / 2];
   latency.cpu_p99 = cpu[static_cast<std::size_t>(cpu.size() * 0.99)];
+  latency.bv_tests = static_cast<double>(after.bv_tests - before.bv_tests) / placements.size();
+  latency.triangle_tests = static_cast<double>(after.triangle_tests - before.triangle_tests) / placements.size();
+  std::sort(tests.begin(), tests.end());
+  latency.bv_tests_p99 = tests[static_cast<std::size_t>(tests.size() * 0.99)];
   return latency;
 }
 
 void print_latency(const char* name, const Latency& l) {
   std::printf("    \"%s\": {\"p50_us\": %.2f, \"p99_us\": %.2f, \"max_us\": %.1f, \"per_second\": %.0f, "
-              "\"cpu_p50_us\": %.2f, \"cpu_p99_us\": %.2f},\n",
-              name, l.p50, l.p99, l.max, l.per_second, l.cpu_p50, l.cpu_p99);
+              "\"cpu_p50_us\": %.2f, \"cpu_p99_us\": %.2f, \"bv_tests\": %.0f, \"bv_tests_p99\": %.0f, "
+              "\"triangle_tests\": %.1f},\n",
+              name, l.p50, l.p99, l.max, l.per_second, l.cpu_p50, l.cpu_p99, l.bv_tests, l.bv_tests_p99,
+              l.triangle_tests);
 }
 
 struct Trajectory {

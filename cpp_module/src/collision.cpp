@@ -252,6 +252,10 @@ void CollisionPair::set_warm_start(bool enabled) {
   std::fill(state_->cached_hit.begin(), state_->cached_hit.end(), bvh::TriangleHit{-1, -1});
 }
 
+CollisionPair::Counts CollisionPair::counts() const {
+  return {state_->traversal.bv_tests, state_->traversal.triangle_tests};
+}
+
 bool CollisionPair::State::touching_near_cache(int pa, int pb) {
   const bvh::TriangleHit cached = cached_hit[static_cast<std::size_t>(pa) * enabled[1].size() + pb];
   if (cached.triangle_a < 0) return false;
@@ -259,6 +263,7 @@ bool CollisionPair::State::touching_near_cache(int pa, int pb) {
   const bvh::Bvh& bvh_b = *impl(1).subs[pb].bvh;
   fcl::Vector3d point_a, point_b;
   auto touches = [&](int ta, int tb) {
+    ++traversal.triangle_tests;
     if (bvh::Traversal::triangle_distance(bvh_a, ta, bvh_b, tb, relative, point_a, point_b) > kTouching) return false;
     hits.push_back({ta, tb});
     return true;
@@ -488,6 +493,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
         s.enabled[1][cached.partition_b]) {
       best.triangle_a = cached.triangle_a;
       best.triangle_b = cached.triangle_b;
+      ++s.traversal.triangle_tests;
       best.distance = bvh::Traversal::triangle_distance(*subs_a[cached.partition_a].bvh, cached.triangle_a,
                                                          *subs_b[cached.partition_b].bvh, cached.triangle_b,
                                                          s.relative, best.point_a, best.point_b);

@@ -116,6 +116,13 @@ class CollisionPair {
   // or on needs nothing: a cached pair in a switched-off partition is not used.
   void set_warm_start(bool enabled);
 
+  // Bounding-volume and triangle tests run by this pair's queries so far: the work of a query,
+  // independent of the machine's load (benchmarks, profiling).
+  struct Counts {
+    std::size_t bv_tests = 0, triangle_tests = 0;
+  };
+  Counts counts() const;
+
   // How deep a world point is inside body `side` (0: A, 1: B) placed by `place`: its distance to
   // that body's whole surface (switched-off partitions included) when inside, else 0. Inside is
   // judged by the angle-weighted pseudo-normal at the closest point.
