@@ -147,11 +147,30 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
       }
       continue;
     }
-    int child_a[4], child_b[4];
-    const int count = child_pairs(a, e.a, b, e.b, child_a, child_b);
-    bv_tests += count;
-    for (int k = count - 1; k >= 0; --k)
-      if (bv_overlap(a, child_a[k], b, child_b[k], rel)) stack_.push_back({child_a[k], child_b[k], 0});
+    // The node kept is transformed once for both children (FCL's overlap() would redo it per pair):
+    // the boxes' relative rotation is axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
+    const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
+    bv_tests += 2;
+    if (split_a) {
+      const fcl::OBBd& kept = nb.bv.obb;
+      const fcl::Matrix3d rotated = rel.R * kept.axis;
+      const Vector3d moved = rel.R * kept.To + rel.T;
+      for (int child : {na.rightChild(), na.leftChild()}) {
+        const fcl::OBBd& box = a.getBV(child).bv.obb;
+        if (!fcl::obbDisjoint<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
+                                      box.extent, kept.extent))
+          stack_.push_back({child, e.b, 0});
+      }
+    } else {
+      const fcl::OBBd& kept = na.bv.obb;
+      const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
+      const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
+      for (int child : {nb.rightChild(), nb.leftChild()}) {
+        const fcl::OBBd& box = b.getBV(child).bv.obb;
+        if (!fcl::obbDisjoint<double>(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent))
+          stack_.push_back({e.a, child, 0});
+      }
+    }
   }
   return hits.size() > before;
 }
