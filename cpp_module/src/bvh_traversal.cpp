@@ -30,35 +30,6 @@ inline double point_bv_distance(const Bvh& a, int node, const Vector3d& p) {
   return std::max(0.0, (local - on).norm() - rss.r);
 }
 
-// The children pairs of a node pair: the larger node split, as FCL does (a leaf never). Splitting
-// both when their sizes are close measured slower here (more pairs tested, a sort of four).
-inline int child_pairs(const Bvh& a, int node_a, const Bvh& b, int node_b, int out_a[4], int out_b[4]) {
-  const auto& na = a.getBV(node_a);
-  const auto& nb = b.getBV(node_b);
-  int count_a = 1, count_b = 1;
-  int ids_a[2] = {node_a, node_a}, ids_b[2] = {node_b, node_b};
-  const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
-  const bool split_b = !split_a;
-  if (split_a) {
-    ids_a[0] = na.leftChild();
-    ids_a[1] = na.rightChild();
-    count_a = 2;
-  }
-  if (split_b) {
-    ids_b[0] = nb.leftChild();
-    ids_b[1] = nb.rightChild();
-    count_b = 2;
-  }
-  int count = 0;
-  for (int i = 0; i < count_a; ++i)
-    for (int j = 0; j < count_b; ++j) {
-      out_a[count] = ids_a[i];
-      out_b[count] = ids_b[j];
-      ++count;
-    }
-  return count;
-}
-
 }  // namespace
 
 double Traversal::triangle_distance(const Bvh& a, int triangle_a, const Bvh& b, int triangle_b, const Relative& rel,
@@ -110,15 +81,38 @@ bool Traversal::distance(const Bvh& a, const Bvh& b, const Relative& rel, Closes
       }
       continue;
     }
-    int child_a[4], child_b[4];
-    const int count = child_pairs(a, e.a, b, e.b, child_a, child_b);
-    Entry children[4];
-    for (int k = 0; k < count; ++k) children[k] = {child_a[k], child_b[k], bv_distance(a, child_a[k], b, child_b[k], rel)};
-    bv_tests += count;
-    // Farthest pushed first: the nearest pair is visited first and lowers the bound for the other.
-    if (count == 2 && children[0].lower < children[1].lower) std::swap(children[0], children[1]);
-    for (int k = 0; k < count; ++k)
-      if (children[k].lower <= best.distance) stack_.push_back(children[k]);
+    // The kept node transformed once for both children (FCL's RSS distance would redo it per pair):
+    // the rectangles' relative rotation is axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
+    Entry children[2];
+    const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
+    bv_tests += 2;
+    if (split_a) {
+      const fcl::RSSd& kept = nb.bv.rss;
+      const fcl::Matrix3d rotated = rel.R * kept.axis;
+      const Vector3d moved = rel.R * kept.To + rel.T;
+      const int ids[2] = {na.leftChild(), na.rightChild()};
+      for (int k = 0; k < 2; ++k) {
+        const fcl::RSSd& box = a.getBV(ids[k]).bv.rss;
+        const double gap = fcl::rectDistance<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
+                                                     box.l, kept.l) - (box.r + kept.r);
+        children[k] = {ids[k], e.b, std::max(0.0, gap)};
+      }
+    } else {
+      const fcl::RSSd& kept = na.bv.rss;
+      const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
+      const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
+      const int ids[2] = {nb.leftChild(), nb.rightChild()};
+      for (int k = 0; k < 2; ++k) {
+        const fcl::RSSd& box = b.getBV(ids[k]).bv.rss;
+        const double gap = fcl::rectDistance<double>(rotation * box.axis, rotation * box.To + offset, kept.l, box.l) -
+                           (kept.r + box.r);
+        children[k] = {e.a, ids[k], std::max(0.0, gap)};
+      }
+    }
+    // The nearer pair pushed last: visited first, it lowers the bound for the other.
+    if (children[0].lower < children[1].lower) std::swap(children[0], children[1]);
+    for (const Entry& child : children)
+      if (child.lower <= best.distance) stack_.push_back(child);
   }
   return replaced;
 }
