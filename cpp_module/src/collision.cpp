@@ -344,13 +344,23 @@ Eigen::Vector3d pseudo_normal(const CollisionModel::Impl& impl, int t, const Eig
 }
 
 // Closest point of a body's whole surface (every partition) to world point p: its distance, the point
-// (world and body frame) and the mesh triangle it lies on (-1 when the body has none).
+// (world and body frame) and the mesh triangle it lies on (-1 when the body has none). `hint`, a
+// mesh triangle near p (-1: none), bounds the search from the start.
 double closest_point(const CollisionModel::Impl& impl, const fcl::Transform3d& transform, bvh::Traversal& traversal,
-                     const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local, int& triangle) {
+                     const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local, int& triangle,
+                     int hint = -1) {
   const Eigen::Vector3d in_body = transform.inverse(Eigen::Isometry) * p;
   bvh::Closest best;
   best.distance = std::numeric_limits<double>::infinity();
   triangle = -1;
+  if (hint >= 0) {
+    const int id = impl.local_triangle[hint];
+    ++traversal.triangle_tests;
+    best.distance = bvh::Traversal::point_triangle_distance(*impl.subs[impl.mesh.triangle_partition[hint]].bvh, id,
+                                                            in_body, best.point_a);
+    best.triangle_a = id;
+    triangle = hint;
+  }
   for (const auto& sub : impl.subs) {
     if (!sub.bvh) continue;
     if (box_gap(in_body, Eigen::Vector3d::Zero(), sub.center, sub.half) >= best.distance) continue;
@@ -529,9 +539,15 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   // Inside and depth are judged against the other body's whole surface, its
   // switched-off partitions included: without them it would not be closed.
   // Closest point of `side`'s surface to world point p (distance, point, triangle).
+  // The flood moves from vertex to neighbouring vertex: the triangle closest to the last one tested
+  // on a side bounds the next search on that side.
+  int last_closest[2] = {-1, -1};
   auto closest_on = [&](int side, const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local,
                         int& triangle) {
-    return closest_point(s.impl(side), s.transform[side], s.traversal, p, closest, local, triangle);
+    const double gap =
+        closest_point(s.impl(side), s.transform[side], s.traversal, p, closest, local, triangle, last_closest[side]);
+    if (triangle >= 0) last_closest[side] = triangle;
+    return gap;
   };
   std::size_t tested[2] = {0, 0};
   while (!s.stack.empty()) {
