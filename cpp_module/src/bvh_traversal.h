@@ -35,6 +35,13 @@ struct TriangleHit {
 
 class Traversal {
  public:
+  // A depth-first stack holds about one entry per level of both trees: reserved for trees up to
+  // 512 levels deep together, so that queries do not allocate (deeper trees grow it once).
+  Traversal() {
+    stack_.reserve(1024);
+    single_stack_.reserve(1024);
+  }
+
   // Exact distance of one triangle pair (the routine the traversals use: same inputs, same bits).
   static double triangle_distance(const Bvh& a, int triangle_a, const Bvh& b, int triangle_b, const Relative& rel,
                                   fcl::Vector3d& point_a, fcl::Vector3d& point_b);

@@ -23,6 +23,7 @@ using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
 constexpr std::size_t kMaxContactsPerPair = 512;  // intersecting triangle pairs kept per partition pair
 constexpr std::size_t kMaxFloodVertices = 4096;   // vertices tested for depth per side and query
 constexpr double kTouching = 1e-12;               // mm: triangles this close intersect
+constexpr std::size_t kMaxRing = 16;  // a triangle and those sharing a corner (13 on a regular mesh)
 }  // namespace
 
 struct CollisionModel::Impl {
@@ -224,6 +225,7 @@ CollisionPair::CollisionPair(CollisionModelPtr a, CollisionModelPtr b) : state_(
   s.candidates.reserve(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count());
   s.stack.reserve(kMaxFloodVertices * 4);
   s.hits.reserve(kMaxContactsPerPair);
+  for (auto& ring : s.ring) ring.reserve(kMaxRing);
   s.cached_hit.assign(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count(),
                       {-1, -1});
 }
@@ -270,7 +272,6 @@ bool CollisionPair::State::touching_near_cache(int pa, int pb) {
   };
   if (touches(cached.triangle_a, cached.triangle_b)) return true;
   // The crossing moves a little between ticks: look among the triangles around the cached ones.
-  constexpr std::size_t kMaxRing = 16;  // a triangle and those sharing a corner: 13 on a regular mesh
   const int partition[2] = {pa, pb}, local[2] = {cached.triangle_a, cached.triangle_b};
   for (int side = 0; side < 2; ++side) {
     const CollisionModel::Impl& body = impl(side);
