@@ -192,15 +192,17 @@ Assembly cube_grid(int side) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // --collision-only: the sphere queries alone (for profiling them).
+  // --collision-only [TRIANGLES]: the sphere queries alone (for profiling them), optionally on
+  // spheres of another size.
   const bool collision_only = argc > 1 && std::string(argv[1]) == "--collision-only";
+  const std::size_t sphere_triangles = collision_only && argc > 2 ? std::stoul(argv[2]) : 100000;
   const std::string motor_path = argc > 1 && !collision_only ? argv[1] : "Resources/samples/motor.step";
-  const int grid_side = argc > 2 ? std::atoi(argv[2]) : 10;
+  const int grid_side = argc > 2 && !collision_only ? std::atoi(argv[2]) : 10;
   std::setvbuf(stdout, nullptr, _IONBF, 0);  // each section shows as soon as it is measured
   std::printf("{\n");
 
   // 1. Two spheres of radius 20, about 100,000 triangles each, near contact.
-  const TaggedMesh sphere = sphere_mesh(20, 100000);
+  const TaggedMesh sphere = sphere_mesh(20, sphere_triangles);
   const CollisionModelResult model = build_collision_model(sphere);
   if (!model.status.ok()) {
     std::fprintf(stderr, "%s\n", model.status.describe().c_str());
