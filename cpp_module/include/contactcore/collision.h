@@ -73,8 +73,10 @@ enum class QueryKind {
 
 struct QueryResult {
   bool intersecting = false;
-  double distance = 0;             // >= 0; 0 when the surfaces intersect
-  std::array<double, 3> point_a{};  // closest points, world coordinates
+  double distance = 0;             // >= 0; 0 when the surfaces intersect; infinity when not measured
+  // Closest points, world coordinates, and their triangles: of the closest pair when apart (ties
+  // go to the lower partition, then triangle ids), of one touching pair when intersecting.
+  std::array<double, 3> point_a{};
   std::array<double, 3> point_b{};
   int triangle_a = -1, triangle_b = -1;  // indices into each mesh's triangles
   int face_a = 0, face_b = 0;            // 1-based FaceN
