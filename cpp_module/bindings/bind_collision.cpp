@@ -74,6 +74,8 @@ void bind_collision(py::module_& m) {
       .def("partition_enabled", &CollisionPair::partition_enabled, py::arg("side"), py::arg("partition"))
       .def("set_warm_start", &CollisionPair::set_warm_start, py::arg("enabled"),
            "Start each query from the previous one's closest or touching pair (default on; same answers)")
+      .def("set_distance_limit", &CollisionPair::set_distance_limit, py::arg("limit"),
+           "Distances above the limit answer infinity (farther); negative: always exact (the default)")
       .def("counts",
            [](const CollisionPair& pair) {
              const CollisionPair::Counts c = pair.counts();

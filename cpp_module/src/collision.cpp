@@ -48,6 +48,7 @@ struct CollisionPair::State {
   std::vector<bvh::TriangleHit> cached_hit;
   std::vector<int> ring[2];
   bool warm_start = true;
+  double distance_limit = std::numeric_limits<double>::infinity();
 
   // Whether the cached touching pair of partitions (pa, pb), or a pair of triangles sharing a corner
   // with it, still touches at the current placements; the touching pair found goes into `hits`.
@@ -103,6 +104,10 @@ void CollisionPair::set_warm_start(bool enabled) {
   state_->warm_start = enabled;
   state_->cached_closest = {};
   std::fill(state_->cached_hit.begin(), state_->cached_hit.end(), bvh::TriangleHit{-1, -1});
+}
+
+void CollisionPair::set_distance_limit(double limit) {
+  state_->distance_limit = limit >= 0 ? limit : std::numeric_limits<double>::infinity();
 }
 
 CollisionPair::Counts CollisionPair::counts() const {
@@ -361,6 +366,10 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
                                                          s.relative, best.point_a, best.point_b);
       best_pa = cached.partition_a;
       best_pb = cached.partition_b;
+    }
+    if (best.distance > s.distance_limit) {  // beyond the limit nothing is measured: start from it
+      best.distance = s.distance_limit;
+      best_pa = best_pb = -1;
     }
     std::sort(s.candidates.begin(), s.candidates.end(),
               [](const State::Candidate& x, const State::Candidate& y) { return x.lower_bound < y.lower_bound; });

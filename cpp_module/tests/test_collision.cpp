@@ -401,3 +401,47 @@ TEST(Collision, WarmIntersectWitnessTouches) {
     EXPECT_EQ(result.partition_b, a.mesh.triangle_partition[result.triangle_b]);
   }
 }
+
+// With a distance limit, the distances at or below it are the exact ones and those above it are
+// "farther" (infinity), warm or cold; the pruned search does less work.
+TEST(Collision, DistanceLimitAnswersFartherBeyondIt) {
+  const Body a = make_body(BRepPrimAPI_MakeSphere(5).Shape());
+  CollisionPair exact(a.model, a.model), limited(a.model, a.model), limited_cold(a.model, a.model);
+  limited.set_distance_limit(0.525);
+  limited_cold.set_distance_limit(0.525);
+  limited_cold.set_warm_start(false);
+  int below = 0, beyond = 0;
+  std::size_t exact_work = 0, limited_work = 0;  // bounding-volume tests of the placements beyond
+  for (int i = 0; i < 20; ++i) {
+    const double gap = -0.2 + 0.05 * i;  // the spheres' gap, from crossing to 0.75 apart
+    const RigidTransform place = RigidTransform::translated(10 + gap, 0.002 * i, 0.002);
+    QueryResult e, l, c;
+    const std::size_t exact_before = exact.counts().bv_tests, limited_before = limited.counts().bv_tests;
+    exact.query(RigidTransform::identity(), place, QueryKind::Distance, e);
+    limited.query(RigidTransform::identity(), place, QueryKind::Distance, l);
+    limited_cold.query(RigidTransform::identity(), place, QueryKind::Distance, c);
+    for (const QueryResult* r : {&l, &c}) {
+      if (e.distance <= 0.525) {
+        EXPECT_NEAR(r->distance, e.distance, 1e-12) << i;
+        EXPECT_EQ(r->intersecting, e.intersecting) << i;
+        if (!e.intersecting)
+          for (int k = 0; k < 3; ++k) EXPECT_NEAR(r->point_a[k], e.point_a[k], 1e-12) << i;
+      } else {
+        EXPECT_TRUE(std::isinf(r->distance)) << i;
+        EXPECT_FALSE(r->intersecting) << i;
+        EXPECT_EQ(r->triangle_a, -1) << i;
+      }
+    }
+    if (e.distance <= 0.525) ++below;
+    else {
+      ++beyond;
+      exact_work += exact.counts().bv_tests - exact_before;
+      limited_work += limited.counts().bv_tests - limited_before;
+    }
+  }
+  EXPECT_LT(limited_work, exact_work);
+  // The meshes' gap exceeds the spheres' by at most twice the deflection (0.01; vertices on the
+  // spheres): gaps up to 0.5 (i <= 14) stay below 0.525, gaps from 0.55 (i >= 15) beyond it.
+  EXPECT_EQ(below, 15);
+  EXPECT_EQ(beyond, 5);
+}

@@ -118,6 +118,12 @@ class CollisionPair {
   // or on needs nothing: a cached pair in a switched-off partition is not used.
   void set_warm_start(bool enabled);
 
+  // Distances above `limit` are not needed (a haptic loop's safety distance): Distance, and
+  // Penetration when apart, then answer "farther": distance infinity, no points, at the cost of a
+  // search pruned at the limit. Exact below and at the limit. Default infinity (always exact);
+  // a negative limit restores it.
+  void set_distance_limit(double limit);
+
   // Bounding-volume and triangle tests run by this pair's queries so far: the work of a query,
   // independent of the machine's load (benchmarks, profiling).
   struct Counts {
