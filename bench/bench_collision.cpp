@@ -76,6 +76,8 @@ TaggedMesh sphere_mesh(double radius, std::size_t target_triangles) {
 struct Latency {
   double p50 = 0, p99 = 0, max = 0, per_second = 0;
   double cpu_p50 = 0, cpu_p99 = 0;  // the calling thread's CPU time: what the query costs on a busy machine
+  double bv_tests = 0, triangle_tests = 0;  // per query, mean: the work, whatever the machine's load
+  double bv_tests_p99 = 0;
 };
 
 double thread_cpu_micros() {
@@ -94,13 +96,19 @@ Latency time_queries(CollisionPair& pair, QueryKind kind, const std::vector<Rigi
   for (std::size_t i = 0; i < std::min<std::size_t>(100, placements.size()); ++i)
     pair.query(fixed, placements[i], kind, result);
   const auto all = Clock::now();
+  const CollisionPair::Counts before = pair.counts();
+  std::vector<double> tests;
+  tests.reserve(placements.size());
   for (const RigidTransform& place : placements) {
+    const std::size_t tests_before = pair.counts().bv_tests;
     const double cpu_start = thread_cpu_micros();
     const auto start = Clock::now();
     pair.query(fixed, place, kind, result);
     micros.push_back(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
     cpu.push_back(thread_cpu_micros() - cpu_start);
+    tests.push_back(static_cast<double>(pair.counts().bv_tests - tests_before));
   }
+  const CollisionPair::Counts after = pair.counts();
   const double total = seconds_since(all);
   std::sort(micros.begin(), micros.end());
   std::sort(cpu.begin(), cpu.end());
@@ -111,7 +119,63 @@ Latency time_queries(CollisionPair& pair, QueryKind kind, const std::vector<Rigi
   latency.per_second = placements.size() / total;
   latency.cpu_p50 = cpu[cpu.size() / 2];
   latency.cpu_p99 = cpu[static_cast<std::size_t>(cpu.size() * 0.99)];
+  latency.bv_tests = static_cast<double>(after.bv_tests - before.bv_tests) / placements.size();
+  latency.triangle_tests = static_cast<double>(after.triangle_tests - before.triangle_tests) / placements.size();
+  std::sort(tests.begin(), tests.end());
+  latency.bv_tests_p99 = tests[static_cast<std::size_t>(tests.size() * 0.99)];
   return latency;
+}
+
+void print_latency(const char* name, const Latency& l) {
+  std::printf("    \"%s\": {\"p50_us\": %.2f, \"p99_us\": %.2f, \"max_us\": %.1f, \"per_second\": %.0f, "
+              "\"cpu_p50_us\": %.2f, \"cpu_p99_us\": %.2f, \"bv_tests\": %.0f, \"bv_tests_p99\": %.0f, "
+              "\"triangle_tests\": %.1f},\n",
+              name, l.p50, l.p99, l.max, l.per_second, l.cpu_p50, l.cpu_p99, l.bv_tests, l.bv_tests_p99,
+              l.triangle_tests);
+}
+
+struct Trajectory {
+  std::vector<RigidTransform> placements;
+  double max_step = 0, max_turn = 0;  // largest move of B's centre (mm) and turn (rad) in one tick
+  int crossing = 0;                   // ticks with the surfaces' gap below 0 (meshes crossing)
+};
+
+// B's centre on a circle of radius 40 + gap about A's centre (A at the origin, radius 20), sliding
+// 20 mm/s along it in a tilted plane; the gap swings between -0.05 and 0.2 mm every 2 s; B turns
+// about its own axis at 0.3 rad/s. At 1 kHz: 0.02 mm and 0.0003 rad per tick, a hand moving slowly
+// and carefully near contact.
+Trajectory trajectory(int ticks) {
+  Trajectory path;
+  const double dt = 1e-3, slide = 20.0 / 40.0, spin = 0.3;  // rad/s of the centre about A, of B about itself
+  std::array<double, 3> previous{};
+  for (int i = 0; i < ticks; ++i) {
+    const double t = i * dt;
+    const double gap = 0.075 + 0.125 * std::sin(2 * M_PI * t / 2.0);
+    const double r = 40 + gap, angle = slide * t, tilt = 0.3;
+    RigidTransform place;
+    place.translation = {r * std::cos(angle), r * std::sin(angle) * std::cos(tilt), r * std::sin(angle) * std::sin(tilt)};
+    const double c = std::cos(spin * t), s = std::sin(spin * t);
+    const double axis[3] = {0.6, 0.0, 0.8};  // unit
+    // Rodrigues: R = c I + s [axis]x + (1 - c) axis axis^T
+    for (int row = 0; row < 3; ++row)
+      for (int col = 0; col < 3; ++col) {
+        double value = (1 - c) * axis[row] * axis[col] + (row == col ? c : 0);
+        const int cross[3][3] = {{0, -3, 2}, {3, 0, -1}, {-2, 1, 0}};  // +-(k+1): [axis]x entries
+        const int k = cross[row][col];
+        if (k != 0) value += s * (k > 0 ? axis[k - 1] : -axis[-k - 1]);
+        place.rotation[3 * row + col] = value;
+      }
+    if (i > 0) {
+      const double dx = place.translation[0] - previous[0], dy = place.translation[1] - previous[1],
+                   dz = place.translation[2] - previous[2];
+      path.max_step = std::max(path.max_step, std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    previous = place.translation;
+    if (gap < 0) ++path.crossing;
+    path.placements.push_back(place);
+  }
+  path.max_turn = spin * dt;
+  return path;
 }
 
 Assembly cube_grid(int side) {
@@ -128,13 +192,17 @@ Assembly cube_grid(int side) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::string motor_path = argc > 1 ? argv[1] : "Resources/samples/motor.step";
-  const int grid_side = argc > 2 ? std::atoi(argv[2]) : 10;
+  // --collision-only [TRIANGLES]: the sphere queries alone (for profiling them), optionally on
+  // spheres of another size.
+  const bool collision_only = argc > 1 && std::string(argv[1]) == "--collision-only";
+  const std::size_t sphere_triangles = collision_only && argc > 2 ? std::stoul(argv[2]) : 100000;
+  const std::string motor_path = argc > 1 && !collision_only ? argv[1] : "Resources/samples/motor.step";
+  const int grid_side = argc > 2 && !collision_only ? std::atoi(argv[2]) : 10;
   std::setvbuf(stdout, nullptr, _IONBF, 0);  // each section shows as soon as it is measured
   std::printf("{\n");
 
   // 1. Two spheres of radius 20, about 100,000 triangles each, near contact.
-  const TaggedMesh sphere = sphere_mesh(20, 100000);
+  const TaggedMesh sphere = sphere_mesh(20, sphere_triangles);
   const CollisionModelResult model = build_collision_model(sphere);
   if (!model.status.ok()) {
     std::fprintf(stderr, "%s\n", model.status.describe().c_str());
@@ -153,18 +221,43 @@ int main(int argc, char** argv) {
     placements.push_back(RigidTransform::translated(d * dx / n, d * dy / n, d * dz / n));
     if (g > 0) apart.push_back(placements.back());
   }
+  // Cold: every query on its own (no warm start), as a first contact or a jump would be.
+  pair.set_warm_start(false);
   const Latency distance = time_queries(pair, QueryKind::Distance, placements);
   const Latency distance_apart = time_queries(pair, QueryKind::Distance, apart);
   const Latency intersect = time_queries(pair, QueryKind::Intersect, placements);
+  const Latency intersect_apart = time_queries(pair, QueryKind::Intersect, apart);
   const Latency penetration = time_queries(pair, QueryKind::Penetration, placements);
   std::printf("  \"collision\": {\"triangles\": %zu, \"watertight\": %s,\n", sphere.triangles.size(),
               mesh_quality(sphere).watertight ? "true" : "false");
   for (auto [name, l] : {std::pair<const char*, Latency>{"distance", distance}, {"distance_apart", distance_apart},
-                         {"intersect", intersect}, {"penetration", penetration}})
-    std::printf("    \"%s\": {\"p50_us\": %.2f, \"p99_us\": %.2f, \"max_us\": %.1f, \"per_second\": %.0f, "
-                "\"cpu_p50_us\": %.2f, \"cpu_p99_us\": %.2f},\n",
-                name, l.p50, l.p99, l.max, l.per_second, l.cpu_p50, l.cpu_p99);
+                         {"intersect", intersect}, {"intersect_apart", intersect_apart}, {"penetration", penetration}})
+    print_latency(name, l);
   std::printf("    \"queries\": %zu},\n", placements.size());
+
+  // The haptic loop: B moved at 1 kHz along a continuous path, sliding around A while it approaches,
+  // touches and sinks in (the gap between the surfaces as in the cold placements), turning about its
+  // own axis; the pair keeps its warm start from tick to tick.
+  const Trajectory path = trajectory(5000);
+  pair.set_warm_start(true);
+  const Latency distance_path = time_queries(pair, QueryKind::Distance, path.placements);
+  const Latency intersect_path = time_queries(pair, QueryKind::Intersect, path.placements);
+  const Latency penetration_path = time_queries(pair, QueryKind::Penetration, path.placements);
+  pair.set_warm_start(false);
+  const Latency distance_path_cold = time_queries(pair, QueryKind::Distance, path.placements);
+  const Latency intersect_path_cold = time_queries(pair, QueryKind::Intersect, path.placements);
+  std::printf("  \"trajectory\": {\"ticks\": %zu, \"rate_hz\": 1000, \"max_step_mm\": %.4f, \"max_turn_rad\": %.5f, "
+              "\"crossing_ticks\": %d,\n",
+              path.placements.size(), path.max_step, path.max_turn, path.crossing);
+  for (auto [name, l] : {std::pair<const char*, Latency>{"distance", distance_path}, {"intersect", intersect_path},
+                         {"penetration", penetration_path}, {"distance_cold", distance_path_cold},
+                         {"intersect_cold", intersect_path_cold}})
+    print_latency(name, l);
+  std::printf("    \"queries\": %zu}%s\n", path.placements.size(), collision_only ? "" : ",");
+  if (collision_only) {
+    std::printf("}\n");
+    return 0;
+  }
 
   // 2. The motor: tessellation (deflection 0.1) and disassembly.
   const AssemblyResult motor = read_step(motor_path);

@@ -195,3 +195,12 @@ def test_collision_query_from_python_matches_hand_values():
         assert gap == pytest.approx(result.distance, abs=1e-9)
     with pytest.raises(ValueError):
         pair.query(None, None, "sideways")
+    # Warm start (the default) and cold give the same answers along a lift; the counts say work was done.
+    cold = core.contactcore.CollisionPair(block, pin)
+    cold.set_warm_start(False)
+    for step in range(20):
+        place = ((1, 0, 0, 0, 1, 0, 0, 0, 1), (0.01 * step, 0, 3.0 - 0.1 * step))
+        warm_result, cold_result = pair.query(None, place, "distance"), cold.query(None, place, "distance")
+        assert warm_result.distance == pytest.approx(cold_result.distance, abs=1e-12)
+        assert warm_result.intersecting == cold_result.intersecting
+    assert all(count > 0 for count in pair.counts())

@@ -72,6 +72,16 @@ void bind_collision(py::module_& m) {
            py::arg("enabled"), "side 0: A, 1: B")
       .def("enable_all", &CollisionPair::enable_all)
       .def("partition_enabled", &CollisionPair::partition_enabled, py::arg("side"), py::arg("partition"))
+      .def("set_warm_start", &CollisionPair::set_warm_start, py::arg("enabled"),
+           "Start each query from the previous one's closest or touching pair (default on; same answers)")
+      .def("set_distance_limit", &CollisionPair::set_distance_limit, py::arg("limit"),
+           "Distances above the limit answer infinity (farther); negative: always exact (the default)")
+      .def("counts",
+           [](const CollisionPair& pair) {
+             const CollisionPair::Counts c = pair.counts();
+             return py::make_tuple(c.bv_tests, c.triangle_tests);
+           },
+           "(bounding-volume tests, triangle tests) run by this pair's queries so far")
       .def(
           "query",
           [](CollisionPair& pair, py::object place_a, py::object place_b, const std::string& kind) {

@@ -1,161 +1,26 @@
 // Collision queries on FCL 0.7: one OBBRSS BVH per partition of a body (so a
-// partition is switched off by a flag, never by a rebuild), pruned per query
-// by the partitions' world boxes; penetration from the mesh vertices of one
+// partition is switched off by a flag, never by a rebuild; built in
+// collision_model.cpp), pruned per query by the partitions' world boxes,
+// traversed by bvh_traversal.cpp; penetration from the mesh vertices of one
 // body inside the other, found by flooding from the intersecting triangles.
 #include "contactcore/collision.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
-#include <cstdint>
 #include <limits>
-#include <unordered_map>
 
-#include <fcl/geometry/bvh/BVH_model.h>
-#include <fcl/geometry/shape/sphere.h>
-#include <fcl/math/bv/OBBRSS.h>
-#include <fcl/narrowphase/collision.h>
-#include <fcl/narrowphase/distance.h>
+#include "bvh_traversal.h"
+#include "collision_model.h"
 
 namespace contactcore {
 
 namespace {
-using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
 constexpr std::size_t kMaxContactsPerPair = 512;  // intersecting triangle pairs kept per partition pair
 constexpr std::size_t kMaxFloodVertices = 4096;   // vertices tested for depth per side and query
 constexpr double kTouching = 1e-12;               // mm: triangles this close intersect
+constexpr std::size_t kMaxRing = 16;  // a triangle and those sharing a corner (13 on a regular mesh)
 }  // namespace
-
-struct CollisionModel::Impl {
-  struct Sub {
-    std::shared_ptr<Bvh> bvh;          // null when the partition has no triangles
-    std::vector<int> triangle;         // local triangle -> mesh triangle
-    Eigen::Vector3d center{0, 0, 0};   // local axis-aligned box
-    Eigen::Vector3d half{-1, -1, -1};
-  };
-  TaggedMesh mesh;
-  std::vector<Sub> subs;                     // one per partition
-  std::vector<Eigen::Vector3d> normals;      // unit normal of each triangle
-  // Angle-weighted pseudo-normals (Baerentzen and Aanaes): the sign of
-  // (p - closest) . normal tells inside from outside wherever the closest
-  // point falls, face, edge or vertex.
-  std::vector<Eigen::Vector3d> vertex_normals;
-  std::vector<Eigen::Vector3d> edge_normals;  // 3 per triangle, edge (v[k], v[k+1])
-  std::vector<int> adjacency_start, adjacency;  // vertex -> neighbouring vertices (CSR)
-};
-
-CollisionModel::CollisionModel() : impl_(std::make_unique<Impl>()) {}
-CollisionModel::~CollisionModel() = default;
-int CollisionModel::partition_count() const { return static_cast<int>(impl_->subs.size()); }
-std::size_t CollisionModel::triangle_count() const { return impl_->mesh.triangles.size(); }
-const TaggedMesh& CollisionModel::mesh() const { return impl_->mesh; }
-
-CollisionModelResult build_collision_model(const TaggedMesh& mesh) {
-  CollisionModelResult result;
-  const std::size_t n = mesh.triangles.size();
-  if (n == 0 || mesh.triangle_partition.size() != n || mesh.triangle_face.size() != n) {
-    result.status = Status::failure(StatusCode::InvalidInput, "collision model of an empty or untagged mesh");
-    return result;
-  }
-  int partitions = mesh.partition_count;
-  for (int p : mesh.triangle_partition) {
-    if (p < 0) {
-      result.status = Status::failure(StatusCode::InvalidInput, "a triangle has no partition");
-      return result;
-    }
-    partitions = std::max(partitions, p + 1);
-  }
-  for (const auto& t : mesh.triangles)
-    for (int v : t)
-      if (v < 0 || v >= static_cast<int>(mesh.vertices.size())) {
-        result.status = Status::failure(StatusCode::InvalidInput, "a triangle refers to a missing vertex");
-        return result;
-      }
-
-  std::shared_ptr<CollisionModel> model(new CollisionModel());
-  CollisionModel::Impl& impl = *model->impl_;
-  impl.mesh = mesh;
-  impl.mesh.partition_count = partitions;
-  impl.subs.resize(partitions);
-  std::vector<std::vector<int>> members(partitions);
-  for (std::size_t i = 0; i < n; ++i) members[mesh.triangle_partition[i]].push_back(static_cast<int>(i));
-
-  for (int p = 0; p < partitions; ++p) {
-    if (members[p].empty()) continue;
-    CollisionModel::Impl::Sub& sub = impl.subs[p];
-    sub.triangle = members[p];
-    // Local vertex numbering of the partition's triangles.
-    std::vector<int> local(mesh.vertices.size(), -1);
-    std::vector<fcl::Vector3d> points;
-    std::vector<fcl::Triangle> triangles;
-    for (int t : members[p]) {
-      int corner[3];
-      for (int k = 0; k < 3; ++k) {
-        const int v = mesh.triangles[t][k];
-        if (local[v] < 0) {
-          local[v] = static_cast<int>(points.size());
-          points.emplace_back(mesh.vertices[v][0], mesh.vertices[v][1], mesh.vertices[v][2]);
-        }
-        corner[k] = local[v];
-      }
-      triangles.emplace_back(corner[0], corner[1], corner[2]);
-    }
-    sub.bvh = std::make_shared<Bvh>();
-    sub.bvh->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
-    sub.bvh->addSubModel(points, triangles);
-    sub.bvh->endModel();
-    sub.bvh->computeLocalAABB();
-    sub.center = sub.bvh->aabb_local.center();
-    sub.half = 0.5 * (sub.bvh->aabb_local.max_ - sub.bvh->aabb_local.min_);
-  }
-
-  impl.normals.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& t = mesh.triangles[i];
-    const Eigen::Vector3d a(mesh.vertices[t[0]].data()), b(mesh.vertices[t[1]].data()), c(mesh.vertices[t[2]].data());
-    const Eigen::Vector3d normal = (b - a).cross(c - a);
-    impl.normals[i] = normal.norm() > 0 ? normal.normalized() : Eigen::Vector3d::Zero();
-  }
-  impl.vertex_normals.assign(mesh.vertices.size(), Eigen::Vector3d::Zero());
-  impl.edge_normals.assign(3 * n, Eigen::Vector3d::Zero());
-  std::unordered_map<std::uint64_t, std::vector<int>> edge_uses;  // edge -> triangle * 3 + k
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& t = mesh.triangles[i];
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d p(mesh.vertices[t[k]].data()), q(mesh.vertices[t[(k + 1) % 3]].data()),
-          r(mesh.vertices[t[(k + 2) % 3]].data());
-      const Eigen::Vector3d e1 = q - p, e2 = r - p;
-      if (e1.norm() > 0 && e2.norm() > 0)
-        impl.vertex_normals[t[k]] += std::acos(std::clamp(e1.normalized().dot(e2.normalized()), -1.0, 1.0)) *
-                                     impl.normals[i];
-      const int a = std::min(t[k], t[(k + 1) % 3]), b = std::max(t[k], t[(k + 1) % 3]);
-      edge_uses[(static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b)].push_back(
-          static_cast<int>(3 * i + k));
-    }
-  }
-  for (auto& normal : impl.vertex_normals)
-    if (normal.norm() > 0) normal.normalize();
-  for (const auto& [edge, uses] : edge_uses) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (int use : uses) sum += impl.normals[use / 3];
-    if (sum.norm() > 0) sum.normalize();
-    for (int use : uses) impl.edge_normals[use] = sum;
-  }
-  // Vertex adjacency through triangle edges (each neighbour listed once per edge use).
-  std::vector<int> degree(mesh.vertices.size() + 1, 0);
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) degree[t[k] + 1] += 2;
-  for (std::size_t v = 1; v < degree.size(); ++v) degree[v] += degree[v - 1];
-  impl.adjacency_start = degree;
-  impl.adjacency.resize(degree.back());
-  std::vector<int> fill(degree.begin(), degree.end() - 1);
-  for (const auto& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) {
-      impl.adjacency[fill[t[k]]++] = t[(k + 1) % 3];
-      impl.adjacency[fill[t[k]]++] = t[(k + 2) % 3];
-    }
-  result.model = model;
-  return result;
-}
 
 // ------------------------------------------------------------------ pair state
 
@@ -170,21 +35,24 @@ struct CollisionPair::State {
   };
   std::vector<Candidate> candidates;
   fcl::Transform3d transform[2];
-  fcl::CollisionRequestd collide_first, collide_all;
-  fcl::CollisionResultd collide_result;
-  fcl::DistanceRequestd distance_request;
-  fcl::DistanceResultd distance_result;
-  // A point, as a one-triangle mesh 1e-12 mm across: FCL fits an oriented box to a shape on every
-  // mesh-shape query (an eigen-decomposition), not to a mesh it already holds.
-  std::shared_ptr<Bvh> point = [] {
-    auto model = std::make_shared<Bvh>();
-    const std::vector<fcl::Vector3d> corners{{0, 0, 0}, {1e-12, 0, 0}, {0, 1e-12, 0}};
-    const std::vector<fcl::Triangle> triangle{{0, 1, 2}};
-    model->beginModel(1, 3);
-    model->addSubModel(corners, triangle);
-    model->endModel();
-    return model;
-  }();
+  bvh::Relative relative;  // B in A's frame
+  bvh::Traversal traversal;
+  std::vector<bvh::TriangleHit> hits;
+  // Warm start of Distance: the last closest pair (partitions, local triangles), -1 when none.
+  struct Cached {
+    int partition_a = -1, partition_b = -1, triangle_a = -1, triangle_b = -1;
+  };
+  Cached cached_closest;
+  // Warm start of Intersect: per partition pair (a * partitions of B + b), the last touching pair of
+  // local triangles, {-1, -1} when none; and the triangles around a cached one (scratch).
+  std::vector<bvh::TriangleHit> cached_hit;
+  std::vector<int> ring[2];
+  bool warm_start = true;
+  double distance_limit = std::numeric_limits<double>::infinity();
+
+  // Whether the cached touching pair of partitions (pa, pb), or a pair of triangles sharing a corner
+  // with it, still touches at the current placements; the touching pair found goes into `hits`.
+  bool touching_near_cache(int pa, int pb);
   // Penetration flood: visit stamps per vertex, a stack, the seeds.
   std::vector<unsigned> stamp[2];
   unsigned query_stamp = 0;
@@ -208,12 +76,10 @@ CollisionPair::CollisionPair(CollisionModelPtr a, CollisionModelPtr b) : state_(
   }
   s.candidates.reserve(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count());
   s.stack.reserve(kMaxFloodVertices * 4);
-  s.collide_first.num_max_contacts = 1;
-  s.collide_all.num_max_contacts = kMaxContactsPerPair;
-  s.collide_result.clear();
-  s.distance_request.enable_nearest_points = true;
-  s.distance_request.rel_err = 0;
-  s.distance_request.abs_err = 0;
+  s.hits.reserve(kMaxContactsPerPair);
+  for (auto& ring : s.ring) ring.reserve(kMaxRing);
+  s.cached_hit.assign(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count(),
+                      {-1, -1});
 }
 
 CollisionPair::~CollisionPair() = default;
@@ -232,6 +98,54 @@ bool CollisionPair::partition_enabled(int side, int partition) const {
   if (side < 0 || side > 1) return false;
   const auto& flags = state_->enabled[side];
   return partition >= 0 && partition < static_cast<int>(flags.size()) && flags[partition];
+}
+
+void CollisionPair::set_warm_start(bool enabled) {
+  state_->warm_start = enabled;
+  state_->cached_closest = {};
+  std::fill(state_->cached_hit.begin(), state_->cached_hit.end(), bvh::TriangleHit{-1, -1});
+}
+
+void CollisionPair::set_distance_limit(double limit) {
+  state_->distance_limit = limit >= 0 ? limit : std::numeric_limits<double>::infinity();
+}
+
+CollisionPair::Counts CollisionPair::counts() const {
+  return {state_->traversal.bv_tests, state_->traversal.triangle_tests};
+}
+
+bool CollisionPair::State::touching_near_cache(int pa, int pb) {
+  const bvh::TriangleHit cached = cached_hit[static_cast<std::size_t>(pa) * enabled[1].size() + pb];
+  if (cached.triangle_a < 0) return false;
+  const bvh::Bvh& bvh_a = *impl(0).subs[pa].bvh;
+  const bvh::Bvh& bvh_b = *impl(1).subs[pb].bvh;
+  fcl::Vector3d point_a, point_b;
+  auto touches = [&](int ta, int tb) {
+    ++traversal.triangle_tests;
+    if (bvh::Traversal::triangle_distance(bvh_a, ta, bvh_b, tb, relative, point_a, point_b) > kTouching) return false;
+    hits.push_back({ta, tb});
+    return true;
+  };
+  if (touches(cached.triangle_a, cached.triangle_b)) return true;
+  // The crossing moves a little between ticks: look among the triangles around the cached ones.
+  const int partition[2] = {pa, pb}, local[2] = {cached.triangle_a, cached.triangle_b};
+  for (int side = 0; side < 2; ++side) {
+    const CollisionModel::Impl& body = impl(side);
+    ring[side].clear();
+    ring[side].push_back(local[side]);
+    const auto& corners = body.mesh.triangles[body.subs[partition[side]].triangle[local[side]]];
+    for (int v : corners)
+      for (int k = body.corner_start[v]; k < body.corner_start[v + 1] && ring[side].size() < kMaxRing; ++k) {
+        const int t = body.corner_of[k];
+        if (body.mesh.triangle_partition[t] != partition[side]) continue;
+        const int id = body.local_triangle[t];
+        if (std::find(ring[side].begin(), ring[side].end(), id) == ring[side].end()) ring[side].push_back(id);
+      }
+  }
+  for (int ta : ring[0])
+    for (int tb : ring[1])
+      if ((ta != cached.triangle_a || tb != cached.triangle_b) && touches(ta, tb)) return true;
+  return false;
 }
 
 const CollisionModel& CollisionPair::model(int side) const { return *state_->models[side == 0 ? 0 : 1]; }
@@ -286,6 +200,37 @@ Eigen::Vector3d pseudo_normal(const CollisionModel::Impl& impl, int t, const Eig
   return impl.normals[t];
 }
 
+// Closest point of a body's whole surface (every partition) to world point p: its distance, the point
+// (world and body frame) and the mesh triangle it lies on (-1 when the body has none). `hint`, a
+// mesh triangle near p (-1: none), bounds the search from the start.
+double closest_point(const CollisionModel::Impl& impl, const fcl::Transform3d& transform, bvh::Traversal& traversal,
+                     const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local, int& triangle,
+                     int hint = -1) {
+  const Eigen::Vector3d in_body = transform.inverse(Eigen::Isometry) * p;
+  bvh::Closest best;
+  best.distance = std::numeric_limits<double>::infinity();
+  triangle = -1;
+  if (hint >= 0) {
+    const int id = impl.local_triangle[hint];
+    ++traversal.triangle_tests;
+    best.distance = bvh::Traversal::point_triangle_distance(*impl.subs[impl.mesh.triangle_partition[hint]].bvh, id,
+                                                            in_body, best.point_a);
+    best.triangle_a = id;
+    triangle = hint;
+  }
+  for (const auto& sub : impl.subs) {
+    if (!sub.bvh) continue;
+    if (box_gap(in_body, Eigen::Vector3d::Zero(), sub.center, sub.half) >= best.distance) continue;
+    const double before = best.distance;
+    traversal.point_distance(*sub.bvh, in_body, best);
+    if (best.distance < before) triangle = sub.triangle[best.triangle_a];
+  }
+  if (triangle < 0) return best.distance;
+  local = best.point_a;
+  closest = transform * local;
+  return std::max(0.0, best.distance);
+}
+
 }  // namespace
 
 void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& place_b, QueryKind kind,
@@ -303,6 +248,10 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   out.partitions_b.clear();
   s.transform[0] = to_fcl(place_a);
   s.transform[1] = to_fcl(place_b);
+  // B in A's frame: the traversals work there.
+  const fcl::Transform3d relative = s.transform[0].inverse(Eigen::Isometry) * s.transform[1];
+  s.relative.R = relative.linear();
+  s.relative.T = relative.translation();
 
   // World boxes of the enabled, non-empty partitions.
   for (int side = 0; side < 2; ++side) {
@@ -328,19 +277,17 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   }
   if (s.candidates.empty()) return;  // everything switched off: nothing to hit, infinitely far
 
-  auto record_closest = [&](int pa, int pb, const fcl::DistanceResultd& r) {
-    out.distance = std::max(0.0, r.min_distance);
-    out.point_a = to_array(r.nearest_points[0]);
-    out.point_b = to_array(r.nearest_points[1]);
-    out.triangle_a = subs_a[pa].triangle[r.b1];
-    out.triangle_b = subs_b[pb].triangle[r.b2];
-    out.face_a = s.impl(0).mesh.triangle_face[out.triangle_a];
-    out.face_b = s.impl(1).mesh.triangle_face[out.triangle_b];
+  auto record_pair = [&](int pa, int pb, int local_a, int local_b) {
     out.partition_a = pa;
     out.partition_b = pb;
+    out.triangle_a = subs_a[pa].triangle[local_a];
+    out.triangle_b = subs_b[pb].triangle[local_b];
+    out.face_a = s.impl(0).mesh.triangle_face[out.triangle_a];
+    out.face_b = s.impl(1).mesh.triangle_face[out.triangle_b];
   };
 
-  // Intersecting triangle pairs (all of them for Penetration, one per partition pair otherwise).
+  // Intersecting triangle pairs (up to kMaxContactsPerPair per partition pair for Penetration, the
+  // first one otherwise).
   const bool want_all = kind == QueryKind::Penetration;
   bool any_hit = false;
   if (kind != QueryKind::Distance) {
@@ -354,34 +301,28 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       s.stack.clear();
     }
     for (const State::Candidate& c : s.candidates) {
-      if (c.lower_bound > 0) continue;
-      s.collide_result.clear();
-      fcl::collide(subs_a[c.a].bvh.get(), s.transform[0], subs_b[c.b].bvh.get(), s.transform[1],
-                   want_all ? s.collide_all : s.collide_first, s.collide_result);
-      if (!s.collide_result.isCollision()) continue;
-      // FCL's triangle-triangle test reports some nearly parallel, merely nearby triangles as
-      // intersecting; its exact triangle distance decides.
-      s.distance_result.clear();
-      fcl::distance(subs_a[c.a].bvh.get(), s.transform[0], subs_b[c.b].bvh.get(), s.transform[1],
-                    s.distance_request, s.distance_result);
-      if (s.distance_result.min_distance > kTouching) continue;
+      bvh::TriangleHit& cached_hit = s.cached_hit[static_cast<std::size_t>(c.a) * subs_b.size() + c.b];
+      if (c.lower_bound > kTouching) {
+        cached_hit = {-1, -1};
+        continue;
+      }
+      s.hits.clear();
+      // Intersect needs one touching pair per partition pair: the cached one's neighbourhood first.
+      const bool near_cache = !want_all && s.warm_start && s.touching_near_cache(c.a, c.b);
+      if (!near_cache && !s.traversal.touching_pairs(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, kTouching,
+                                                     want_all ? kMaxContactsPerPair : 1, s.hits)) {
+        cached_hit = {-1, -1};
+        continue;
+      }
+      cached_hit = s.hits[0];
       any_hit = true;
       s.partition_hit[0][c.a] = s.partition_hit[1][c.b] = 1;
-      if (out.partition_a < 0) {
-        const fcl::Contactd& contact = s.collide_result.getContact(0);
-        out.partition_a = c.a;
-        out.partition_b = c.b;
-        out.triangle_a = subs_a[c.a].triangle[contact.b1];
-        out.triangle_b = subs_b[c.b].triangle[contact.b2];
-        out.face_a = s.impl(0).mesh.triangle_face[out.triangle_a];
-        out.face_b = s.impl(1).mesh.triangle_face[out.triangle_b];
-      }
+      if (out.partition_a < 0) record_pair(c.a, c.b, s.hits[0].triangle_a, s.hits[0].triangle_b);
       if (want_all) {
         // Seeds of the flood: corners of the intersecting triangles, tagged by side (vertex * 2 + side).
-        for (std::size_t i = 0; i < s.collide_result.numContacts(); ++i) {
-          const fcl::Contactd& contact = s.collide_result.getContact(i);
-          const auto& ta = s.impl(0).mesh.triangles[subs_a[c.a].triangle[contact.b1]];
-          const auto& tb = s.impl(1).mesh.triangles[subs_b[c.b].triangle[contact.b2]];
+        for (const bvh::TriangleHit& hit : s.hits) {
+          const auto& ta = s.impl(0).mesh.triangles[subs_a[c.a].triangle[hit.triangle_a]];
+          const auto& tb = s.impl(1).mesh.triangles[subs_b[c.b].triangle[hit.triangle_b]];
           for (int k = 0; k < 3; ++k) {
             if (s.stamp[0][ta[k]] != s.query_stamp) {
               s.stamp[0][ta[k]] = s.query_stamp;
@@ -408,16 +349,49 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
 
   if (!any_hit) {
     // Closest pair of enabled partitions, nearest boxes first, pruned by the best distance so far.
+    // Warm start: the last closest triangle pair, measured at the new placements, is a pair like any
+    // other and bounds the search from the start; the traversal still finds every pair below it, so
+    // the answer is the cold one (see collision.h).
+    bvh::Closest best;
+    best.distance = std::numeric_limits<double>::infinity();
+    int best_pa = -1, best_pb = -1;
+    const State::Cached& cached = s.cached_closest;
+    if (s.warm_start && cached.partition_a >= 0 && s.enabled[0][cached.partition_a] &&
+        s.enabled[1][cached.partition_b]) {
+      best.triangle_a = cached.triangle_a;
+      best.triangle_b = cached.triangle_b;
+      ++s.traversal.triangle_tests;
+      best.distance = bvh::Traversal::triangle_distance(*subs_a[cached.partition_a].bvh, cached.triangle_a,
+                                                         *subs_b[cached.partition_b].bvh, cached.triangle_b,
+                                                         s.relative, best.point_a, best.point_b);
+      best_pa = cached.partition_a;
+      best_pb = cached.partition_b;
+    }
+    if (best.distance > s.distance_limit) {  // beyond the limit nothing is measured: start from it
+      best.distance = s.distance_limit;
+      best_pa = best_pb = -1;
+    }
     std::sort(s.candidates.begin(), s.candidates.end(),
               [](const State::Candidate& x, const State::Candidate& y) { return x.lower_bound < y.lower_bound; });
     for (const State::Candidate& c : s.candidates) {
-      if (c.lower_bound >= out.distance) break;
-      s.distance_result.clear();
-      fcl::distance(subs_a[c.a].bvh.get(), s.transform[0], subs_b[c.b].bvh.get(), s.transform[1],
-                    s.distance_request, s.distance_result);
-      if (s.distance_result.min_distance < out.distance) record_closest(c.a, c.b, s.distance_result);
-      if (out.distance <= 0) break;
+      if (c.lower_bound > best.distance) break;
+      // Ties between partition pairs go to the lower (partition A, partition B).
+      using Held = bvh::Traversal::Held;
+      const Held held = best_pa < 0 || std::make_pair(c.a, c.b) < std::make_pair(best_pa, best_pb) ? Held::Later
+                        : std::make_pair(c.a, c.b) == std::make_pair(best_pa, best_pb)          ? Held::Same
+                                                                                                 : Held::Earlier;
+      if (s.traversal.distance(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, best, 0.0, held)) {
+        best_pa = c.a;
+        best_pb = c.b;
+      }
+      if (best.distance <= 0) break;
     }
+    if (best_pa < 0) return;
+    s.cached_closest = {best_pa, best_pb, best.triangle_a, best.triangle_b};
+    out.distance = std::max(0.0, best.distance);
+    out.point_a = to_array(s.transform[0] * best.point_a);
+    out.point_b = to_array(s.transform[0] * best.point_b);
+    record_pair(best_pa, best_pb, best.triangle_a, best.triangle_b);
     if (out.distance <= 0) out.intersecting = true;
     return;
   }
@@ -426,28 +400,15 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   // Inside and depth are judged against the other body's whole surface, its
   // switched-off partitions included: without them it would not be closed.
   // Closest point of `side`'s surface to world point p (distance, point, triangle).
+  // The flood moves from vertex to neighbouring vertex: the triangle closest to the last one tested
+  // on a side bounds the next search on that side.
+  int last_closest[2] = {-1, -1};
   auto closest_on = [&](int side, const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local,
                         int& triangle) {
-    const auto& subs = s.impl(side).subs;
-    double best = std::numeric_limits<double>::infinity();
-    triangle = -1;
-    fcl::Transform3d at = fcl::Transform3d::Identity();
-    at.translation() = p;
-    for (std::size_t q = 0; q < subs.size(); ++q) {
-      if (!subs[q].bvh) continue;
-      const double bound = box_gap(p, Eigen::Vector3d::Zero(), s.box_center[side][q], s.box_half[side][q]);
-      if (bound >= best) continue;
-      s.distance_result.clear();
-      // Mesh-mesh: FCL 0.7 gives the nearest points in world coordinates.
-      fcl::distance(subs[q].bvh.get(), s.transform[side], s.point.get(), at, s.distance_request, s.distance_result);
-      if (s.distance_result.min_distance < best) {
-        best = std::max(0.0, s.distance_result.min_distance);
-        closest = s.distance_result.nearest_points[0];
-        local = s.transform[side].inverse() * closest;
-        triangle = subs[q].triangle[s.distance_result.b1];
-      }
-    }
-    return best;
+    const double gap =
+        closest_point(s.impl(side), s.transform[side], s.traversal, p, closest, local, triangle, last_closest[side]);
+    if (triangle >= 0) last_closest[side] = triangle;
+    return gap;
   };
   std::size_t tested[2] = {0, 0};
   while (!s.stack.empty()) {
@@ -484,29 +445,11 @@ double CollisionPair::depth_inside(int side, const RigidTransform& place, const 
   side = side == 0 ? 0 : 1;
   const fcl::Transform3d transform = to_fcl(place);
   const Eigen::Vector3d p(point[0], point[1], point[2]);
-  const auto& impl = s.impl(side);
-  const Eigen::Matrix3d rotation = transform.linear(), abs_rotation = rotation.cwiseAbs();
-  double best = std::numeric_limits<double>::infinity();
-  int triangle = -1;
   Eigen::Vector3d closest, local;
-  fcl::Transform3d at = fcl::Transform3d::Identity();
-  at.translation() = p;
-  for (const auto& sub : impl.subs) {
-    if (!sub.bvh) continue;
-    if (box_gap(p, Eigen::Vector3d::Zero(), rotation * sub.center + transform.translation(), abs_rotation * sub.half) >=
-        best)
-      continue;
-    s.distance_result.clear();
-    fcl::distance(sub.bvh.get(), transform, s.point.get(), at, s.distance_request, s.distance_result);
-    if (s.distance_result.min_distance < best) {
-      best = std::max(0.0, s.distance_result.min_distance);
-      closest = s.distance_result.nearest_points[0];
-      local = transform.inverse() * closest;
-      triangle = sub.triangle[s.distance_result.b1];
-    }
-  }
+  int triangle = -1;
+  const double best = closest_point(s.impl(side), transform, s.traversal, p, closest, local, triangle);
   if (triangle < 0) return 0;
-  const Eigen::Vector3d normal = rotation * pseudo_normal(impl, triangle, local);
+  const Eigen::Vector3d normal = transform.linear() * pseudo_normal(s.impl(side), triangle, local);
   return (p - closest).dot(normal) < 0 ? best : 0;
 }
 

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <BRepAlgoAPI_Cut.hxx>
@@ -17,6 +18,8 @@
 #include <gp_Ax2.hxx>
 #include <gp_Quaternion.hxx>
 #include <gp_Trsf.hxx>
+
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
 
 #include "contactcore/collision.h"
 #include "contactcore/meshes.h"
@@ -269,4 +272,176 @@ TEST(Collision, BadMeshIsAnError) {
   mesh.triangle_face = {1};
   mesh.triangle_partition = {0};
   EXPECT_FALSE(build_collision_model(mesh).status.ok());
+}
+
+namespace {
+
+// A moving body's placements: small steps (a 1 kHz path), a jump, small steps again.
+std::vector<RigidTransform> path_with_jump(std::mt19937& rng, const RigidTransform& start, const RigidTransform& jump,
+                                           int steps) {
+  std::vector<RigidTransform> path;
+  std::normal_distribution<double> normal(0, 0.02);
+  for (const RigidTransform& origin : {start, jump}) {
+    RigidTransform place = origin;
+    for (int i = 0; i < steps; ++i) {
+      const double angle = normal(rng);  // a small turn about z composed with the origin's rotation
+      const double c = std::cos(angle), s = std::sin(angle);
+      std::array<double, 9> turned{};
+      for (int col = 0; col < 3; ++col) {
+        turned[0 + col] = c * place.rotation[0 + col] - s * place.rotation[3 + col];
+        turned[3 + col] = s * place.rotation[0 + col] + c * place.rotation[3 + col];
+        turned[6 + col] = place.rotation[6 + col];
+      }
+      place.rotation = turned;
+      for (double& x : place.translation) x += normal(rng);
+      path.push_back(place);
+    }
+  }
+  return path;
+}
+
+void expect_same(const QueryResult& warm, const QueryResult& cold, const std::string& where) {
+  EXPECT_EQ(warm.intersecting, cold.intersecting) << where;
+  if (std::isinf(cold.distance))  // Intersect measures no distance when apart
+    EXPECT_EQ(warm.distance, cold.distance) << where;
+  else
+    EXPECT_NEAR(warm.distance, cold.distance, 1e-12) << where;
+  EXPECT_EQ(warm.partitions_a, cold.partitions_a) << where;
+  EXPECT_EQ(warm.partitions_b, cold.partitions_b) << where;
+  EXPECT_NEAR(warm.depth, cold.depth, 1e-12) << where;
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(warm.direction[k], cold.direction[k], 1e-12) << where;
+  // Crossing meshes: every crossing pair is at distance 0, the points and witness are any of them.
+  if (cold.intersecting) return;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(warm.point_a[k], cold.point_a[k], 1e-12) << where;
+    EXPECT_NEAR(warm.point_b[k], cold.point_b[k], 1e-12) << where;
+  }
+  EXPECT_EQ(warm.partition_a, cold.partition_a) << where;
+  EXPECT_EQ(warm.partition_b, cold.partition_b) << where;
+  EXPECT_EQ(warm.triangle_a, cold.triangle_a) << where;
+  EXPECT_EQ(warm.triangle_b, cold.triangle_b) << where;
+}
+
+}  // namespace
+
+// Warm start (the default) against cold queries on the same sequence: small steps near and into
+// contact, a jump, partitions switched off and on halfway, two pairs sharing a model.
+TEST(Collision, WarmStartGivesTheColdAnswers) {
+  const Body cylinder = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 10).Shape());
+  const Body holed = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -4), 12, 12, 8).Shape(),
+                                               BRepPrimAPI_MakeSphere(4.5).Shape())
+                                   .Shape());
+  const Body sphere = make_body(BRepPrimAPI_MakeSphere(2.5).Shape());
+  CollisionPair warm_first(cylinder.model, holed.model), cold_first(cylinder.model, holed.model);
+  CollisionPair warm_second(sphere.model, holed.model), cold_second(sphere.model, holed.model);
+  cold_first.set_warm_start(false);
+  cold_second.set_warm_start(false);
+  std::mt19937 rng(11);
+  // Tilted (no parallel facets: the closest pair is unique), the cylinder's lowest point 0.05 above
+  // the box's top face (z = 4), then after the jump its nearest point 0.05 beyond the box's x = 6
+  // wall; the random walk crosses and leaves them.
+  RigidTransform start = random_placement(rng, 0), jump = random_placement(rng, 0);
+  auto extreme = [&](const RigidTransform& t, int axis) {  // lowest coordinate of the placed mesh
+    double low = std::numeric_limits<double>::infinity();
+    for (const auto& v : cylinder.mesh.vertices)
+      low = std::min(low, t.rotation[3 * axis] * v[0] + t.rotation[3 * axis + 1] * v[1] + t.rotation[3 * axis + 2] * v[2]);
+    return low;
+  };
+  start.translation = {3.5, 0.2, 4.05 - extreme(start, 2)};
+  jump.translation = {6.05 - extreme(jump, 0), 0.5, 0};
+  const std::vector<RigidTransform> path = path_with_jump(rng, start, jump, 60);
+  const RigidTransform fixed = RigidTransform::identity();
+  const int switched = holed.mesh.triangle_partition[0];
+  int intersecting = 0, apart = 0;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (i == 30 || i == 90) {  // a partition of the box off, then on again 10 ticks later
+      for (CollisionPair* pair : {&warm_first, &cold_first, &warm_second, &cold_second})
+        pair->set_partition_enabled(1, switched, false);
+    }
+    if (i == 40 || i == 100)
+      for (CollisionPair* pair : {&warm_first, &cold_first, &warm_second, &cold_second}) pair->enable_all();
+    RigidTransform sphere_place = path[i];
+    sphere_place.translation[0] += 1.0;
+    for (QueryKind kind : {QueryKind::Distance, QueryKind::Intersect, QueryKind::Penetration}) {
+      QueryResult warm, cold;
+      const std::string where = "tick " + std::to_string(i) + " kind " + std::to_string(static_cast<int>(kind));
+      warm_first.query(path[i], fixed, kind, warm);
+      cold_first.query(path[i], fixed, kind, cold);
+      expect_same(warm, cold, "first pair, " + where);
+      if (kind == QueryKind::Distance) (cold.intersecting ? intersecting : apart) += 1;
+      warm_second.query(sphere_place, fixed, kind, warm);
+      cold_second.query(sphere_place, fixed, kind, cold);
+      expect_same(warm, cold, "second pair, " + where);
+    }
+  }
+  // The path visits both states (counts fixed by the seed).
+  EXPECT_GT(intersecting, 0);
+  EXPECT_GT(apart, 0);
+}
+
+// The warm Intersect's witness pair, taken from around the previous one, really touches.
+TEST(Collision, WarmIntersectWitnessTouches) {
+  const Body a = make_body(BRepPrimAPI_MakeSphere(5).Shape());
+  CollisionPair pair(a.model, a.model);
+  QueryResult result;
+  for (int i = 0; i < 50; ++i) {
+    const RigidTransform place = RigidTransform::translated(9.9, 0.01 * i, 0.005 * i);
+    pair.query(RigidTransform::identity(), place, QueryKind::Intersect, result);
+    ASSERT_TRUE(result.intersecting) << i;
+    // The witness triangles, placed, measured with FCL's triangle distance: touching.
+    fcl::Vector3d ta[3], tb[3], pa, pb;
+    for (int k = 0; k < 3; ++k) {
+      const auto& va = a.mesh.vertices[a.mesh.triangles[result.triangle_a][k]];
+      const auto& vb = a.mesh.vertices[a.mesh.triangles[result.triangle_b][k]];
+      ta[k] = fcl::Vector3d(va[0], va[1], va[2]);
+      tb[k] = fcl::Vector3d(vb[0] + place.translation[0], vb[1] + place.translation[1], vb[2] + place.translation[2]);
+    }
+    EXPECT_LE(fcl::detail::TriangleDistanced::triDistance(ta, tb, pa, pb), 1e-9) << i;
+    EXPECT_EQ(result.partition_a, a.mesh.triangle_partition[result.triangle_a]);
+    EXPECT_EQ(result.partition_b, a.mesh.triangle_partition[result.triangle_b]);
+  }
+}
+
+// With a distance limit, the distances at or below it are the exact ones and those above it are
+// "farther" (infinity), warm or cold; the pruned search does less work.
+TEST(Collision, DistanceLimitAnswersFartherBeyondIt) {
+  const Body a = make_body(BRepPrimAPI_MakeSphere(5).Shape());
+  CollisionPair exact(a.model, a.model), limited(a.model, a.model), limited_cold(a.model, a.model);
+  limited.set_distance_limit(0.525);
+  limited_cold.set_distance_limit(0.525);
+  limited_cold.set_warm_start(false);
+  int below = 0, beyond = 0;
+  std::size_t exact_work = 0, limited_work = 0;  // bounding-volume tests of the placements beyond
+  for (int i = 0; i < 20; ++i) {
+    const double gap = -0.2 + 0.05 * i;  // the spheres' gap, from crossing to 0.75 apart
+    const RigidTransform place = RigidTransform::translated(10 + gap, 0.002 * i, 0.002);
+    QueryResult e, l, c;
+    const std::size_t exact_before = exact.counts().bv_tests, limited_before = limited.counts().bv_tests;
+    exact.query(RigidTransform::identity(), place, QueryKind::Distance, e);
+    limited.query(RigidTransform::identity(), place, QueryKind::Distance, l);
+    limited_cold.query(RigidTransform::identity(), place, QueryKind::Distance, c);
+    for (const QueryResult* r : {&l, &c}) {
+      if (e.distance <= 0.525) {
+        EXPECT_NEAR(r->distance, e.distance, 1e-12) << i;
+        EXPECT_EQ(r->intersecting, e.intersecting) << i;
+        if (!e.intersecting)
+          for (int k = 0; k < 3; ++k) EXPECT_NEAR(r->point_a[k], e.point_a[k], 1e-12) << i;
+      } else {
+        EXPECT_TRUE(std::isinf(r->distance)) << i;
+        EXPECT_FALSE(r->intersecting) << i;
+        EXPECT_EQ(r->triangle_a, -1) << i;
+      }
+    }
+    if (e.distance <= 0.525) ++below;
+    else {
+      ++beyond;
+      exact_work += exact.counts().bv_tests - exact_before;
+      limited_work += limited.counts().bv_tests - limited_before;
+    }
+  }
+  EXPECT_LT(limited_work, exact_work);
+  // The meshes' gap exceeds the spheres' by at most twice the deflection (0.01; vertices on the
+  // spheres): gaps up to 0.5 (i <= 14) stay below 0.525, gaps from 0.55 (i >= 15) beyond it.
+  EXPECT_EQ(below, 15);
+  EXPECT_EQ(beyond, 5);
 }

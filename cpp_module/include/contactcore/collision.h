@@ -6,9 +6,11 @@
 //
 // Real-time use (the haptic servo loop): a CollisionModel is immutable after
 // build and can be shared by any number of threads; a CollisionPair holds the
-// per-pair state (partition masks, preallocated FCL requests and results,
-// scratch buffers) and serves one query at a time. After the first queries
-// have grown the scratch buffers, queries do not allocate.
+// per-pair state (partition masks, traversal stacks, the warm-start cache of
+// its last closest pair) and serves one query at a time: the thread that
+// queries it (the servo thread) owns it; give each thread its own pairs.
+// After the first queries have grown the scratch buffers, queries do not
+// allocate.
 #pragma once
 
 #include <array>
@@ -71,8 +73,10 @@ enum class QueryKind {
 
 struct QueryResult {
   bool intersecting = false;
-  double distance = 0;             // >= 0; 0 when the surfaces intersect
-  std::array<double, 3> point_a{};  // closest points, world coordinates
+  double distance = 0;             // >= 0; 0 when the surfaces intersect; infinity when not measured
+  // Closest points, world coordinates, and their triangles: of the closest pair when apart (ties
+  // go to the lower partition, then triangle ids), of one touching pair when intersecting.
+  std::array<double, 3> point_a{};
   std::array<double, 3> point_b{};
   int triangle_a = -1, triangle_b = -1;  // indices into each mesh's triangles
   int face_a = 0, face_b = 0;            // 1-based FaceN
@@ -104,6 +108,28 @@ class CollisionPair {
              QueryResult& out);
 
   const CollisionModel& model(int side) const;
+
+  // Temporal coherence (on by default): a Distance query (and Penetration when apart) starts from
+  // the closest triangle pair of the pair's previous query, measured at the new placements, as its
+  // bound, so consecutive queries of a moving body traverse little more than the contact region.
+  // The traversal still visits every pair below that bound, so the answer is the cold one: the
+  // same distance, and the same closest points and partitions whenever the closest pair is unique
+  // (under an exact tie, e.g. parallel facets, either of the tied pairs). Switching partitions off
+  // or on needs nothing: a cached pair in a switched-off partition is not used.
+  void set_warm_start(bool enabled);
+
+  // Distances above `limit` are not needed (a haptic loop's safety distance): Distance, and
+  // Penetration when apart, then answer "farther": distance infinity, no points, at the cost of a
+  // search pruned at the limit. Exact below and at the limit. Default infinity (always exact);
+  // a negative limit restores it.
+  void set_distance_limit(double limit);
+
+  // Bounding-volume and triangle tests run by this pair's queries so far: the work of a query,
+  // independent of the machine's load (benchmarks, profiling).
+  struct Counts {
+    std::size_t bv_tests = 0, triangle_tests = 0;
+  };
+  Counts counts() const;
 
   // How deep a world point is inside body `side` (0: A, 1: B) placed by `place`: its distance to
   // that body's whole surface (switched-off partitions included) when inside, else 0. Inside is

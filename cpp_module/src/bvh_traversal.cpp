@@ -1,0 +1,202 @@
+#include "bvh_traversal.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
+
+namespace contactcore::bvh {
+
+namespace {
+
+using fcl::Vector3d;
+using TriangleDistance = fcl::detail::TriangleDistance<double>;
+
+// Lower bound of the distance between a's node and b's node (FCL's RSS distance).
+inline double bv_distance(const Bvh& a, int node_a, const Bvh& b, int node_b, const Relative& rel) {
+  return fcl::distance(rel.R, rel.T, a.getBV(node_a).bv, b.getBV(node_b).bv);
+}
+
+// Whether a's node and b's node overlap (FCL's oriented boxes, with its small tolerance).
+inline bool bv_overlap(const Bvh& a, int node_a, const Bvh& b, int node_b, const Relative& rel) {
+  return fcl::overlap(rel.R, rel.T, a.getBV(node_a).bv, b.getBV(node_b).bv);
+}
+
+// Lower bound of the distance from p (a's frame) to a's node: to its rectangle, less its radius.
+inline double point_bv_distance(const Bvh& a, int node, const Vector3d& p) {
+  const fcl::RSSd& rss = a.getBV(node).bv.rss;
+  const Vector3d local = rss.axis.transpose() * (p - rss.To);
+  const Vector3d on(std::clamp(local.x(), 0.0, rss.l[0]), std::clamp(local.y(), 0.0, rss.l[1]), 0.0);
+  return std::max(0.0, (local - on).norm() - rss.r);
+}
+
+}  // namespace
+
+double Traversal::triangle_distance(const Bvh& a, int triangle_a, const Bvh& b, int triangle_b, const Relative& rel,
+                                    Vector3d& point_a, Vector3d& point_b) {
+  const fcl::Triangle& ta = a.tri_indices[triangle_a];
+  const fcl::Triangle& tb = b.tri_indices[triangle_b];
+  return TriangleDistance::triDistance(a.vertices[ta[0]], a.vertices[ta[1]], a.vertices[ta[2]], b.vertices[tb[0]],
+                                       b.vertices[tb[1]], b.vertices[tb[2]], rel.R, rel.T, point_a, point_b);
+}
+
+double Traversal::point_triangle_distance(const Bvh& a, int triangle, const Vector3d& p, Vector3d& closest) {
+  // The point as a triangle 1e-12 mm across (FCL has no point-triangle routine).
+  const fcl::Triangle& t = a.tri_indices[triangle];
+  const Vector3d q1 = p + Vector3d(1e-12, 0, 0), q2 = p + Vector3d(0, 1e-12, 0);
+  Vector3d on_point;
+  return TriangleDistance::triDistance(a.vertices[t[0]], a.vertices[t[1]], a.vertices[t[2]], p, q1, q2, closest,
+                                       on_point);
+}
+
+bool Traversal::distance(const Bvh& a, const Bvh& b, const Relative& rel, Closest& best, double stop_at,
+                         Held held) {
+  if (best.distance <= stop_at) return false;
+  bool replaced = false;
+  stack_.clear();
+  ++bv_tests;
+  stack_.push_back({0, 0, bv_distance(a, 0, b, 0, rel)});
+  Vector3d pa, pb;
+  while (!stack_.empty()) {
+    const Entry e = stack_.back();
+    stack_.pop_back();
+    if (e.lower > best.distance) continue;  // the bound fell since it was pushed (a tie may still win)
+    const auto& na = a.getBV(e.a);
+    const auto& nb = b.getBV(e.b);
+    if (na.isLeaf() && nb.isLeaf()) {
+      ++triangle_tests;
+      const int ta = na.primitiveId(), tb = nb.primitiveId();
+      const double d = triangle_distance(a, ta, b, tb, rel, pa, pb);
+      const bool tie_wins = held == Held::Later ||
+                            (held == Held::Same && (ta < best.triangle_a || (ta == best.triangle_a && tb < best.triangle_b)));
+      if (d < best.distance || (d == best.distance && tie_wins)) {
+        held = Held::Same;
+        replaced = true;
+        best.distance = d;
+        best.triangle_a = na.primitiveId();
+        best.triangle_b = nb.primitiveId();
+        best.point_a = pa;
+        best.point_b = pb;
+        if (d <= stop_at) return true;
+      }
+      continue;
+    }
+    // The kept node transformed once for both children (FCL's RSS distance would redo it per pair):
+    // the rectangles' relative rotation is axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
+    Entry children[2];
+    const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
+    bv_tests += 2;
+    if (split_a) {
+      const fcl::RSSd& kept = nb.bv.rss;
+      const fcl::Matrix3d rotated = rel.R * kept.axis;
+      const Vector3d moved = rel.R * kept.To + rel.T;
+      const int ids[2] = {na.leftChild(), na.rightChild()};
+      for (int k = 0; k < 2; ++k) {
+        const fcl::RSSd& box = a.getBV(ids[k]).bv.rss;
+        const double gap = fcl::rectDistance<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
+                                                     box.l, kept.l) - (box.r + kept.r);
+        children[k] = {ids[k], e.b, std::max(0.0, gap)};
+      }
+    } else {
+      const fcl::RSSd& kept = na.bv.rss;
+      const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
+      const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
+      const int ids[2] = {nb.leftChild(), nb.rightChild()};
+      for (int k = 0; k < 2; ++k) {
+        const fcl::RSSd& box = b.getBV(ids[k]).bv.rss;
+        const double gap = fcl::rectDistance<double>(rotation * box.axis, rotation * box.To + offset, kept.l, box.l) -
+                           (kept.r + box.r);
+        children[k] = {e.a, ids[k], std::max(0.0, gap)};
+      }
+    }
+    // The nearer pair pushed last: visited first, it lowers the bound for the other.
+    if (children[0].lower < children[1].lower) std::swap(children[0], children[1]);
+    for (const Entry& child : children)
+      if (child.lower <= best.distance) stack_.push_back(child);
+  }
+  return replaced;
+}
+
+bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
+                               std::vector<TriangleHit>& hits) {
+  // Pruned by FCL's oriented-box overlap test (a few times cheaper than the RSS distance; its
+  // tolerance only ever keeps more pairs), decided by the exact triangle distance.
+  const std::size_t before = hits.size();
+  if (hits.size() >= limit) return false;
+  stack_.clear();
+  ++bv_tests;
+  if (!bv_overlap(a, 0, b, 0, rel)) return false;
+  stack_.push_back({0, 0, 0});
+  Vector3d pa, pb;
+  while (!stack_.empty()) {
+    const Entry e = stack_.back();
+    stack_.pop_back();
+    const auto& na = a.getBV(e.a);
+    const auto& nb = b.getBV(e.b);
+    if (na.isLeaf() && nb.isLeaf()) {
+      ++triangle_tests;
+      if (triangle_distance(a, na.primitiveId(), b, nb.primitiveId(), rel, pa, pb) <= touching) {
+        hits.push_back({na.primitiveId(), nb.primitiveId()});
+        if (hits.size() >= limit) break;
+      }
+      continue;
+    }
+    // The node kept is transformed once for both children (FCL's overlap() would redo it per pair):
+    // the boxes' relative rotation is axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
+    const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
+    bv_tests += 2;
+    if (split_a) {
+      const fcl::OBBd& kept = nb.bv.obb;
+      const fcl::Matrix3d rotated = rel.R * kept.axis;
+      const Vector3d moved = rel.R * kept.To + rel.T;
+      for (int child : {na.rightChild(), na.leftChild()}) {
+        const fcl::OBBd& box = a.getBV(child).bv.obb;
+        if (!fcl::obbDisjoint<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
+                                      box.extent, kept.extent))
+          stack_.push_back({child, e.b, 0});
+      }
+    } else {
+      const fcl::OBBd& kept = na.bv.obb;
+      const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
+      const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
+      for (int child : {nb.rightChild(), nb.leftChild()}) {
+        const fcl::OBBd& box = b.getBV(child).bv.obb;
+        if (!fcl::obbDisjoint<double>(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent))
+          stack_.push_back({e.a, child, 0});
+      }
+    }
+  }
+  return hits.size() > before;
+}
+
+void Traversal::point_distance(const Bvh& a, const Vector3d& p, Closest& best) {
+  single_stack_.clear();
+  ++bv_tests;
+  single_stack_.push_back({0, 0, point_bv_distance(a, 0, p)});
+  Vector3d closest;
+  while (!single_stack_.empty()) {
+    const Entry e = single_stack_.back();
+    single_stack_.pop_back();
+    if (e.lower >= best.distance) continue;
+    const auto& node = a.getBV(e.a);
+    if (node.isLeaf()) {
+      ++triangle_tests;
+      const double d = point_triangle_distance(a, node.primitiveId(), p, closest);
+      if (d < best.distance) {
+        best.distance = d;
+        best.triangle_a = node.primitiveId();
+        best.point_a = closest;
+      }
+      continue;
+    }
+    Entry first{node.leftChild(), 0, 0}, second{node.rightChild(), 0, 0};
+    bv_tests += 2;
+    first.lower = point_bv_distance(a, first.a, p);
+    second.lower = point_bv_distance(a, second.a, p);
+    if (second.lower < first.lower) std::swap(first, second);
+    if (second.lower < best.distance) single_stack_.push_back(second);
+    if (first.lower < best.distance) single_stack_.push_back(first);
+  }
+}
+
+}  // namespace contactcore::bvh

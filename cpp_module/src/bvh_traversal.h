@@ -1,0 +1,81 @@
+// Traversals of FCL's OBBRSS hierarchies driven by the collision queries
+// themselves (FCL's bounding-volume and triangle distance routines, our
+// loops): fcl::distance cannot be seeded with a known upper bound (its
+// preprocess starts from triangles 0 and 0), cannot stop at a threshold, and
+// fcl::collide's triangle test reports some nearly parallel, merely nearby
+// triangles as crossing, which cost a full distance query to refute.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+
+namespace contactcore::bvh {
+
+using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
+
+// B's frame expressed in A's: a point x of B is at R x + T in A's frame.
+struct Relative {
+  fcl::Matrix3d R = fcl::Matrix3d::Identity();
+  fcl::Vector3d T = fcl::Vector3d::Zero();
+};
+
+// The best triangle pair so far: the bound a traversal must beat, then its answer.
+struct Closest {
+  double distance = 0;
+  int triangle_a = -1, triangle_b = -1;  // local triangle ids of each hierarchy
+  fcl::Vector3d point_a{0, 0, 0}, point_b{0, 0, 0};  // in A's frame
+};
+
+struct TriangleHit {
+  int triangle_a, triangle_b;
+};
+
+class Traversal {
+ public:
+  // A depth-first stack holds about one entry per level of both trees: reserved for trees up to
+  // 512 levels deep together, so that queries do not allocate (deeper trees grow it once).
+  Traversal() {
+    stack_.reserve(1024);
+    single_stack_.reserve(1024);
+  }
+
+  // Exact distance of one triangle pair (the routine the traversals use: same inputs, same bits).
+  static double triangle_distance(const Bvh& a, int triangle_a, const Bvh& b, int triangle_b, const Relative& rel,
+                                  fcl::Vector3d& point_a, fcl::Vector3d& point_b);
+
+  // How a pair at exactly the held distance compares with the held one (ties are common: a closest
+  // point on an edge or corner belongs to every triangle around it): the held pair comes from an
+  // earlier hierarchy pair (it stays), a later one (the tie takes over), or this one (lower ids win).
+  enum class Held { Earlier, Same, Later };
+
+  // Lowers `best` to the minimum distance between a's and b's triangles when that is below
+  // best.distance, ties broken as above, so that the answer does not depend on the bound it
+  // started from. Stops early once best.distance <= stop_at (then any pair that low). Returns
+  // whether it replaced the held pair.
+  bool distance(const Bvh& a, const Bvh& b, const Relative& rel, Closest& best, double stop_at, Held held);
+
+  // Triangle pairs at most `touching` apart, appended to `hits` until it holds `limit` pairs.
+  // Returns whether any was found.
+  bool touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
+                      std::vector<TriangleHit>& hits);
+
+  // Lowers `best` (point_b unused) to the distance from point p (a's frame) to a's triangles.
+  void point_distance(const Bvh& a, const fcl::Vector3d& p, Closest& best);
+  static double point_triangle_distance(const Bvh& a, int triangle, const fcl::Vector3d& p, fcl::Vector3d& closest);
+
+  // Bounding-volume and triangle tests since construction (profiling, tests).
+  std::size_t bv_tests = 0, triangle_tests = 0;
+
+ private:
+  struct Entry {
+    int a, b;
+    double lower;
+  };
+  std::vector<Entry> stack_;
+  std::vector<Entry> single_stack_;
+};
+
+}  // namespace contactcore::bvh
