@@ -169,6 +169,99 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
   return hits.size() > before;
 }
 
+bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,
+                                         const std::vector<int>& parent_b, const Relative& rel, double touching,
+                                         const std::vector<FrontEntry>& front, bool pull_up,
+                                         std::vector<FrontEntry>& next, bool& overflow, TriangleHit& hit) {
+  next.clear();
+  overflow = false;
+  // Appends a pair to the next front; a separated pair whose sibling (same node on the other side)
+  // was appended just before and is separated too merges with it into their parent pair when the
+  // parent's boxes are disjoint (the leaves covered stay the same: the front stays a cut).
+  auto emit = [&](FrontEntry e) {
+    while (pull_up && e.separated && !next.empty() && next.back().separated) {
+      const FrontEntry& last = next.back();
+      int pa = e.a, pb = e.b;
+      if (last.b == e.b && last.a != e.a && parent_a[e.a] >= 0 && parent_a[last.a] == parent_a[e.a])
+        pa = parent_a[e.a];
+      else if (last.a == e.a && last.b != e.b && parent_b[e.b] >= 0 && parent_b[last.b] == parent_b[e.b])
+        pb = parent_b[e.b];
+      else
+        break;
+      ++bv_tests;
+      if (bv_overlap(a, pa, b, pb, rel)) break;
+      next.pop_back();
+      e = {pa, pb, 1};
+    }
+    if (next.size() == next.capacity()) {
+      overflow = true;
+      return;
+    }
+    next.push_back(e);
+  };
+  const FrontEntry root{0, 0, 0};
+  const std::size_t size = front.empty() ? 1 : front.size();
+  Vector3d pa, pb;
+  for (std::size_t i = 0; i < size; ++i) {
+    const FrontEntry& start = front.empty() ? root : front[i];
+    ++bv_tests;
+    stack_.clear();
+    // Entry::lower holds 1 when the pair's boxes overlap, 0 when disjoint; children are pushed right
+    // first so that the next front keeps the left-to-right order in which siblings end up adjacent.
+    stack_.push_back({start.a, start.b, bv_overlap(a, start.a, b, start.b, rel) ? 1.0 : 0.0});
+    while (!stack_.empty()) {
+      const Entry e = stack_.back();
+      stack_.pop_back();
+      if (e.lower == 0) {
+        emit({e.a, e.b, 1});
+        continue;
+      }
+      const auto& na = a.getBV(e.a);
+      const auto& nb = b.getBV(e.b);
+      if (na.isLeaf() && nb.isLeaf()) {
+        ++triangle_tests;
+        emit({e.a, e.b, 0});
+        if (triangle_distance(a, na.primitiveId(), b, nb.primitiveId(), rel, pa, pb) <= touching) {
+          hit = {na.primitiveId(), nb.primitiveId()};
+          // The pairs not reached yet complete the cut.
+          while (!stack_.empty()) {
+            const Entry rest = stack_.back();
+            stack_.pop_back();
+            emit({rest.a, rest.b, rest.lower == 0 ? 1 : 0});
+          }
+          for (std::size_t j = i + 1; j < size; ++j) emit({front[j].a, front[j].b, 0});
+          return true;
+        }
+        continue;
+      }
+      const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
+      bv_tests += 2;
+      if (split_a) {
+        const fcl::OBBd& kept = nb.bv.obb;
+        const fcl::Matrix3d rotated = rel.R * kept.axis;
+        const Vector3d moved = rel.R * kept.To + rel.T;
+        for (int child : {na.rightChild(), na.leftChild()}) {
+          const fcl::OBBd& box = a.getBV(child).bv.obb;
+          const bool disjoint = fcl::obbDisjoint<double>(box.axis.transpose() * rotated,
+                                                         box.axis.transpose() * (moved - box.To), box.extent, kept.extent);
+          stack_.push_back({child, e.b, disjoint ? 0.0 : 1.0});
+        }
+      } else {
+        const fcl::OBBd& kept = na.bv.obb;
+        const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
+        const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
+        for (int child : {nb.rightChild(), nb.leftChild()}) {
+          const fcl::OBBd& box = b.getBV(child).bv.obb;
+          const bool disjoint =
+              fcl::obbDisjoint<double>(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent);
+          stack_.push_back({e.a, child, disjoint ? 0.0 : 1.0});
+        }
+      }
+    }
+  }
+  return false;
+}
+
 void Traversal::point_distance(const Bvh& a, const Vector3d& p, Closest& best) {
   single_stack_.clear();
   ++bv_tests;

@@ -33,6 +33,16 @@ struct TriangleHit {
   int triangle_a, triangle_b;
 };
 
+// One node pair of a front (Ehmann and Lin's generalised front tracking): a set of node pairs whose
+// products of leaves partition all triangle pairs of the two hierarchies (a cut of the bounding
+// volume test tree). Whatever the placements, a search that tests every front pair and descends
+// those whose boxes overlap visits every triangle pair a search from the roots could reach, so its
+// answer is the cold one by construction: a stale front (after a jump, a partition switched off and
+// on) costs tests, never correctness. `separated`: the boxes were disjoint when last tested.
+struct FrontEntry {
+  int a, b, separated;
+};
+
 class Traversal {
  public:
   // A depth-first stack holds about one entry per level of both trees: reserved for trees up to
@@ -61,6 +71,16 @@ class Traversal {
   // Returns whether any was found.
   bool touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
                       std::vector<TriangleHit>& hits);
+
+  // touching_pairs with limit 1 started from `front` (empty: the roots) instead of the roots; the
+  // front where this search stopped descending goes into `next` (its capacity is never exceeded:
+  // `overflow` is set instead and `next` is then not a front). Sibling pairs both separated are
+  // replaced by their parent pair when that is separated too (pull-up, when `pull_up`), so the front
+  // follows a sliding contact without growing. parent_a/parent_b: each node's parent (-1: root).
+  bool touching_pair_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,
+                                const std::vector<int>& parent_b, const Relative& rel, double touching,
+                                const std::vector<FrontEntry>& front, bool pull_up, std::vector<FrontEntry>& next,
+                                bool& overflow, TriangleHit& hit);
 
   // Lowers `best` (point_b unused) to the distance from point p (a's frame) to a's triangles.
   void point_distance(const Bvh& a, const fcl::Vector3d& p, Closest& best);

@@ -20,6 +20,12 @@ constexpr std::size_t kMaxContactsPerPair = 512;  // intersecting triangle pairs
 constexpr std::size_t kMaxFloodVertices = 4096;   // vertices tested for depth per side and query
 constexpr double kTouching = 1e-12;               // mm: triangles this close intersect
 constexpr std::size_t kMaxRing = 16;  // a triangle and those sharing a corner (13 on a regular mesh)
+// Front tracking of Intersect: fronts kept for this many partition pairs at once (the least
+// recently used gives its slot up), each at most this many node pairs (beyond: back to the roots).
+// Reserved when the pair is made, so that queries never allocate.
+constexpr std::size_t kFrontSlots = 4;
+constexpr std::size_t kFrontCapacity = 4096;
+constexpr unsigned kPullUpEvery = 4;  // ticks between pull-up passes of a front (1, 4, 16 measured: 4 about best)
 }  // namespace
 
 // ------------------------------------------------------------------ pair state
@@ -48,6 +54,22 @@ struct CollisionPair::State {
   std::vector<bvh::TriangleHit> cached_hit;
   std::vector<int> ring[2];
   bool warm_start = true;
+  // Front tracking (see bvh::FrontEntry): per slot the front of the last Intersect traversal of
+  // one partition pair (owner: a * partitions of B + b, -1 when free); front_slot maps a partition
+  // pair to its slot (-1: none, i.e. start from the roots).
+  struct FrontSlot {
+    std::vector<bvh::FrontEntry> entries;
+    int owner = -1;
+    unsigned long used = 0;
+    unsigned ticks = 0;
+  };
+  FrontSlot fronts[kFrontSlots];
+  std::vector<int> front_slot;
+  std::vector<bvh::FrontEntry> front_next;
+  unsigned long front_clock = 0;
+  bool front_tracking = true;
+  FrontSlot& front_of(int pair_index);
+  void clear_fronts();
   double distance_limit = std::numeric_limits<double>::infinity();
 
   // Whether the cached touching pair of partitions (pa, pb), or a pair of triangles sharing a corner
@@ -80,6 +102,38 @@ CollisionPair::CollisionPair(CollisionModelPtr a, CollisionModelPtr b) : state_(
   for (auto& ring : s.ring) ring.reserve(kMaxRing);
   s.cached_hit.assign(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count(),
                       {-1, -1});
+  s.front_slot.assign(s.cached_hit.size(), -1);
+  for (auto& slot : s.fronts) slot.entries.reserve(kFrontCapacity);
+  s.front_next.reserve(kFrontCapacity);
+}
+
+CollisionPair::State::FrontSlot& CollisionPair::State::front_of(int pair_index) {
+  ++front_clock;
+  if (front_slot[pair_index] >= 0) {
+    FrontSlot& slot = fronts[front_slot[pair_index]];
+    slot.used = front_clock;
+    return slot;
+  }
+  std::size_t chosen = 0;
+  for (std::size_t k = 1; k < kFrontSlots; ++k)
+    if (fronts[k].used < fronts[chosen].used) chosen = k;
+  FrontSlot& slot = fronts[chosen];
+  if (slot.owner >= 0) front_slot[slot.owner] = -1;
+  slot.owner = pair_index;
+  slot.used = front_clock;
+  slot.ticks = 0;
+  slot.entries.clear();  // empty: from the roots
+  front_slot[pair_index] = static_cast<int>(chosen);
+  return slot;
+}
+
+void CollisionPair::State::clear_fronts() {
+  for (auto& slot : fronts) {
+    if (slot.owner >= 0) front_slot[slot.owner] = -1;
+    slot.owner = -1;
+    slot.used = 0;
+    slot.entries.clear();
+  }
 }
 
 CollisionPair::~CollisionPair() = default;
@@ -88,10 +142,13 @@ void CollisionPair::set_partition_enabled(int side, int partition, bool enabled)
   if (side < 0 || side > 1) return;
   auto& flags = state_->enabled[side];
   if (partition >= 0 && partition < static_cast<int>(flags.size())) flags[partition] = enabled ? 1 : 0;
+  // The fronts stay exact (each covers its own partition pair whole) but may be stale: restart them.
+  state_->clear_fronts();
 }
 
 void CollisionPair::enable_all() {
   for (auto& flags : state_->enabled) std::fill(flags.begin(), flags.end(), 1);
+  state_->clear_fronts();
 }
 
 bool CollisionPair::partition_enabled(int side, int partition) const {
@@ -104,6 +161,12 @@ void CollisionPair::set_warm_start(bool enabled) {
   state_->warm_start = enabled;
   state_->cached_closest = {};
   std::fill(state_->cached_hit.begin(), state_->cached_hit.end(), bvh::TriangleHit{-1, -1});
+  state_->clear_fronts();
+}
+
+void CollisionPair::set_front_tracking(bool enabled) {
+  state_->front_tracking = enabled;
+  state_->clear_fronts();
 }
 
 void CollisionPair::set_distance_limit(double limit) {
@@ -309,8 +372,27 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       s.hits.clear();
       // Intersect needs one touching pair per partition pair: the cached one's neighbourhood first.
       const bool near_cache = !want_all && s.warm_start && s.touching_near_cache(c.a, c.b);
-      if (!near_cache && !s.traversal.touching_pairs(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, kTouching,
-                                                     want_all ? kMaxContactsPerPair : 1, s.hits)) {
+      bool found = near_cache;
+      if (!found && !want_all && s.warm_start && s.front_tracking) {
+        // From the last traversal's front of this partition pair (exact whatever the front: a cut).
+        const int pair_index = static_cast<int>(static_cast<std::size_t>(c.a) * subs_b.size() + c.b);
+        State::FrontSlot& slot = s.front_of(pair_index);
+        bool overflow = false;
+        bvh::TriangleHit hit{-1, -1};
+        const bool pull_up = ++slot.ticks % kPullUpEvery == 0;
+        found = s.traversal.touching_pair_from_front(*subs_a[c.a].bvh, subs_a[c.a].parent, *subs_b[c.b].bvh,
+                                                     subs_b[c.b].parent, s.relative, kTouching, slot.entries,
+                                                     pull_up, s.front_next, overflow, hit);
+        if (overflow)
+          slot.entries.clear();
+        else
+          std::swap(slot.entries, s.front_next);
+        if (found) s.hits.push_back(hit);
+      } else if (!found) {
+        found = s.traversal.touching_pairs(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, kTouching,
+                                           want_all ? kMaxContactsPerPair : 1, s.hits);
+      }
+      if (!found) {
         cached_hit = {-1, -1};
         continue;
       }

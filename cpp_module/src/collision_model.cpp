@@ -74,6 +74,10 @@ CollisionModelResult build_collision_model(const TaggedMesh& mesh) {
     sub.bvh->addSubModel(points, triangles);
     sub.bvh->endModel();
     sub.bvh->computeLocalAABB();
+    sub.parent.assign(sub.bvh->getNumBVs(), -1);
+    for (int node = 0; node < sub.bvh->getNumBVs(); ++node)
+      if (!sub.bvh->getBV(node).isLeaf())
+        sub.parent[sub.bvh->getBV(node).leftChild()] = sub.parent[sub.bvh->getBV(node).rightChild()] = node;
     sub.center = sub.bvh->aabb_local.center();
     sub.half = 0.5 * (sub.bvh->aabb_local.max_ - sub.bvh->aabb_local.min_);
   }

@@ -18,6 +18,7 @@ struct CollisionModel::Impl {
   struct Sub {
     std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> bvh;  // null when the partition has no triangles
     std::vector<int> triangle;         // local triangle -> mesh triangle
+    std::vector<int> parent;           // BVH node -> its parent node (-1 for the root): front pull-up
     Eigen::Vector3d center{0, 0, 0};   // local axis-aligned box
     Eigen::Vector3d half{-1, -1, -1};
   };

@@ -379,6 +379,87 @@ TEST(Collision, WarmStartGivesTheColdAnswers) {
   EXPECT_GT(apart, 0);
 }
 
+// Front-tracked Intersect (the default) against the warm start alone and cold queries, Intersect
+// only so that the fronts carry from tick to tick: a sphere grazing another (the gap between the
+// meshes a few micrometres either way, sliding), a jump to the far side, and the holed box's
+// partitions switched off and on; the witness pair touches whenever the answer is "intersecting".
+TEST(Collision, FrontTrackingGivesTheColdAnswers) {
+  const Body sphere = make_body(BRepPrimAPI_MakeSphere(5).Shape());
+  const Body holed = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -4), 12, 12, 8).Shape(),
+                                               BRepPrimAPI_MakeSphere(4.5).Shape())
+                                   .Shape());
+  ASSERT_GT(holed.mesh.partition_count, 1);
+  // B placed `gap` from A along `direction` (unit): the meshes' distance measured by a cold Distance
+  // at a nominal placement 0.05 apart, then B moved back by that distance less the gap.
+  auto at_gap = [](const Body& a, const Body& b, RigidTransform nominal, const std::array<double, 3>& direction,
+                   double gap) {
+    CollisionPair measure(a.model, b.model);
+    measure.set_warm_start(false);
+    QueryResult r;
+    measure.query(RigidTransform::identity(), nominal, QueryKind::Distance, r);
+    for (int k = 0; k < 3; ++k) nominal.translation[k] -= (r.distance - gap) * direction[k];
+    return nominal;
+  };
+  struct Path {
+    const Body* b;
+    std::vector<RigidTransform> placements;
+  };
+  std::vector<Path> paths(2);
+  // Sphere on sphere, B sliding round A in a slowly turning direction, the gap in [-3, 3] um.
+  paths[0].b = &sphere;
+  for (int i = 0; i < 240; ++i) {
+    const double gap = 0.003 * std::sin(0.37 * i), angle = 0.004 * i + (i >= 120 ? 3.0 : 0.0);  // jump at 120
+    const std::array<double, 3> direction{std::cos(angle), std::sin(angle), 0};
+    paths[0].placements.push_back(at_gap(
+        sphere, sphere, RigidTransform::translated(10.05 * direction[0], 10.05 * direction[1], 0), direction, gap));
+  }
+  // The holed box's bottom face (z = -4; its hole, of radius 2.06, kept off the pole) grazing the
+  // sphere's pole, then (the jump) its x = -6 wall grazing the sphere's equator, sliding a little.
+  paths[1].b = &holed;
+  for (int i = 0; i < 240; ++i) {
+    const double gap = 0.003 * std::sin(0.37 * i), slide = 0.0001 * (i % 120);
+    paths[1].placements.push_back(
+        i < 120 ? at_gap(sphere, holed, RigidTransform::translated(slide - 3, 0.2, 9.05), {0, 0, 1}, gap)
+                : at_gap(sphere, holed, RigidTransform::translated(11.05, 0.5, slide), {1, 0, 0}, gap));
+  }
+  for (std::size_t p = 0; p < paths.size(); ++p) {
+    const Body& b = *paths[p].b;
+    const int switched = b.mesh.triangle_partition[0];
+    CollisionPair front(sphere.model, b.model), no_front(sphere.model, b.model), cold(sphere.model, b.model);
+    no_front.set_front_tracking(false);
+    cold.set_warm_start(false);
+    int intersecting = 0, apart = 0;
+    for (std::size_t i = 0; i < paths[p].placements.size(); ++i) {
+      if (i == 40 || i == 160)
+        for (CollisionPair* pair : {&front, &no_front, &cold}) pair->set_partition_enabled(1, switched, false);
+      if (i == 60 || i == 180)
+        for (CollisionPair* pair : {&front, &no_front, &cold}) pair->enable_all();
+      const RigidTransform& place = paths[p].placements[i];
+      QueryResult f, n, k;
+      const std::string where = "path " + std::to_string(p) + " tick " + std::to_string(i);
+      front.query(RigidTransform::identity(), place, QueryKind::Intersect, f);
+      no_front.query(RigidTransform::identity(), place, QueryKind::Intersect, n);
+      cold.query(RigidTransform::identity(), place, QueryKind::Intersect, k);
+      expect_same(f, k, "front, " + where);
+      expect_same(n, k, "no front, " + where);
+      (k.intersecting ? intersecting : apart) += 1;
+      if (!f.intersecting) continue;
+      // The witness triangles, placed, measured with FCL's triangle distance: touching.
+      fcl::Vector3d ta[3], tb[3], pa, pb;
+      for (int v = 0; v < 3; ++v) {
+        const auto& va = sphere.mesh.vertices[sphere.mesh.triangles[f.triangle_a][v]];
+        const auto& vb = b.mesh.vertices[b.mesh.triangles[f.triangle_b][v]];
+        ta[v] = fcl::Vector3d(va[0], va[1], va[2]);
+        tb[v] = fcl::Vector3d(vb[0] + place.translation[0], vb[1] + place.translation[1], vb[2] + place.translation[2]);
+      }
+      EXPECT_LE(fcl::detail::TriangleDistanced::triDistance(ta, tb, pa, pb), 1e-9) << where;
+    }
+    // Both answers occur along each path.
+    EXPECT_GT(intersecting, 0) << "path " << p;
+    EXPECT_GT(apart, 0) << "path " << p;
+  }
+}
+
 // The warm Intersect's witness pair, taken from around the previous one, really touches.
 TEST(Collision, WarmIntersectWitnessTouches) {
   const Body a = make_body(BRepPrimAPI_MakeSphere(5).Shape());

@@ -118,6 +118,13 @@ class CollisionPair {
   // or on needs nothing: a cached pair in a switched-off partition is not used.
   void set_warm_start(bool enabled);
 
+  // Front tracking of Intersect (on by default, with the warm start; Ehmann and Lin's generalised
+  // front): the next Intersect starts from the node pairs where the last one stopped descending
+  // (separated boxes, leaf pairs), descending where boxes now overlap and pulling separated sibling
+  // pairs back up to their parent. The front always covers every triangle pair (a cut of the test
+  // tree), so the answer is the cold one whatever the motion; its storage is reserved here.
+  void set_front_tracking(bool enabled);
+
   // Distances above `limit` are not needed (a haptic loop's safety distance): Distance, and
   // Penetration when apart, then answer "farther": distance infinity, no points, at the cost of a
   // search pruned at the limit. Exact below and at the limit. Default infinity (always exact);
