@@ -5,11 +5,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfenv>
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
+
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <XCAFApp_Application.hxx>
 
 #include "contactcore/bodies.h"
 #include "fuzz_inputs.h"
@@ -103,4 +110,123 @@ TEST(FuzzRegressions, BrepDamagedNumberInTheGeometryIsAnError) {
   const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("damaged number '@6.2831853071795862' on line 35"), std::string::npos) << status.message;
+}
+
+namespace {
+
+contactcore::AssemblyResult read_regression(const std::string& name) {
+  return contactcore::read_step((fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_step" / name).string());
+}
+
+}  // namespace
+
+// An entity that refers to itself through others made OCCT's transfer recurse
+// until the stack overflowed, and OCCT's signal handler, on that same stack,
+// could not run: the process was killed (make fuzz, fuzz_step, exit 139 with no
+// report). A representation holding a MAPPED_ITEM of itself, a GEOMETRIC_SET in
+// itself: refused before the transfer, naming the cycle.
+TEST(FuzzRegressions, StepCyclicReferencesAreRefusedNamingTheCycle) {
+  const contactcore::AssemblyResult mapped = read_regression("cyclic_mapped_item.step");
+  EXPECT_EQ(mapped.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(mapped.status.message.find("cyclic reference (an entity refers to itself): #10 -> #9002 -> #9001 -> #10"),
+            std::string::npos)
+      << mapped.status.describe();
+  const contactcore::AssemblyResult set = read_regression("geometric_set_in_itself.step");
+  EXPECT_EQ(set.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(set.status.message.find("#9001 -> #9001"), std::string::npos) << set.status.describe();
+}
+
+// An ORIENTED_EDGE of itself overflows the stack inside OCCT's ReadFile (its
+// entity check), before any check of ours can run: the guard gives OCCT's
+// handler a stack of its own, so the overflow becomes an error naming the file.
+TEST(FuzzRegressions, StepStackOverflowInsideTheReaderIsAnError) {
+  const contactcore::AssemblyResult result = read_regression("oriented_edge_of_itself.step");
+  EXPECT_EQ(result.status.code, contactcore::StatusCode::ReadError);
+  EXPECT_NE(result.status.describe().find("oriented_edge_of_itself.step"), std::string::npos) << result.status.describe();
+}
+
+// Long chains of references are bounded (kMaxReferenceDepth): 1,200 nested
+// GEOMETRIC_SETs (8,000 overflowed the stack; 500 took 17 s) are refused,
+// naming where the chain starts (real files have 11 to 16 levels).
+TEST(FuzzRegressions, StepReferenceChainsAreBounded) {
+  const std::vector<std::uint8_t> seed = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step/seed_boxes.step");
+  std::string text(seed.begin(), seed.end());
+  const std::string items = "#10 = SHAPE_REPRESENTATION('',(#11,#15,#345)";
+  ASSERT_NE(text.find(items), std::string::npos);
+  text.replace(text.find(items), items.size(), "#10 = SHAPE_REPRESENTATION('',(#11,#15,#345,#10000)");
+  std::string sets;
+  const int levels = 1200;
+  for (int i = 0; i < levels; ++i)
+    sets += "#" + std::to_string(10000 + i) + " = GEOMETRIC_SET('',(#" + std::to_string(10001 + i) + "));\n";
+  sets += "#" + std::to_string(10000 + levels) + " = CARTESIAN_POINT('',(0.,0.,0.));\n";
+  text.insert(text.rfind("ENDSEC;"), sets);
+  const std::string path = ::testing::TempDir() + "contacts_nested_sets.step";
+  std::ofstream(path, std::ios::binary) << text;
+  const contactcore::AssemblyResult result = contactcore::read_step(path);
+  EXPECT_EQ(result.status.code, contactcore::StatusCode::InvalidInput);
+  // SHAPE_DEFINITION_REPRESENTATION #3 -> #10 -> 1,200 sets -> the point.
+  EXPECT_NE(result.status.message.find("entities nested 1203 levels deep from #3 (at most 1000)"), std::string::npos)
+      << result.status.describe();
+  std::remove(path.c_str());
+}
+
+namespace {
+
+// What read_step changes for the whole process while it runs (signal
+// handlers, the signal stack, OCCT's messenger, the XDE application's
+// documents) and must give back: FreeCAD and the fuzzers read many files in
+// one process.
+struct ProcessState {
+  int printers = 0;
+  int documents = 0;
+  std::vector<std::pair<void*, int>> handlers;  // SIGSEGV, SIGBUS, SIGFPE, SIGINT, SIGILL: handler, flags
+  stack_t signal_stack{};
+  int float_traps = 0;
+
+  static ProcessState now() {
+    ProcessState state;
+    state.printers = Message::DefaultMessenger()->Printers().Length();
+    state.documents = XCAFApp_Application::GetApplication()->NbDocuments();
+    for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGINT, SIGILL}) {
+      struct sigaction action;
+      sigaction(s, nullptr, &action);
+      state.handlers.emplace_back(reinterpret_cast<void*>(action.sa_sigaction), action.sa_flags);
+    }
+    sigaltstack(nullptr, &state.signal_stack);
+    state.float_traps = fegetexcept();
+    return state;
+  }
+};
+
+}  // namespace
+
+// Every committed STEP input (seeds, damaged files, the stack overflow turned
+// into an error) read three times in one process, as the fuzzer does: the
+// process is left as it was, and the first seed reads the same at the end.
+TEST(FuzzReplay, StepReadsLeaveTheProcessAsFound) {
+  const fs::path seed = fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step/seed_boxes.step";
+  const contactcore::AssemblyResult first = contactcore::read_step(seed.string());  // OCCT's one-time set-up
+  ASSERT_TRUE(first.status.ok()) << first.status.describe();
+  const ProcessState before = ProcessState::now();
+  int reads = 0;
+  for (int round = 0; round < 3; ++round) {
+    for (const char* folder : {"corpus", "regressions"}) {
+      for (const fs::path& path : inputs_of("fuzz_step", folder)) {
+        const contactcore::AssemblyResult result = contactcore::read_step(path.string());
+        EXPECT_TRUE(result.status.ok() || !result.status.message.empty()) << path;
+        ++reads;
+      }
+    }
+  }
+  EXPECT_EQ(reads, 3 * 10);
+  const ProcessState after = ProcessState::now();
+  EXPECT_EQ(after.printers, before.printers);
+  EXPECT_EQ(after.documents, before.documents);
+  EXPECT_EQ(after.handlers, before.handlers);
+  EXPECT_EQ(after.signal_stack.ss_sp, before.signal_stack.ss_sp);
+  EXPECT_EQ(after.signal_stack.ss_flags, before.signal_stack.ss_flags);
+  EXPECT_EQ(after.float_traps, before.float_traps);
+  const contactcore::AssemblyResult last = contactcore::read_step(seed.string());
+  ASSERT_TRUE(last.status.ok()) << last.status.describe();
+  EXPECT_EQ(last.assembly.bodies.size(), first.assembly.bodies.size());
 }

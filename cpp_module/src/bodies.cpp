@@ -32,6 +32,7 @@
 #include <BRep_Tool.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Static.hxx>
+#include <XSControl_WorkSession.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_CString.hxx>
@@ -349,12 +350,18 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
       fail(StatusCode::ReadError, "not a readable STEP file" + (why.empty() ? std::string() : ": " + why));
     } else {
       read_units(reader, result.assembly);
-      const StepModelCheck check = check_step_model(reader.ChangeReader().StepModel());
+      const StepModelCheck check =
+          check_step_model(reader.ChangeReader().StepModel(), reader.ChangeReader().WS()->Graph());
       if (!check.cycle.empty()) {
         fail(StatusCode::InvalidInput, "cyclic assembly reference (an assembly contains itself): " + check.cycle);
       } else if (check.assembly_depth > kMaxAssemblyDepth) {
         fail(StatusCode::InvalidInput, "assembly nested " + std::to_string(check.assembly_depth) +
                                            " levels deep (at most " + std::to_string(kMaxAssemblyDepth) + ")");
+      } else if (!check.reference_cycle.empty()) {
+        fail(StatusCode::InvalidInput, "cyclic reference (an entity refers to itself): " + check.reference_cycle);
+      } else if (check.reference_depth > kMaxReferenceDepth) {
+        fail(StatusCode::InvalidInput, "entities nested " + std::to_string(check.reference_depth) + " levels deep from " +
+                                           check.deepest_entity + " (at most " + std::to_string(kMaxReferenceDepth) + ")");
       } else if (!check.non_finite.empty()) {
         fail(StatusCode::InvalidInput, "coordinates that are not finite numbers (NaN, infinite or unreadable) in " +
                                            describe_non_finite(check));

@@ -5,6 +5,8 @@
 #include <unordered_map>
 
 #include <Interface_Check.hxx>
+#include <Interface_EntityIterator.hxx>
+#include <Interface_Graph.hxx>
 #include <Interface_ReportEntity.hxx>
 #include <StepBasic_ProductDefinition.hxx>
 #include <StepData_UndefinedEntity.hxx>
@@ -155,14 +157,75 @@ void check_assembly_graph(const Handle(StepData_StepModel)& model, StepModelChec
   }
 }
 
+// Cycles and the longest chain of references between entities ("#10 refers to
+// #11"), iteratively: OCCT's transfer follows references recursively, so a
+// cycle (a MAPPED_ITEM whose map's representation holds it, an ORIENTED_EDGE of
+// itself, a GEOMETRIC_SET in itself) overflows the stack, and a long chain
+// (nested GEOMETRIC_SETs) takes time quadratic in its length before it does.
+void check_reference_graph(const Handle(StepData_StepModel)& model, const Interface_Graph& graph,
+                           StepModelCheck& out) {
+  const Standard_Integer count = graph.Size();
+  std::vector<std::vector<int>> refers(static_cast<size_t>(count) + 1);
+  for (Standard_Integer num = 1; num <= count; ++num) {
+    for (Interface_EntityIterator it = graph.Shareds(graph.Entity(num)); it.More(); it.Next()) {
+      const Standard_Integer target = graph.EntityNumber(it.Value());
+      if (target > 0) refers[num].push_back(target);
+    }
+  }
+  enum Mark : char { Unseen = 0, Open, Done };
+  std::vector<char> mark(refers.size(), Unseen);
+  std::vector<int> height(refers.size(), 0);  // entities on the longest chain from here, itself included
+  struct Frame {
+    int node;
+    size_t next;
+  };
+  std::vector<Frame> stack;
+  for (int root = 1; root <= count; ++root) {
+    if (mark[root] != Unseen) continue;
+    stack.push_back({root, 0});
+    mark[root] = Open;
+    while (!stack.empty()) {
+      Frame& frame = stack.back();
+      const std::vector<int>& next = refers[frame.node];
+      if (frame.next < next.size()) {
+        const int target = next[frame.next++];
+        if (mark[target] == Open) {
+          size_t start = stack.size();
+          while (start > 0 && stack[start - 1].node != target) --start;
+          if (start > 0) --start;  // from the target itself
+          std::string cycle;
+          for (size_t i = start; i < stack.size(); ++i) cycle += entity_label(model, model->Value(stack[i].node)) + " -> ";
+          out.reference_cycle = cycle + entity_label(model, model->Value(target));
+          return;
+        }
+        if (mark[target] == Unseen) {
+          mark[target] = Open;
+          stack.push_back({target, 0});
+        }
+        continue;
+      }
+      int levels = 1;
+      for (int target : next) levels = std::max(levels, 1 + height[target]);
+      height[frame.node] = levels;
+      mark[frame.node] = Done;
+      if (levels > out.reference_depth) {
+        out.reference_depth = levels;
+        out.deepest_entity = entity_label(model, model->Value(frame.node));
+      }
+      stack.pop_back();
+    }
+  }
+}
+
 }  // namespace
 
-StepModelCheck check_step_model(const Handle(StepData_StepModel)& model) {
+StepModelCheck check_step_model(const Handle(StepData_StepModel)& model, const Interface_Graph& graph) {
   StepModelCheck out;
   if (model.IsNull()) return out;
   find_damaged(model, out);
   find_non_finite(model, out);
   check_assembly_graph(model, out);
+  check_reference_graph(model, graph, out);
   return out;
 }
 
