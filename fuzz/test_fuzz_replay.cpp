@@ -19,6 +19,7 @@
 #include <XCAFApp_Application.hxx>
 
 #include "contactcore/bodies.h"
+#include "contactcore/contacts.h"
 #include "fuzz_inputs.h"
 
 namespace {
@@ -137,12 +138,16 @@ TEST(FuzzRegressions, StepCyclicReferencesAreRefusedNamingTheCycle) {
 }
 
 // An ORIENTED_EDGE of itself overflows the stack inside OCCT's ReadFile (its
-// entity check), before any check of ours can run: the guard gives OCCT's
-// handler a stack of its own, so the overflow becomes an error naming the file.
+// entity check, StepShape_OrientedEdge::EdgeStart/EdgeEnd), before any check of
+// ours can run: the guard gives OCCT's handler a stack of its own, so the
+// overflow becomes an error naming the file. The second input is the fuzzer's
+// own (a crossover of two seeds whose edge references end in such a loop).
 TEST(FuzzRegressions, StepStackOverflowInsideTheReaderIsAnError) {
-  const contactcore::AssemblyResult result = read_regression("oriented_edge_of_itself.step");
-  EXPECT_EQ(result.status.code, contactcore::StatusCode::ReadError);
-  EXPECT_NE(result.status.describe().find("oriented_edge_of_itself.step"), std::string::npos) << result.status.describe();
+  for (const char* name : {"oriented_edge_of_itself.step", "fuzzer_oriented_edge_cycle.step"}) {
+    const contactcore::AssemblyResult result = read_regression(name);
+    EXPECT_EQ(result.status.code, contactcore::StatusCode::ReadError) << name;
+    EXPECT_NE(result.status.describe().find(name), std::string::npos) << result.status.describe();
+  }
 }
 
 // Long chains of references are bounded (kMaxReferenceDepth): 1,200 nested
@@ -218,7 +223,7 @@ TEST(FuzzReplay, StepReadsLeaveTheProcessAsFound) {
       }
     }
   }
-  EXPECT_EQ(reads, 3 * 10);
+  EXPECT_EQ(reads, 3 * (6 + 5));
   const ProcessState after = ProcessState::now();
   EXPECT_EQ(after.printers, before.printers);
   EXPECT_EQ(after.documents, before.documents);
@@ -229,4 +234,30 @@ TEST(FuzzReplay, StepReadsLeaveTheProcessAsFound) {
   const contactcore::AssemblyResult last = contactcore::read_step(seed.string());
   ASSERT_TRUE(last.status.ok()) << last.status.describe();
   EXPECT_EQ(last.assembly.bodies.size(), first.assembly.bodies.size());
+}
+
+// Two bodies whose Boolean common made OCCT 7.6 dereference a null common
+// block (BOPAlgo_Tools::ComputeToleranceOfCB; make fuzz, fuzz_brep, under
+// ASan's allocator): the pair is reported as not measured, once, and the
+// analysis ends normally. Without ASan the same Boolean fails without a signal.
+TEST(FuzzRegressions, BrepBooleanCrashInTheInterferencePassIsReported) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/boolean_common_null_common_block.brep");
+  const contactcore::AssemblyResult bodies = contactcore::bodies_from_brep(std::string(data.begin(), data.end()), {});
+  ASSERT_TRUE(bodies.status.ok()) << bodies.status.describe();
+  ASSERT_EQ(bodies.assembly.bodies.size(), 2u);
+  contactcore::ContactOptions options;
+  options.threads = 1;
+  const contactcore::ContactsResult result = contactcore::find_contacts(bodies.assembly, options);
+  ASSERT_TRUE(result.status.ok()) << result.status.describe();
+  EXPECT_TRUE(result.interferences.empty());
+  int about_the_pair = 0;
+  for (const std::string& message : result.messages) {
+    if (message.find("'Body1' and 'Body2'") == std::string::npos) continue;
+    ++about_the_pair;
+    EXPECT_TRUE(message.find("common volume could not be computed") != std::string::npos ||
+                message.find("failed: SIGSEGV") != std::string::npos)
+        << message;
+  }
+  EXPECT_EQ(about_the_pair, 1);
 }
