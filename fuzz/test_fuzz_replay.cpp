@@ -20,6 +20,7 @@
 
 #include "contactcore/bodies.h"
 #include "contactcore/contacts.h"
+#include "contactcore/step_check.h"
 #include "fuzz_inputs.h"
 
 namespace {
@@ -223,7 +224,7 @@ TEST(FuzzReplay, StepReadsLeaveTheProcessAsFound) {
       }
     }
   }
-  EXPECT_EQ(reads, 3 * (6 + 5));
+  EXPECT_EQ(reads, 3 * (6 + 6));
   const ProcessState after = ProcessState::now();
   EXPECT_EQ(after.printers, before.printers);
   EXPECT_EQ(after.documents, before.documents);
@@ -260,4 +261,45 @@ TEST(FuzzRegressions, BrepBooleanCrashInTheInterferencePassIsReported) {
         << message;
   }
   EXPECT_EQ(about_the_pair, 1);
+}
+
+// The fuzz_step timeout inside SetEntityNumbers (make fuzz, 0.6 s alone, over
+// 30 s as the 122nd input of one process): entities defined twice send OCCT 7.6
+// into a second resolution pass that reads its scratch arrays uninitialised
+// (valgrind: 3,082 reads; none for a file without duplicates), so its time
+// depends on what earlier reads left in the heap. Refused before OCCT parses.
+TEST(FuzzRegressions, StepDuplicateIdentifiersAreRefusedBeforeOcctParses) {
+  const contactcore::AssemblyResult result = read_regression("duplicate_identifiers_timeout.step");
+  EXPECT_EQ(result.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(result.status.message.find("entities defined more than once: #2 (again on line 343), #455 (again on line "
+                                       "770), #456 (again on line 771), #457 (again on line 772), #458 (again on "
+                                       "line 773) and 8 more"),
+            std::string::npos)
+      << result.status.describe();
+}
+
+// Only definitions count: "#5 =" inside a quoted name or a comment, and a
+// reference, are not definitions; a file without repeats reads as before.
+TEST(FuzzRegressions, StepDuplicateCheckSkipsStringsAndComments) {
+  const std::vector<std::uint8_t> seed = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step/seed_boxes.step");
+  std::string text(seed.begin(), seed.end());
+  const std::string product = "#7 = PRODUCT('Open CASCADE STEP translator 7.6 1'";
+  ASSERT_NE(text.find(product), std::string::npos);
+  text.replace(text.find(product), product.size(),
+               "/* #3 = SHAPE_DEFINITION_REPRESENTATION(#4,#10); */ #7 = PRODUCT('it''s #5 = one; #6 =x'");
+  const std::string path = ::testing::TempDir() + "contacts_quoted_ids.step";
+  std::ofstream(path, std::ios::binary) << text;
+  EXPECT_EQ(contactcore::find_duplicate_identifiers(path).count, 0);
+  const contactcore::AssemblyResult read = contactcore::read_step(path);
+  EXPECT_TRUE(read.status.ok()) << read.status.describe();
+  EXPECT_EQ(read.assembly.bodies.size(), 2u);
+  // The same #7 defined again after the data: one repeat, on its line.
+  const size_t end = text.rfind("ENDSEC;");
+  const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(end), '\n');
+  text.insert(end, "#7 = PRODUCT('x','x','',(#8));\n");
+  std::ofstream(path, std::ios::binary) << text;
+  const contactcore::DuplicateIdentifiers twice = contactcore::find_duplicate_identifiers(path);
+  EXPECT_EQ(twice.count, 1);
+  EXPECT_EQ(contactcore::describe_duplicates(twice), "#7 (again on line " + std::to_string(line) + ")");
+  std::remove(path.c_str());
 }

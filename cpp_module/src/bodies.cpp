@@ -329,6 +329,9 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
   if (progress && !progress->report("read", 0.0)) return fail(StatusCode::Cancelled, "cancelled");
   result.status = check_input_file(path, "STEP");
   if (!result.status.ok()) return result;
+  const DuplicateIdentifiers duplicates = find_duplicate_identifiers(path);
+  if (duplicates.count)
+    return fail(StatusCode::InvalidInput, "entities defined more than once: " + describe_duplicates(duplicates));
   // Damaged files make OCCT 7.6 dereference null handles: its signal handler
   // turns that into a Standard_Failure here, and its messages are kept off stdout.
   OcctGuard guard;

@@ -38,6 +38,22 @@ struct StepModelCheck {
 // reuses it for the transfer).
 StepModelCheck check_step_model(const Handle(StepData_StepModel)& model, const Interface_Graph& graph);
 
+// Entity identifiers defined more than once ("#455 = ..." twice), found in
+// the file's text before OCCT parses it. OCCT 7.6 resolves references in such
+// a file with a second pass (StepData_StepReaderData::SetEntityNumbers) that
+// reads its scratch arrays uninitialised: valgrind reports 3,082 such reads on
+// one; its time then depends on what earlier work left in the heap (a 0.6 s
+// file took over 30 s in a long process). They are refused instead.
+struct DuplicateIdentifiers {
+  std::vector<std::string> listed;    // "#455 (again on line 790)" (first few)
+  int count = 0;                      // all repeated definitions
+};
+
+DuplicateIdentifiers find_duplicate_identifiers(const std::string& path);
+
+// "#455 (again on line 790), #456 (again on line 791)" (with "and N more").
+std::string describe_duplicates(const DuplicateIdentifiers& duplicates);
+
 // "#12: unknown entity type NOT_A_TYPE; #40: ..." (with "and N more").
 std::string describe_damaged(const StepModelCheck& check);
 
