@@ -303,3 +303,16 @@ TEST(FuzzRegressions, StepDuplicateCheckSkipsStringsAndComments) {
   EXPECT_EQ(contactcore::describe_duplicates(twice), "#7 (again on line " + std::to_string(line) + ")");
   std::remove(path.c_str());
 }
+
+// A pcurve coefficient of 1e+3000 (beyond a double: infinite) gave a face of
+// infinite area in partition_brep's path (make fuzz, fuzz_brep check): refused
+// with the BRep number check, naming the line.
+TEST(FuzzRegressions, BrepNumberBeyondADoubleInACurveIsAnError) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/pcurve_number_beyond_double.brep");
+  ASSERT_FALSE(data.empty());
+  TopoDS_Shape shape;
+  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(status.message.find("number out of range '1e+3000' on line 52"), std::string::npos) << status.message;
+}

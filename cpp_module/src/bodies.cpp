@@ -275,21 +275,27 @@ Status check_brep_text(const std::string& brep) {
       "Locations", "Curve2ds", "Curves", "Polygon3D", "PolygonOnTriangulations", "Surfaces", "Triangulations"};
   const size_t geometry = brep.find("Locations");
   if (geometry == std::string::npos || geometry > table) return fail("no Locations section");
+  bool in_locations = false;
   for (size_t pos = geometry; pos < table;) {
     const size_t start = brep.find_first_not_of(" \t\r\n", pos);
     if (start == std::string::npos || start >= table) break;
     const size_t end = std::min(brep.find_first_of(" \t\r\n", start), table);
     const std::string_view token(brep.data() + start, end - start);
     pos = end;
-    if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) continue;
+    if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) {
+      in_locations = token == "Locations";
+      continue;
+    }
     if (token == "p") continue;  // a polygon on triangulation's "has parameters" mark (a meshed shape)
     char* stop = nullptr;
-    // As OCCT reads it, whatever the locale. NaN and inf are numbers: the
-    // bodies' boxes catch them later, naming the body.
-    Strtod(brep.c_str() + start, &stop);
-    if (stop != brep.c_str() + end) {
+    // As OCCT reads it, whatever the locale. NaN and inf in a placement are
+    // numbers: the bodies' boxes catch them later, naming the body. In a
+    // curve or surface (1e+3000 in a pcurve) they gave a face of infinite area.
+    const double value = Strtod(brep.c_str() + start, &stop);
+    if (stop != brep.c_str() + end || (!in_locations && !std::isfinite(value))) {
       const long line = 1 + std::count(brep.begin(), brep.begin() + static_cast<long>(start), '\n');
-      return fail("damaged number '" + std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
+      return fail(std::string(stop != brep.c_str() + end ? "damaged number '" : "number out of range '") +
+                  std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
     }
   }
   long records = 0;
