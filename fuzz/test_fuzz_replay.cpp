@@ -5,13 +5,22 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfenv>
+#include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
 
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <XCAFApp_Application.hxx>
+
 #include "contactcore/bodies.h"
+#include "contactcore/contacts.h"
+#include "contactcore/step_check.h"
 #include "fuzz_inputs.h"
 
 namespace {
@@ -103,4 +112,207 @@ TEST(FuzzRegressions, BrepDamagedNumberInTheGeometryIsAnError) {
   const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("damaged number '@6.2831853071795862' on line 35"), std::string::npos) << status.message;
+}
+
+namespace {
+
+contactcore::AssemblyResult read_regression(const std::string& name) {
+  return contactcore::read_step((fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_step" / name).string());
+}
+
+}  // namespace
+
+// An entity that refers to itself through others made OCCT's transfer recurse
+// until the stack overflowed, and OCCT's signal handler, on that same stack,
+// could not run: the process was killed (make fuzz, fuzz_step, exit 139 with no
+// report). A representation holding a MAPPED_ITEM of itself, a GEOMETRIC_SET in
+// itself: refused before the transfer, naming the cycle.
+TEST(FuzzRegressions, StepCyclicReferencesAreRefusedNamingTheCycle) {
+  const contactcore::AssemblyResult mapped = read_regression("cyclic_mapped_item.step");
+  EXPECT_EQ(mapped.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(mapped.status.message.find("cyclic reference (an entity refers to itself): #10 -> #9002 -> #9001 -> #10"),
+            std::string::npos)
+      << mapped.status.describe();
+  const contactcore::AssemblyResult set = read_regression("geometric_set_in_itself.step");
+  EXPECT_EQ(set.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(set.status.message.find("#9001 -> #9001"), std::string::npos) << set.status.describe();
+}
+
+// An ORIENTED_EDGE of itself overflows the stack inside OCCT's ReadFile (its
+// entity check, StepShape_OrientedEdge::EdgeStart/EdgeEnd), before any check of
+// ours can run: the guard gives OCCT's handler a stack of its own, so the
+// overflow becomes an error naming the file. The second input is the fuzzer's
+// own (a crossover of two seeds whose edge references end in such a loop).
+TEST(FuzzRegressions, StepStackOverflowInsideTheReaderIsAnError) {
+  for (const char* name : {"oriented_edge_of_itself.step", "fuzzer_oriented_edge_cycle.step"}) {
+    const contactcore::AssemblyResult result = read_regression(name);
+    EXPECT_EQ(result.status.code, contactcore::StatusCode::ReadError) << name;
+    EXPECT_NE(result.status.describe().find(name), std::string::npos) << result.status.describe();
+  }
+}
+
+// Long chains of references are bounded (kMaxReferenceDepth): 1,200 nested
+// GEOMETRIC_SETs (8,000 overflowed the stack; 500 took 17 s) are refused,
+// naming where the chain starts (real files have 11 to 16 levels).
+TEST(FuzzRegressions, StepReferenceChainsAreBounded) {
+  const std::vector<std::uint8_t> seed = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step/seed_boxes.step");
+  std::string text(seed.begin(), seed.end());
+  const std::string items = "#10 = SHAPE_REPRESENTATION('',(#11,#15,#345)";
+  ASSERT_NE(text.find(items), std::string::npos);
+  text.replace(text.find(items), items.size(), "#10 = SHAPE_REPRESENTATION('',(#11,#15,#345,#10000)");
+  std::string sets;
+  const int levels = 1200;
+  for (int i = 0; i < levels; ++i)
+    sets += "#" + std::to_string(10000 + i) + " = GEOMETRIC_SET('',(#" + std::to_string(10001 + i) + "));\n";
+  sets += "#" + std::to_string(10000 + levels) + " = CARTESIAN_POINT('',(0.,0.,0.));\n";
+  text.insert(text.rfind("ENDSEC;"), sets);
+  const std::string path = ::testing::TempDir() + "contacts_nested_sets.step";
+  std::ofstream(path, std::ios::binary) << text;
+  const contactcore::AssemblyResult result = contactcore::read_step(path);
+  EXPECT_EQ(result.status.code, contactcore::StatusCode::InvalidInput);
+  // SHAPE_DEFINITION_REPRESENTATION #3 -> #10 -> 1,200 sets -> the point.
+  EXPECT_NE(result.status.message.find("entities nested 1203 levels deep from #3 (at most 1000)"), std::string::npos)
+      << result.status.describe();
+  std::remove(path.c_str());
+}
+
+namespace {
+
+// What read_step changes for the whole process while it runs (signal
+// handlers, the signal stack, OCCT's messenger, the XDE application's
+// documents) and must give back: FreeCAD and the fuzzers read many files in
+// one process.
+struct ProcessState {
+  int printers = 0;
+  int documents = 0;
+  std::vector<std::pair<void*, int>> handlers;  // SIGSEGV, SIGBUS, SIGFPE, SIGINT, SIGILL: handler, flags
+  stack_t signal_stack{};
+  int float_traps = 0;
+
+  static ProcessState now() {
+    ProcessState state;
+    state.printers = Message::DefaultMessenger()->Printers().Length();
+    state.documents = XCAFApp_Application::GetApplication()->NbDocuments();
+    for (int s : {SIGSEGV, SIGBUS, SIGFPE, SIGINT, SIGILL}) {
+      struct sigaction action;
+      sigaction(s, nullptr, &action);
+      state.handlers.emplace_back(reinterpret_cast<void*>(action.sa_sigaction), action.sa_flags);
+    }
+    sigaltstack(nullptr, &state.signal_stack);
+    state.float_traps = fegetexcept();
+    return state;
+  }
+};
+
+}  // namespace
+
+// Every committed STEP input (seeds, damaged files, the stack overflow turned
+// into an error) read three times in one process, as the fuzzer does: the
+// process is left as it was, and the first seed reads the same at the end.
+TEST(FuzzReplay, StepReadsLeaveTheProcessAsFound) {
+  const fs::path seed = fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step/seed_boxes.step";
+  const contactcore::AssemblyResult first = contactcore::read_step(seed.string());  // OCCT's one-time set-up
+  ASSERT_TRUE(first.status.ok()) << first.status.describe();
+  const ProcessState before = ProcessState::now();
+  int reads = 0;
+  for (int round = 0; round < 3; ++round) {
+    for (const char* folder : {"corpus", "regressions"}) {
+      for (const fs::path& path : inputs_of("fuzz_step", folder)) {
+        const contactcore::AssemblyResult result = contactcore::read_step(path.string());
+        EXPECT_TRUE(result.status.ok() || !result.status.message.empty()) << path;
+        ++reads;
+      }
+    }
+  }
+  EXPECT_EQ(reads, 3 * (6 + 6));
+  const ProcessState after = ProcessState::now();
+  EXPECT_EQ(after.printers, before.printers);
+  EXPECT_EQ(after.documents, before.documents);
+  EXPECT_EQ(after.handlers, before.handlers);
+  EXPECT_EQ(after.signal_stack.ss_sp, before.signal_stack.ss_sp);
+  EXPECT_EQ(after.signal_stack.ss_flags, before.signal_stack.ss_flags);
+  EXPECT_EQ(after.float_traps, before.float_traps);
+  const contactcore::AssemblyResult last = contactcore::read_step(seed.string());
+  ASSERT_TRUE(last.status.ok()) << last.status.describe();
+  EXPECT_EQ(last.assembly.bodies.size(), first.assembly.bodies.size());
+}
+
+// Two bodies whose Boolean common made OCCT 7.6 dereference a null common
+// block (BOPAlgo_Tools::ComputeToleranceOfCB; make fuzz, fuzz_brep, under
+// ASan's allocator): the pair is reported as not measured, once, and the
+// analysis ends normally. Without ASan the same Boolean fails without a signal.
+TEST(FuzzRegressions, BrepBooleanCrashInTheInterferencePassIsReported) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/boolean_common_null_common_block.brep");
+  const contactcore::AssemblyResult bodies = contactcore::bodies_from_brep(std::string(data.begin(), data.end()), {});
+  ASSERT_TRUE(bodies.status.ok()) << bodies.status.describe();
+  ASSERT_EQ(bodies.assembly.bodies.size(), 2u);
+  contactcore::ContactOptions options;
+  options.threads = 1;
+  const contactcore::ContactsResult result = contactcore::find_contacts(bodies.assembly, options);
+  ASSERT_TRUE(result.status.ok()) << result.status.describe();
+  EXPECT_TRUE(result.interferences.empty());
+  int about_the_pair = 0;
+  for (const std::string& message : result.messages) {
+    if (message.find("'Body1' and 'Body2'") == std::string::npos) continue;
+    ++about_the_pair;
+    EXPECT_TRUE(message.find("common volume could not be computed") != std::string::npos ||
+                message.find("failed: SIGSEGV") != std::string::npos)
+        << message;
+  }
+  EXPECT_EQ(about_the_pair, 1);
+}
+
+// The fuzz_step timeout inside SetEntityNumbers (make fuzz, 0.6 s alone, over
+// 30 s as the 122nd input of one process): entities defined twice send OCCT 7.6
+// into a second resolution pass that reads its scratch arrays uninitialised
+// (valgrind: 3,082 reads; none for a file without duplicates), so its time
+// depends on what earlier reads left in the heap. Refused before OCCT parses.
+TEST(FuzzRegressions, StepDuplicateIdentifiersAreRefusedBeforeOcctParses) {
+  const contactcore::AssemblyResult result = read_regression("duplicate_identifiers_timeout.step");
+  EXPECT_EQ(result.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(result.status.message.find("entities defined more than once: #2 (again on line 343), #455 (again on line "
+                                       "770), #456 (again on line 771), #457 (again on line 772), #458 (again on "
+                                       "line 773) and 8 more"),
+            std::string::npos)
+      << result.status.describe();
+}
+
+// Only definitions count: "#5 =" inside a quoted name or a comment, and a
+// reference, are not definitions; a file without repeats reads as before.
+TEST(FuzzRegressions, StepDuplicateCheckSkipsStringsAndComments) {
+  const std::vector<std::uint8_t> seed = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step/seed_boxes.step");
+  std::string text(seed.begin(), seed.end());
+  const std::string product = "#7 = PRODUCT('Open CASCADE STEP translator 7.6 1'";
+  ASSERT_NE(text.find(product), std::string::npos);
+  text.replace(text.find(product), product.size(),
+               "/* #3 = SHAPE_DEFINITION_REPRESENTATION(#4,#10); */ #7 = PRODUCT('it''s #5 = one; #6 =x'");
+  const std::string path = ::testing::TempDir() + "contacts_quoted_ids.step";
+  std::ofstream(path, std::ios::binary) << text;
+  EXPECT_EQ(contactcore::find_duplicate_identifiers(path).count, 0);
+  const contactcore::AssemblyResult read = contactcore::read_step(path);
+  EXPECT_TRUE(read.status.ok()) << read.status.describe();
+  EXPECT_EQ(read.assembly.bodies.size(), 2u);
+  // The same #7 defined again after the data: one repeat, on its line.
+  const size_t end = text.rfind("ENDSEC;");
+  const long line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(end), '\n');
+  text.insert(end, "#7 = PRODUCT('x','x','',(#8));\n");
+  std::ofstream(path, std::ios::binary) << text;
+  const contactcore::DuplicateIdentifiers twice = contactcore::find_duplicate_identifiers(path);
+  EXPECT_EQ(twice.count, 1);
+  EXPECT_EQ(contactcore::describe_duplicates(twice), "#7 (again on line " + std::to_string(line) + ")");
+  std::remove(path.c_str());
+}
+
+// A pcurve coefficient of 1e+3000 (beyond a double: infinite) gave a face of
+// infinite area in partition_brep's path (make fuzz, fuzz_brep check): refused
+// with the BRep number check, naming the line.
+TEST(FuzzRegressions, BrepNumberBeyondADoubleInACurveIsAnError) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/pcurve_number_beyond_double.brep");
+  ASSERT_FALSE(data.empty());
+  TopoDS_Shape shape;
+  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(status.message.find("number out of range '1e+3000' on line 52"), std::string::npos) << status.message;
 }

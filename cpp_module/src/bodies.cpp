@@ -32,6 +32,7 @@
 #include <BRep_Tool.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <Interface_Static.hxx>
+#include <XSControl_WorkSession.hxx>
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_CString.hxx>
@@ -274,21 +275,27 @@ Status check_brep_text(const std::string& brep) {
       "Locations", "Curve2ds", "Curves", "Polygon3D", "PolygonOnTriangulations", "Surfaces", "Triangulations"};
   const size_t geometry = brep.find("Locations");
   if (geometry == std::string::npos || geometry > table) return fail("no Locations section");
+  bool in_locations = false;
   for (size_t pos = geometry; pos < table;) {
     const size_t start = brep.find_first_not_of(" \t\r\n", pos);
     if (start == std::string::npos || start >= table) break;
     const size_t end = std::min(brep.find_first_of(" \t\r\n", start), table);
     const std::string_view token(brep.data() + start, end - start);
     pos = end;
-    if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) continue;
+    if (std::find(std::begin(sections), std::end(sections), token) != std::end(sections)) {
+      in_locations = token == "Locations";
+      continue;
+    }
     if (token == "p") continue;  // a polygon on triangulation's "has parameters" mark (a meshed shape)
     char* stop = nullptr;
-    // As OCCT reads it, whatever the locale. NaN and inf are numbers: the
-    // bodies' boxes catch them later, naming the body.
-    Strtod(brep.c_str() + start, &stop);
-    if (stop != brep.c_str() + end) {
+    // As OCCT reads it, whatever the locale. NaN and inf in a placement are
+    // numbers: the bodies' boxes catch them later, naming the body. In a
+    // curve or surface (1e+3000 in a pcurve) they gave a face of infinite area.
+    const double value = Strtod(brep.c_str() + start, &stop);
+    if (stop != brep.c_str() + end || (!in_locations && !std::isfinite(value))) {
       const long line = 1 + std::count(brep.begin(), brep.begin() + static_cast<long>(start), '\n');
-      return fail("damaged number '" + std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
+      return fail(std::string(stop != brep.c_str() + end ? "damaged number '" : "number out of range '") +
+                  std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
     }
   }
   long records = 0;
@@ -328,6 +335,9 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
   if (progress && !progress->report("read", 0.0)) return fail(StatusCode::Cancelled, "cancelled");
   result.status = check_input_file(path, "STEP");
   if (!result.status.ok()) return result;
+  const DuplicateIdentifiers duplicates = find_duplicate_identifiers(path);
+  if (duplicates.count)
+    return fail(StatusCode::InvalidInput, "entities defined more than once: " + describe_duplicates(duplicates));
   // Damaged files make OCCT 7.6 dereference null handles: its signal handler
   // turns that into a Standard_Failure here, and its messages are kept off stdout.
   OcctGuard guard;
@@ -349,12 +359,18 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
       fail(StatusCode::ReadError, "not a readable STEP file" + (why.empty() ? std::string() : ": " + why));
     } else {
       read_units(reader, result.assembly);
-      const StepModelCheck check = check_step_model(reader.ChangeReader().StepModel());
+      const StepModelCheck check =
+          check_step_model(reader.ChangeReader().StepModel(), reader.ChangeReader().WS()->Graph());
       if (!check.cycle.empty()) {
         fail(StatusCode::InvalidInput, "cyclic assembly reference (an assembly contains itself): " + check.cycle);
       } else if (check.assembly_depth > kMaxAssemblyDepth) {
         fail(StatusCode::InvalidInput, "assembly nested " + std::to_string(check.assembly_depth) +
                                            " levels deep (at most " + std::to_string(kMaxAssemblyDepth) + ")");
+      } else if (!check.reference_cycle.empty()) {
+        fail(StatusCode::InvalidInput, "cyclic reference (an entity refers to itself): " + check.reference_cycle);
+      } else if (check.reference_depth > kMaxReferenceDepth) {
+        fail(StatusCode::InvalidInput, "entities nested " + std::to_string(check.reference_depth) + " levels deep from " +
+                                           check.deepest_entity + " (at most " + std::to_string(kMaxReferenceDepth) + ")");
       } else if (!check.non_finite.empty()) {
         fail(StatusCode::InvalidInput, "coordinates that are not finite numbers (NaN, infinite or unreadable) in " +
                                            describe_non_finite(check));

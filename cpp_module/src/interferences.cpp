@@ -13,6 +13,7 @@
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
+#include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
@@ -20,6 +21,7 @@
 #include <gp_Ax1.hxx>
 
 #include "contactcore/boundary_crossing.h"
+#include "contactcore/occt_guard.h"
 #include "contactcore/parallel.h"
 #include "contactcore/separation.h"
 
@@ -284,9 +286,14 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
              deep.end());
 
   std::vector<PairOutcome> outcomes(deep.size());
+  // OCCT 7.6's Boolean common dereferences a null common block on some damaged
+  // shapes (make fuzz, fuzz_brep): its signal handler makes that a failure of
+  // the pair (OCC_CATCH_SIGNALS in each worker), not a crash.
+  const OcctGuard guard;
   if (!parallel_for(deep.size(), threads, progress, "interferences", [&](std::size_t k) {
         const auto [a, b] = deep[k];
         try {
+          OCC_CATCH_SIGNALS
           outcomes[k] = test_pair(assembly, result, a, b);
         } catch (const Standard_Failure& failure) {
           outcomes[k].kind = PairOutcome::Failed;

@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <mutex>
+#include <vector>
 
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -45,6 +46,10 @@ std::recursive_mutex& guard_mutex() {
 // The classic signals OCCT's handler takes over (1..31).
 constexpr int kLastClassicSignal = 31;
 
+// Room for OCCT's handler (a message, an exception object, the jump) when the
+// thread's own stack is exhausted.
+constexpr size_t kSignalStackBytes = 256 * 1024;
+
 }  // namespace
 
 struct OcctGuard::State {
@@ -53,6 +58,8 @@ struct OcctGuard::State {
   Handle(Message_Messenger) messenger = Message::DefaultMessenger();
   Message_SequenceOfPrinters printers;
   Handle(CapturingPrinter) capture = new CapturingPrinter;
+  std::vector<char> signal_stack;  // ours, when the thread had none
+  stack_t saved_signal_stack{};
 };
 
 OcctGuard::OcctGuard() : state_(std::make_unique<State>()) {
@@ -61,6 +68,24 @@ OcctGuard::OcctGuard() : state_(std::make_unique<State>()) {
   // OCCT's handler for SIGINT would turn Ctrl-C into an exception at a random
   // point of the reader: keep the caller's.
   sigaction(SIGINT, &state_->saved[SIGINT], nullptr);
+  // A stack overflow (OCCT recursing along a chain of references the checks
+  // did not bound) is a SIGSEGV whose handler cannot run on the exhausted
+  // stack: the kernel would kill the process. On a stack of its own it
+  // becomes a Standard_Failure like any other.
+  sigaltstack(nullptr, &state_->saved_signal_stack);
+  if (state_->saved_signal_stack.ss_flags & SS_DISABLE) {
+    state_->signal_stack.resize(kSignalStackBytes);
+    stack_t ours{};
+    ours.ss_sp = state_->signal_stack.data();
+    ours.ss_size = state_->signal_stack.size();
+    if (sigaltstack(&ours, nullptr) != 0) state_->signal_stack.clear();
+  }
+  for (int s : {SIGSEGV, SIGBUS}) {
+    struct sigaction action;
+    sigaction(s, nullptr, &action);
+    action.sa_flags |= SA_ONSTACK;
+    sigaction(s, &action, nullptr);
+  }
   state_->printers = state_->messenger->Printers();
   state_->messenger->ChangePrinters().Clear();
   state_->messenger->AddPrinter(state_->capture);
@@ -73,6 +98,7 @@ OcctGuard::~OcctGuard() {
     if (s == SIGKILL || s == SIGSTOP) continue;
     sigaction(s, &state_->saved[s], nullptr);
   }
+  if (!state_->signal_stack.empty()) sigaltstack(&state_->saved_signal_stack, nullptr);
 }
 
 std::vector<std::string> OcctGuard::messages() const { return state_->capture->lines; }

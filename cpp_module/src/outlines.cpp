@@ -179,9 +179,12 @@ void outline_edge(const TopoDS_Edge& edge, const PlaneFrame& frame, double sag, 
                   Polygon2& loop) {
   const BRepAdaptor_Curve curve(edge);
   const bool reversed = edge.Orientation() == TopAbs_REVERSED;
-  const double first = curve.FirstParameter(), last = curve.LastParameter();
+  const double first = curve.FirstParameter();
+  double last = curve.LastParameter();
   std::vector<double> t;
   std::vector<double> bulge;  // of the chord (t[i], t[i + 1]) run forward
+  // A damaged circle edge can span 4e11 rad (make fuzz): at most one turn.
+  if (curve.GetType() == GeomAbs_Circle && last - first > kTwoPi) last = first + kTwoPi;
   switch (curve.GetType()) {
     case GeomAbs_Line: t = {first, last}, bulge = {0.0}; break;
     case GeomAbs_Circle: {

@@ -37,8 +37,13 @@ void integration_pieces(const Curve& curve, double first, double last, std::vect
   switch (curve.GetType()) {
     case GeomAbs_Line: breaks.push_back(first); break;
     case GeomAbs_Circle:
-    case GeomAbs_Ellipse:
-      uniform(first, last, std::max(1, static_cast<int>(std::ceil((last - first) / kEighthTurn)))); break;
+    case GeomAbs_Ellipse: {
+      // A damaged edge can span 4e11 rad: at most 1,024 pieces (a turn is 8),
+      // counted as a double (an int overflows).
+      const double eighths = std::ceil((last - first) / kEighthTurn);
+      uniform(first, last, eighths >= 1 && eighths <= 1024 ? static_cast<int>(eighths) : eighths > 1024 ? 1024 : 1);
+      break;
+    }
     case GeomAbs_BSplineCurve:
     case GeomAbs_BezierCurve: {
       const int spans = curve.NbIntervals(GeomAbs_CN);

@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <memory>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <Interface_Check.hxx>
+#include <Interface_EntityIterator.hxx>
+#include <Interface_Graph.hxx>
 #include <Interface_ReportEntity.hxx>
 #include <StepBasic_ProductDefinition.hxx>
 #include <StepData_UndefinedEntity.hxx>
@@ -155,15 +160,178 @@ void check_assembly_graph(const Handle(StepData_StepModel)& model, StepModelChec
   }
 }
 
+// Cycles and the longest chain of references between entities ("#10 refers to
+// #11"), iteratively: OCCT's transfer follows references recursively, so a
+// cycle (a MAPPED_ITEM whose map's representation holds it, an ORIENTED_EDGE of
+// itself, a GEOMETRIC_SET in itself) overflows the stack, and a long chain
+// (nested GEOMETRIC_SETs) takes time quadratic in its length before it does.
+void check_reference_graph(const Handle(StepData_StepModel)& model, const Interface_Graph& graph,
+                           StepModelCheck& out) {
+  const Standard_Integer count = graph.Size();
+  std::vector<std::vector<int>> refers(static_cast<size_t>(count) + 1);
+  for (Standard_Integer num = 1; num <= count; ++num) {
+    for (Interface_EntityIterator it = graph.Shareds(graph.Entity(num)); it.More(); it.Next()) {
+      const Standard_Integer target = graph.EntityNumber(it.Value());
+      if (target > 0) refers[num].push_back(target);
+    }
+  }
+  enum Mark : char { Unseen = 0, Open, Done };
+  std::vector<char> mark(refers.size(), Unseen);
+  std::vector<int> height(refers.size(), 0);  // entities on the longest chain from here, itself included
+  struct Frame {
+    int node;
+    size_t next;
+  };
+  std::vector<Frame> stack;
+  for (int root = 1; root <= count; ++root) {
+    if (mark[root] != Unseen) continue;
+    stack.push_back({root, 0});
+    mark[root] = Open;
+    while (!stack.empty()) {
+      Frame& frame = stack.back();
+      const std::vector<int>& next = refers[frame.node];
+      if (frame.next < next.size()) {
+        const int target = next[frame.next++];
+        if (mark[target] == Open) {
+          size_t start = stack.size();
+          while (start > 0 && stack[start - 1].node != target) --start;
+          if (start > 0) --start;  // from the target itself
+          std::string cycle;
+          for (size_t i = start; i < stack.size(); ++i) cycle += entity_label(model, model->Value(stack[i].node)) + " -> ";
+          out.reference_cycle = cycle + entity_label(model, model->Value(target));
+          return;
+        }
+        if (mark[target] == Unseen) {
+          mark[target] = Open;
+          stack.push_back({target, 0});
+        }
+        continue;
+      }
+      int levels = 1;
+      for (int target : next) levels = std::max(levels, 1 + height[target]);
+      height[frame.node] = levels;
+      mark[frame.node] = Done;
+      if (levels > out.reference_depth) {
+        out.reference_depth = levels;
+        out.deepest_entity = entity_label(model, model->Value(frame.node));
+      }
+      stack.pop_back();
+    }
+  }
+}
+
 }  // namespace
 
-StepModelCheck check_step_model(const Handle(StepData_StepModel)& model) {
+StepModelCheck check_step_model(const Handle(StepData_StepModel)& model, const Interface_Graph& graph) {
   StepModelCheck out;
   if (model.IsNull()) return out;
   find_damaged(model, out);
   find_non_finite(model, out);
   check_assembly_graph(model, out);
+  check_reference_graph(model, graph, out);
   return out;
+}
+
+DuplicateIdentifiers find_duplicate_identifiers(const std::string& path) {
+  DuplicateIdentifiers out;
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) return out;
+  // Identifiers are dense in practice (#1..#N): a bit each, a set beyond.
+  constexpr unsigned long long kDenseLimit = 1ull << 28;
+  std::vector<bool> dense;
+  std::unordered_set<unsigned long long> sparse;
+  const auto seen_before = [&](unsigned long long id) {
+    if (id < kDenseLimit) {
+      if (id >= dense.size()) dense.resize(std::max<size_t>(id + 1, dense.size() * 2));
+      const bool seen = dense[id];
+      dense[id] = true;
+      return seen;
+    }
+    return !sparse.insert(id).second;
+  };
+  // A statement's start: "#<digits> =" there defines an entity; quoted
+  // strings ('' inside is a quote) and /* comments */ are skipped.
+  enum class At { StatementStart, Hash, Number, AfterNumber, Body } at = At::StatementStart;
+  bool in_string = false, in_comment = false;
+  char previous = 0;
+  unsigned long long id = 0;
+  int digits = 0;
+  long line = 1;
+  std::vector<char> buffer(1 << 20);
+  size_t got;
+  while ((got = std::fread(buffer.data(), 1, buffer.size(), file.get())) > 0) {
+    for (size_t i = 0; i < got; ++i) {
+      const char c = buffer[i];
+      if (c == '\n') ++line;
+      if (in_comment) {
+        if (previous == '*' && c == '/') in_comment = false, previous = 0;
+        else previous = c;
+        continue;
+      }
+      if (in_string) {
+        if (c == '\'') in_string = false;
+        previous = c;
+        continue;
+      }
+      if (previous == '/' && c == '*') {
+        in_comment = true;
+        previous = 0;
+        continue;
+      }
+      previous = c;
+      const bool space = c == ' ' || c == '\t' || c == '\r' || c == '\n';
+      if (c == '\'') {
+        in_string = true;
+        at = At::Body;
+        continue;
+      }
+      if (c == ';') {
+        at = At::StatementStart;
+        continue;
+      }
+      switch (at) {
+        case At::StatementStart:
+          if (c == '#') at = At::Hash, id = 0, digits = 0;
+          else if (!space && c != '/') at = At::Body;
+          break;
+        case At::Hash:
+        case At::Number:
+          if (c >= '0' && c <= '9') {
+            if (++digits <= 18) id = id * 10 + static_cast<unsigned long long>(c - '0');
+            at = At::Number;
+          } else if (at == At::Number && (space || c == '=')) {
+            at = At::AfterNumber;
+          } else {
+            at = At::Body;
+          }
+          if (at != At::AfterNumber || c != '=') break;
+          [[fallthrough]];
+        case At::AfterNumber:
+          if (c == '=') {
+            if (digits <= 18 && seen_before(id)) {
+              if (out.listed.size() < kMaxDamagedListed)
+                out.listed.push_back("#" + std::to_string(id) + " (again on line " + std::to_string(line) + ")");
+              ++out.count;
+            }
+            at = At::Body;
+          } else if (!space) {
+            at = At::Body;
+          }
+          break;
+        case At::Body:
+          break;
+      }
+    }
+  }
+  return out;
+}
+
+std::string describe_duplicates(const DuplicateIdentifiers& duplicates) {
+  std::string text;
+  for (const std::string& item : duplicates.listed) text += (text.empty() ? "" : ", ") + item;
+  const int more = duplicates.count - static_cast<int>(duplicates.listed.size());
+  if (more > 0) text += " and " + std::to_string(more) + " more";
+  return text;
 }
 
 std::string describe_damaged(const StepModelCheck& check) {

@@ -13,6 +13,9 @@ namespace contactcore {
 // Standard_Failure inside OCC_CATCH_SIGNALS), the process's previous handlers
 // are restored on destruction (Python's SIGINT, FreeCAD's own), and OCCT's
 // default messenger prints nothing: its messages are kept in `messages()`.
+// OCCT's SIGSEGV and SIGBUS handlers run on a signal stack of their own (the
+// thread's if it has one, else one the guard sets up and removes), so a stack
+// overflow inside OCCT is an exception too, not a killed process.
 // Reads are serialised: signal handlers and the messenger are process-wide.
 class OcctGuard {
  public:
