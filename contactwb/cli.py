@@ -103,6 +103,10 @@ def main(argv=None):
                         help="with --joints: also list clearance fits with a gap below MM")
     parser.add_argument("--disassembly", action="store_true",
                         help="print the removal sequence (with --json: {\"disassembly\": [{\"parts\", \"direction\"}]})")
+    parser.add_argument("--check-solids", choices=("quick", "full"), default="quick",
+                        help="solid checks: quick (default: self-intersecting wires, open or misoriented shells, "
+                             "edges off their faces, zero or negative volume) or full (also OCCT's whole "
+                             "BRepCheck_Analyzer, about 10x slower); see docs/reliability.md")
     args = parser.parse_args(argv)
     if args.disassembly:
         from contactwb import cli_mesh
@@ -127,17 +131,18 @@ def main(argv=None):
                 if wants_joints:
                     result, found, _ = joints_api.joints_in_document(
                         doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
-                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs)
+                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs, check_solids=args.check_solids)
                 else:
                     result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
-                                                                   progress=progress, max_pairs=args.max_pairs)
+                                                                   progress=progress, max_pairs=args.max_pairs,
+                                                                   check_solids=args.check_solids)
             elif wants_joints:
                 result, found = joints_api.joints_in_step(path, args.linear, args.angular, progress,
                                                           ground=args.ground, clearance_gap=args.clearance_gap,
-                                                          max_pairs=args.max_pairs)
+                                                          max_pairs=args.max_pairs, check_solids=args.check_solids)
             else:
                 result = analysis.find_contacts_in_step(path, args.linear, args.angular, progress,
-                                                        max_pairs=args.max_pairs)
+                                                        max_pairs=args.max_pairs, check_solids=args.check_solids)
             if args.graph:
                 found.write_graph(args.graph)
     except (core.Cancelled, KeyboardInterrupt):

@@ -177,19 +177,28 @@ def test_zero_volume_box_gets_a_note_not_a_plf(corpus):
     # a box of height 0 (four faces of area 0) on the base: no PLF of area 100
     result = analysis.find_contacts_in_step(_corpus_file(corpus, "zero_volume.step"))
     assert result.contacts == []
-    assert result.messages == ["body 'Flat' has no volume (thinner than the tolerance): its contacts are not counted"]
+    assert result.invalid_bodies == [{"body": "Flat", "faces": [], "reason": "zero volume"}]
+    assert result.messages == [
+        "body 'Flat' is not a valid solid: zero volume (whole solid); its contacts and areas may be wrong",
+        "body 'Flat' has no volume (thinner than the tolerance): its contacts are not counted"]
 
 
-def test_self_intersecting_solid_ends_cleanly(corpus):
+def test_self_intersecting_solid_through_step_is_named_zero_volume(corpus):
     # A bow-tie prism (its faces cross each other) on the base, through STEP:
-    # OCCT's reader heals it into eight valid faces enclosing volume 0, which
-    # the face check cannot see (docs/reliability.md). The analysis ends,
-    # names the body, and never reports more than the bow-tie's real
-    # footprint (two triangles of 25 mm^2).
+    # OCCT's reader heals it into eight valid faces, two of them crossing
+    # inside, enclosing +125 and -125 mm^3: volume 0, the whole solid named
+    # (docs/reliability.md). Its footprint is never more than the real one
+    # (two triangles of 25 mm^2).
     result = analysis.find_contacts_in_step(_corpus_file(corpus, "self_intersecting.step"))
     assert [b.name for b in result.bodies] == ["Base", "Bowtie"]
+    assert result.invalid_bodies == [{"body": "Bowtie", "faces": [], "reason": "zero volume"}]
+    assert "body 'Bowtie' is not a valid solid: zero volume (whole solid); its contacts and areas may be wrong" \
+        in result.messages
     assert all(c.area <= 50 + 1e-6 for c in result.contacts)
     assert len(result.contacts) <= 1
+    done = run_cli(_corpus_file(corpus, "self_intersecting.step"))
+    assert done.returncode == 0
+    assert "  Bowtie  zero volume: whole solid" in done.stdout.decode().splitlines()
 
 
 def test_self_intersecting_solid_in_a_document_is_named_invalid(corpus):
@@ -201,6 +210,26 @@ def test_self_intersecting_solid_in_a_document_is_named_invalid(corpus):
     report = json.loads(done.stdout)
     assert [(b["body"], b["reason"], len(b["faces"])) for b in report["invalid_bodies"]] == \
         [("Bowtie", "self-intersecting boundary", 2)]
+
+
+def test_motor_solids_are_valid_with_either_check(corpus):
+    # A check that flags valid parts is worse than none: the motor's 18, with
+    # the quick checks and with OCCT's whole analyzer, and the inputs of the
+    # corpus that are valid solids.
+    for mode in ("quick", "full"):
+        done = run_cli(MOTOR, ["--json", "--check-solids", mode])
+        assert done.returncode == 0, done.stderr
+        report = json.loads(done.stdout)
+        assert report["invalid_bodies"] == [] and len(report["contacts"]) == 35
+    for name in ("two_boxes.step", "degenerate_faces.step", "tiny_1e-6.step", "huge_1e5.step", "far_1e6.step"):
+        assert analysis.find_contacts_in_step(_corpus_file(corpus, name)).invalid_bodies == [], name
+
+
+def test_check_solids_option_is_validated():
+    done = run_cli(MOTOR, ["--check-solids", "everything"])
+    assert done.returncode == 2 and b"--check-solids" in done.stderr
+    with pytest.raises(core.ArgumentError, match="check_solids must be 'quick' or 'full'"):
+        analysis.find_contacts_in_step(MOTOR, check_solids="everything")
 
 
 @pytest.mark.parametrize("name", ["placement_inf", "placement_nan", "vertex_inf", "vertex_nan", "direction_inf"])

@@ -399,7 +399,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
     result.times.area = seconds_since(start);
-    const Status checked = check_solids(assembly, result, progress, threads);
+    const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks);
     if (!checked.ok()) {
       result.status = checked;
       return result;
