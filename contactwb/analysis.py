@@ -184,6 +184,19 @@ class Analysis:
 
 
 def _analysis(source, assembly, result, face_name=None):
+    """The Analysis of a core result; converting a huge result (millions of
+    pairs) can run out of memory inside pybind11, which then raises
+    RuntimeError("Could not allocate ...") or TypeError("Unable to convert
+    function return value ..."): a MemoryError."""
+    try:
+        return _convert_result(source, assembly, result, face_name)
+    except (RuntimeError, TypeError) as error:
+        if "Could not allocate" in str(error) or "Unable to convert function return value" in str(error):
+            raise MemoryError(f"out of memory (handing the result to Python: {error})") from error
+        raise
+
+
+def _convert_result(source, assembly, result, face_name=None):
     core_bodies = assembly.bodies
     names = [b.name for b in core_bodies]
     face_name = face_name or (lambda body, index: f"Face{index}")
@@ -248,7 +261,7 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pa
                                          max_pairs=max_pairs, check_solids=check_solids)
     except core.Cancelled:
         raise
-    except core.ContactsError as error:
+    except (core.ContactsError, MemoryError) as error:
         raise type(error)(f"{error} in file '{path}'") from error  # same class: callers tell input from options
 
 

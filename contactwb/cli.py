@@ -112,8 +112,12 @@ def main(argv=None):
         from contactwb import cli_mesh
         return cli_mesh.print_disassembly(args.file, args.json, args.linear, args.angular)
 
-    from contactwb import analysis, core
-    from contactwb import joints as joints_api
+    try:
+        from contactwb import analysis, core
+        from contactwb import joints as joints_api
+    except MemoryError as error:  # the extension cannot even be loaded under a memory limit
+        print(f"contacts: {error} (file '{os.fsdecode(args.file)}')", file=sys.stderr)
+        return EXIT_FAILED
     progress = _progress_printer(sys.stderr) if args.progress else None
     start = time.perf_counter()
     found = None
@@ -158,8 +162,10 @@ def main(argv=None):
     except core.ContactsError as error:
         print(f"contacts: {error}", file=sys.stderr)
         return EXIT_FAILED
-    except MemoryError:
-        print("contacts: out of memory", file=sys.stderr)
+    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
+        text = str(error) if "out of memory" in str(error) else "out of memory"
+        where = "" if os.path.basename(path) in text else f" (file '{path}')"
+        print(f"contacts: {text}{where}", file=sys.stderr)
         return EXIT_FAILED
     except (OSError, UnicodeError, ValueError) as error:
         print(f"contacts: cannot read '{path}': {error}", file=sys.stderr)

@@ -20,6 +20,7 @@
 #include <gp_Ax1.hxx>
 
 #include "contactcore/parallel.h"
+#include "contactcore/out_of_memory.h"
 #include "contactcore/separation.h"
 
 namespace contactcore {
@@ -284,7 +285,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
         const auto [a, b] = deep[k];
         try {
           outcomes[k] = test_pair(assembly, result, a, b);
-        } catch (const Standard_Failure& failure) {
+        } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           outcomes[k].kind = PairOutcome::Failed;
           outcomes[k].message = "interference test of '" + assembly.bodies[a].name + "' and '" +
                                 assembly.bodies[b].name + "' failed: " + failure.GetMessageString();

@@ -21,6 +21,7 @@
 #include <gp_Pnt.hxx>
 
 #include "contactcore/parallel.h"
+#include "contactcore/out_of_memory.h"
 #include "outlines.h"
 #include "signed_volume.h"
 
@@ -207,9 +208,17 @@ bool has_fault(const BRepCheck_ListOfStatus& statuses) {
 
 // Faces with an edge whose 3D curve and curve on the face's surface part by
 // more than the edge's tolerance (or lack one), as BRepCheck_Edge finds.
+// BRepCheck_Edge::InContext looks the edge up among all of its face's edges,
+// quadratic in them (a plate of 25,281 holes: hours), so faces of more than
+// kMostEdgesChecked edges are left to the full analyzer.
+constexpr int kMostEdgesChecked = 1000;
+
 std::vector<int> faces_with_edges_off_their_surface(const BodyPartitions& body) {
   std::vector<int> faces;
   for (const FaceInfo& info : body.faces) {
+    int edges = 0;
+    for (TopExp_Explorer e(info.face, TopAbs_EDGE); e.More() && edges <= kMostEdgesChecked; e.Next()) ++edges;
+    if (edges > kMostEdgesChecked) continue;
     for (TopExp_Explorer e(info.face, TopAbs_EDGE); e.More(); e.Next()) {
       Handle(BRepCheck_Edge) check = new BRepCheck_Edge(TopoDS::Edge(e.Current()));
       check->InContext(info.face);
@@ -230,7 +239,7 @@ std::vector<int> faces_failing_the_analyzer(const BRepCheck_Analyzer& analyzer, 
     Handle(BRepCheck_Result) result;
     try {
       result = analyzer.Result(sub);
-    } catch (const Standard_Failure&) {
+    } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure&) {
       return false;  // not checked by the analyzer (not in its map)
     }
     if (result.IsNull()) return false;
@@ -313,7 +322,7 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
         if (source_of(i) != i) return;
         try {
           verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks);
-        } catch (const Standard_Failure& failure) {
+        } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           failures[i] = std::string("its check failed: ") + failure.GetMessageString();
         }
       }))
