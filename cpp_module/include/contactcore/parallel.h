@@ -9,10 +9,10 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdio>
 #include <exception>
 #include <mutex>
 #include <system_error>
-#include <cstdio>
 #ifdef __linux__
 #include <sys/resource.h>
 #include <unistd.h>
