@@ -171,7 +171,7 @@ class Analysis:
             lines.append("")
             lines.append(f"Invalid solids (their contacts may be wrong): {len(self.invalid_bodies)}")
             for invalid in self.invalid_bodies:
-                lines.append(f"  {invalid['body']:<{width}}  {invalid['reason']}: {', '.join(invalid['faces'])}")
+                lines.append(f"  {invalid['body']:<{width}}  {invalid['reason']}: {', '.join(invalid['faces']) or 'whole solid'}")
         lines.append("")
         summary = ", ".join(f"{counts[k]} {k}" for k in TYPE_ORDER if counts[k])
         lines.append(f"Total: {len(self.contacts)} contacts ({summary or 'none'}) "
@@ -184,6 +184,19 @@ class Analysis:
 
 
 def _analysis(source, assembly, result, face_name=None):
+    """The Analysis of a core result; converting a huge result (millions of
+    pairs) can run out of memory inside pybind11, which then raises
+    RuntimeError("Could not allocate ...") or TypeError("Unable to convert
+    function return value ..."): a MemoryError."""
+    try:
+        return _convert_result(source, assembly, result, face_name)
+    except (RuntimeError, TypeError) as error:
+        if "Could not allocate" in str(error) or "Unable to convert function return value" in str(error):
+            raise MemoryError(f"out of memory (handing the result to Python: {error})") from error
+        raise
+
+
+def _convert_result(source, assembly, result, face_name=None):
     core_bodies = assembly.bodies
     names = [b.name for b in core_bodies]
     face_name = face_name or (lambda body, index: f"Face{index}")
@@ -221,18 +234,19 @@ def _analysis(source, assembly, result, face_name=None):
 
 
 def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None,
-                              face_name=None, threads=0, max_pairs=None):
+                              face_name=None, threads=0, max_pairs=None, check_solids="quick"):
     """Contacts of a contactcore.Assembly, on `threads` threads (0: all
     cores). `progress(stage, fraction)` may return False to cancel (raises
     contactwb.core.Cancelled). More than `max_pairs` body pairs with meeting
-    boxes (default 2,000,000) raise ContactsError. The core result is not
-    kept: only what the Analysis reports."""
+    boxes (default 2,000,000) raise ContactsError. `check_solids` "full" adds
+    OCCT's whole BRepCheck_Analyzer to the solid checks. The core result is
+    not kept: only what the Analysis reports."""
     result = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress,
-                                            threads=threads, max_pairs=max_pairs)
+                                            threads=threads, max_pairs=max_pairs, check_solids=check_solids)
     return _analysis(source, assembly, result, face_name)
 
 
-def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None):
+def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None, check_solids="quick"):
     """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
     if "\0" in str(path):
         raise core.InputError(f"the path contains a NUL character: {path!r}")
@@ -244,10 +258,10 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pa
     assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)))  # its errors name the file
     try:
         return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
-                                         max_pairs=max_pairs)
+                                         max_pairs=max_pairs, check_solids=check_solids)
     except core.Cancelled:
         raise
-    except core.ContactsError as error:
+    except (core.ContactsError, MemoryError) as error:
         raise type(error)(f"{error} in file '{path}'") from error  # same class: callers tell input from options
 
 
@@ -258,7 +272,8 @@ def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=
     return find_contacts_in_assembly(assembly, source, linear, angular, progress, max_pairs=max_pairs)
 
 
-def find_contacts_in_document(doc, objects=None, linear=None, angular=None, progress=None, max_pairs=None):
+def find_contacts_in_document(doc, objects=None, linear=None, angular=None, progress=None, max_pairs=None,
+                              check_solids="quick"):
     """Contacts of a FreeCAD document's visible solids (or of a selection).
     Returns (Analysis, [DocumentBody]); face names are the objects' FaceN."""
     from contactwb import bodies as document_bodies
@@ -266,6 +281,7 @@ def find_contacts_in_document(doc, objects=None, linear=None, angular=None, prog
     assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
     result = find_contacts_in_assembly(
         assembly, doc.Label, linear, angular, progress,
-        face_name=lambda body, index: bodies[body].object_face_name(index), max_pairs=max_pairs)
+        face_name=lambda body, index: bodies[body].object_face_name(index), max_pairs=max_pairs,
+        check_solids=check_solids)
     result.messages.extend(messages)
     return result, bodies

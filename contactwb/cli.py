@@ -103,13 +103,21 @@ def main(argv=None):
                         help="with --joints: also list clearance fits with a gap below MM")
     parser.add_argument("--disassembly", action="store_true",
                         help="print the removal sequence (with --json: {\"disassembly\": [{\"parts\", \"direction\"}]})")
+    parser.add_argument("--check-solids", choices=("quick", "full"), default="quick",
+                        help="solid checks: quick (default: self-intersecting wires, open or misoriented shells, "
+                             "edges off their faces, zero or negative volume) or full (also OCCT's whole "
+                             "BRepCheck_Analyzer, about 10x slower); see docs/reliability.md")
     args = parser.parse_args(argv)
     if args.disassembly:
         from contactwb import cli_mesh
         return cli_mesh.print_disassembly(args.file, args.json, args.linear, args.angular)
 
-    from contactwb import analysis, core
-    from contactwb import joints as joints_api
+    try:
+        from contactwb import analysis, core
+        from contactwb import joints as joints_api
+    except MemoryError as error:  # the extension cannot even be loaded under a memory limit
+        print(f"contacts: {error} (file '{os.fsdecode(args.file)}')", file=sys.stderr)
+        return EXIT_FAILED
     progress = _progress_printer(sys.stderr) if args.progress else None
     start = time.perf_counter()
     found = None
@@ -127,17 +135,18 @@ def main(argv=None):
                 if wants_joints:
                     result, found, _ = joints_api.joints_in_document(
                         doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
-                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs)
+                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs, check_solids=args.check_solids)
                 else:
                     result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
-                                                                   progress=progress, max_pairs=args.max_pairs)
+                                                                   progress=progress, max_pairs=args.max_pairs,
+                                                                   check_solids=args.check_solids)
             elif wants_joints:
                 result, found = joints_api.joints_in_step(path, args.linear, args.angular, progress,
                                                           ground=args.ground, clearance_gap=args.clearance_gap,
-                                                          max_pairs=args.max_pairs)
+                                                          max_pairs=args.max_pairs, check_solids=args.check_solids)
             else:
                 result = analysis.find_contacts_in_step(path, args.linear, args.angular, progress,
-                                                        max_pairs=args.max_pairs)
+                                                        max_pairs=args.max_pairs, check_solids=args.check_solids)
             if args.graph:
                 found.write_graph(args.graph)
     except (core.Cancelled, KeyboardInterrupt):
@@ -153,8 +162,10 @@ def main(argv=None):
     except core.ContactsError as error:
         print(f"contacts: {error}", file=sys.stderr)
         return EXIT_FAILED
-    except MemoryError:
-        print("contacts: out of memory", file=sys.stderr)
+    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
+        text = str(error) if "out of memory" in str(error) else "out of memory"
+        where = "" if os.path.basename(path) in text else f" (file '{path}')"
+        print(f"contacts: {text}{where}", file=sys.stderr)
         return EXIT_FAILED
     except (OSError, UnicodeError, ValueError) as error:
         print(f"contacts: cannot read '{path}': {error}", file=sys.stderr)

@@ -20,8 +20,8 @@ def _load():
     try:
         import contactcore  # installed beside the workbench, or already on sys.path
         return contactcore
-    except ImportError:
-        pass
+    except ImportError as error:
+        _raise_if_out_of_memory(error)
     module = _import_from(os.path.join(ROOT_DIR, "build", "python"))
     if module is not None:
         return module
@@ -29,6 +29,14 @@ def _load():
         "The Contacts C++ extension (contactcore) is not built or not installed: "
         "run `make build` (or `make install`) in the workbench's source folder, "
         "or set CONTACTS_PYTHON_DIR to the folder holding contactcore*.so")
+
+
+def _raise_if_out_of_memory(error):
+    """An extension that exists but cannot be mapped under a memory limit is
+    not "not built": say what it is."""
+    text = str(error).lower()
+    if "cannot allocate memory" in text or "failed to map segment" in text:
+        raise MemoryError(f"out of memory loading the Contacts extension ({error})") from error
 
 
 def _import_from(folder):
@@ -40,8 +48,9 @@ def _import_from(folder):
     sys.path.insert(0, folder)
     try:
         import contactcore
-    except ImportError:
+    except ImportError as error:
         sys.path.remove(folder)
+        _raise_if_out_of_memory(error)
         return None
     if os.path.dirname(os.path.realpath(contactcore.__file__)) != os.path.realpath(folder):
         # Imported earlier from somewhere else; the caller asked for this folder's copy.
@@ -79,4 +88,12 @@ def assembly_from_shapes(named_shapes):
     if not named_shapes:
         raise ContactsError("no bodies given")
     compound = Part.makeCompound([shape for _, shape in named_shapes])
-    return contactcore.bodies_from_brep(compound.exportBrepToString(), [name for name, _ in named_shapes])
+    try:
+        return contactcore.bodies_from_brep(compound.exportBrepToString(), [name for name, _ in named_shapes])
+    except InputError as error:
+        # FreeCAD wrote this text into memory just now: cut short, it ran out
+        # of memory writing it (it does not say so).
+        if "text cut short" in str(error):
+            raise MemoryError(f"out of memory (FreeCAD's BRep export of the shapes came back cut short: {error})") \
+                from error
+        raise

@@ -155,7 +155,7 @@ def _ground_index(names, ground):
 
 
 def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None, face_name=None,
-                       ground=None, clearance_gap=0.0, max_pairs=None):
+                       ground=None, clearance_gap=0.0, max_pairs=None, check_solids="quick"):
     """(analysis.Analysis, Joints) of a contactcore.Assembly: contacts, then
     joints, mobility and liaison graph. `ground`: a body name (default: the
     largest by volume). `clearance_gap` > 0 also lists clearance fits."""
@@ -163,7 +163,7 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     names = [b.name for b in assembly.bodies]
     ground_index = _ground_index(names, ground)
     raw = cc.find_contacts(assembly, linear=linear, angular=angular, progress=progress, max_pairs=max_pairs,
-                           clearance_gap=clearance_gap)
+                           clearance_gap=clearance_gap, check_solids=check_solids)
     result = analysis._analysis(source, assembly, raw, face_name)
     found = cc.find_joints(assembly, raw)
     mobility = cc.assembly_mobility(assembly, raw, found, ground_index)
@@ -198,14 +198,14 @@ def interferences_of(raw, names):
 
 
 def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, clearance_gap=0.0,
-                   max_pairs=None):
+                   max_pairs=None, check_solids="quick"):
     """(analysis.Analysis, Joints) of a STEP file, read in C++."""
     if not os.path.isfile(path):
         raise core.ContactsError(f"no such file: '{path}'")
     assembly = core.contactcore.read_step(os.path.abspath(path))
     try:
         return joints_in_assembly(assembly, os.path.basename(path), linear, angular, progress, ground=ground,
-                                  clearance_gap=clearance_gap, max_pairs=max_pairs)
+                                  clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids)
     except core.Cancelled:
         raise
     except core.ContactsError as error:
@@ -219,7 +219,7 @@ def joints_in_shapes(named_shapes, source="shapes", linear=None, angular=None, g
 
 
 def joints_in_document(doc, objects=None, linear=None, angular=None, progress=None, ground=None,
-                       clearance_gap=0.0, max_pairs=None):
+                       clearance_gap=0.0, max_pairs=None, check_solids="quick"):
     """(analysis.Analysis, Joints, [DocumentBody]) of a FreeCAD document's visible solids."""
     from contactwb import bodies as document_bodies
     messages = []
@@ -227,6 +227,6 @@ def joints_in_document(doc, objects=None, linear=None, angular=None, progress=No
     result, found = joints_in_assembly(
         assembly, doc.Label, linear, angular, progress,
         face_name=lambda body, index: bodies[body].object_face_name(index), ground=ground,
-        clearance_gap=clearance_gap, max_pairs=max_pairs)
+        clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids)
     result.messages.extend(messages)
     return result, found, bodies

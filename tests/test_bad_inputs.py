@@ -177,19 +177,28 @@ def test_zero_volume_box_gets_a_note_not_a_plf(corpus):
     # a box of height 0 (four faces of area 0) on the base: no PLF of area 100
     result = analysis.find_contacts_in_step(_corpus_file(corpus, "zero_volume.step"))
     assert result.contacts == []
-    assert result.messages == ["body 'Flat' has no volume (thinner than the tolerance): its contacts are not counted"]
+    assert result.invalid_bodies == [{"body": "Flat", "faces": [], "reason": "zero volume"}]
+    assert result.messages == [
+        "body 'Flat' is not a valid solid: zero volume (whole solid); its contacts and areas may be wrong",
+        "body 'Flat' has no volume (thinner than the tolerance): its contacts are not counted"]
 
 
-def test_self_intersecting_solid_ends_cleanly(corpus):
+def test_self_intersecting_solid_through_step_is_named_zero_volume(corpus):
     # A bow-tie prism (its faces cross each other) on the base, through STEP:
-    # OCCT's reader heals it into eight valid faces enclosing volume 0, which
-    # the face check cannot see (docs/reliability.md). The analysis ends,
-    # names the body, and never reports more than the bow-tie's real
-    # footprint (two triangles of 25 mm^2).
+    # OCCT's reader heals it into eight valid faces, two of them crossing
+    # inside, enclosing +125 and -125 mm^3: volume 0, the whole solid named
+    # (docs/reliability.md). Its footprint is never more than the real one
+    # (two triangles of 25 mm^2).
     result = analysis.find_contacts_in_step(_corpus_file(corpus, "self_intersecting.step"))
     assert [b.name for b in result.bodies] == ["Base", "Bowtie"]
+    assert result.invalid_bodies == [{"body": "Bowtie", "faces": [], "reason": "zero volume"}]
+    assert "body 'Bowtie' is not a valid solid: zero volume (whole solid); its contacts and areas may be wrong" \
+        in result.messages
     assert all(c.area <= 50 + 1e-6 for c in result.contacts)
     assert len(result.contacts) <= 1
+    done = run_cli(_corpus_file(corpus, "self_intersecting.step"))
+    assert done.returncode == 0
+    assert "  Bowtie  zero volume: whole solid" in done.stdout.decode().splitlines()
 
 
 def test_self_intersecting_solid_in_a_document_is_named_invalid(corpus):
@@ -201,6 +210,26 @@ def test_self_intersecting_solid_in_a_document_is_named_invalid(corpus):
     report = json.loads(done.stdout)
     assert [(b["body"], b["reason"], len(b["faces"])) for b in report["invalid_bodies"]] == \
         [("Bowtie", "self-intersecting boundary", 2)]
+
+
+def test_motor_solids_are_valid_with_either_check(corpus):
+    # A check that flags valid parts is worse than none: the motor's 18, with
+    # the quick checks and with OCCT's whole analyzer, and the inputs of the
+    # corpus that are valid solids.
+    for mode in ("quick", "full"):
+        done = run_cli(MOTOR, ["--json", "--check-solids", mode])
+        assert done.returncode == 0, done.stderr
+        report = json.loads(done.stdout)
+        assert report["invalid_bodies"] == [] and len(report["contacts"]) == 35
+    for name in ("two_boxes.step", "degenerate_faces.step", "tiny_1e-6.step", "huge_1e5.step", "far_1e6.step"):
+        assert analysis.find_contacts_in_step(_corpus_file(corpus, name)).invalid_bodies == [], name
+
+
+def test_check_solids_option_is_validated():
+    done = run_cli(MOTOR, ["--check-solids", "everything"])
+    assert done.returncode == 2 and b"--check-solids" in done.stderr
+    with pytest.raises(core.ArgumentError, match="check_solids must be 'quick' or 'full'"):
+        analysis.find_contacts_in_step(MOTOR, check_solids="everything")
 
 
 @pytest.mark.parametrize("name", ["placement_inf", "placement_nan", "vertex_inf", "vertex_nan", "direction_inf"])
@@ -267,3 +296,72 @@ def test_body_of_100000_faces(large_corpus):
     assert [b["name"] for b in found["bodies"]] == ["Base", "Plate"]
     assert [(c["type"], c["a"], c["b"]) for c in found["contacts"]] == [("PLF", "Base", "Plate")]
     assert found["contacts"][0]["area"] == pytest.approx(318 ** 2 - 159 ** 2, rel=1e-9)
+
+
+@pytest.fixture(scope="module")
+def same_place_3000(tmp_path_factory):
+    """3,000 instances of one cube at one place: 4,498,500 overlapping pairs
+    (--max-pairs raised), about 900 MB of address space at its peak against
+    240 to 310 MB for a small file."""
+    sys.path.insert(0, os.path.join(REPO, "tools"))
+    import make_bad_inputs
+    out = tmp_path_factory.mktemp("memory")
+    template = make_bad_inputs.one_instance_template(str(out / "one_instance.step"))
+    path = out / "same_place_3000.step"
+    path.write_text(make_bad_inputs.instances_step(template, 3000, 0.0))
+    return str(path)
+
+
+def _peak_address_space_mb(args):
+    """VmPeak (MB) of the CLI run on `args` in a process of its own."""
+    probe = ("import sys; sys.path.insert(0, %r); from contactwb import cli; code = cli.main(%r); "
+             "peak = [l for l in open('/proc/self/status') if l.startswith('VmPeak')][0]; "
+             "sys.stderr.write('\\nVMPEAK %%d %%d\\n' %% (code, int(peak.split()[1]) // 1024))" % (REPO, args))
+    done = subprocess.run([sys.executable, "-c", probe], capture_output=True, timeout=300)
+    code, peak = re.search(rb"VMPEAK (\d+) (\d+)", done.stderr).groups()
+    assert int(code) == 0, done.stderr
+    return int(peak)
+
+
+def test_cli_out_of_memory_ends_with_exit_4_naming_the_file(corpus, same_place_3000):
+    # Under a limit on the address space (prlimit --as) a little above what a
+    # small file needs, the 3,000 overlapping cubes run out of memory
+    # somewhere (reading, broad phase, candidates or interferences; on worker
+    # threads or not): always exit 4, "out of memory" and the file, never a
+    # signal, an abort or a traceback.
+    import shutil
+    if shutil.which("prlimit") is None:
+        pytest.skip("prlimit (util-linux) is not installed")
+    small = _peak_address_space_mb([_corpus_file(corpus, "two_boxes.step")])
+    for limit_mb in (small + 20, small + 60, small + 100):
+        done = subprocess.run(["prlimit", f"--as={limit_mb << 20}"] + CLI + [same_place_3000, "--max-pairs", "10000000"],
+                              capture_output=True, timeout=300)
+        err = done.stderr.decode(errors="replace")
+        assert done.returncode == 4, f"limit {limit_mb} MB: exit {done.returncode}: {err[-2000:]}"
+        assert "contacts: out of memory" in err and "same_place_3000.step" in err, err
+        assert "Traceback" not in err and "terminate" not in err
+
+
+def test_api_out_of_memory_is_a_memory_error_naming_the_file(same_place_3000):
+    # The same through the Python API, the limit set in the process itself
+    # once the extension is loaded: MemoryError with the file, the process
+    # alive after it.
+    script = """
+import os, resource, sys
+sys.path.insert(0, %r)
+from contactwb import analysis
+analysis.find_contacts_in_step(%r.replace('same_place_3000', 'one_instance'))  # everything loaded
+size = int([l for l in open('/proc/self/status') if l.startswith('VmSize')][0].split()[1]) * 1024
+resource.setrlimit(resource.RLIMIT_AS, (size + (96 << 20), resource.RLIM_INFINITY))
+try:
+    analysis.find_contacts_in_step(%r, max_pairs=10000000)
+except MemoryError as error:
+    print("MemoryError:", error)
+print("alive")
+""" % (REPO, same_place_3000, same_place_3000)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=300,
+                          env={**os.environ, "CONTACTS_PYTHON_DIR": os.path.join(REPO, "build", "python")})
+    out = done.stdout.decode(errors="replace")
+    assert done.returncode == 0, done.stderr.decode(errors="replace")[-2000:]
+    assert re.search(r"^MemoryError: out of memory.*same_place_3000\.step", out, re.M), out
+    assert out.rstrip().endswith("alive")

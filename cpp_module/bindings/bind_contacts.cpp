@@ -109,8 +109,12 @@ void bind_contacts(py::module_& m) {
       "find_contacts",
       [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
          py::object progress, int threads, std::optional<std::size_t> max_pairs, bool reuse_instances,
-         double clearance_gap) {
+         double clearance_gap, const std::string& check_solids) {
         ContactOptions options;
+        if (check_solids != "quick" && check_solids != "full")
+          raise_if_failed(Status::failure(StatusCode::InvalidArgument,
+                                          "check_solids must be 'quick' or 'full', not '" + check_solids + "'"));
+        options.solid_checks = check_solids == "full" ? SolidChecks::Full : SolidChecks::Quick;
         options.clearance_gap = clearance_gap;
         options.linear = linear;
         options.angular = angular;
@@ -130,12 +134,13 @@ void bind_contacts(py::module_& m) {
       },
       py::arg("assembly"), py::arg("linear") = py::none(), py::arg("angular") = py::none(),
       py::arg("progress") = py::none(), py::arg("threads") = 0, py::arg("max_pairs") = py::none(),
-      py::arg("reuse_instances") = true, py::arg("clearance_gap") = 0.0,
+      py::arg("reuse_instances") = true, py::arg("clearance_gap") = 0.0, py::arg("check_solids") = "quick",
       "Partitions every body, then finds contacts, on `threads` threads (0: all cores; the result "
       "is the same for any number). `progress(stage, fraction)` returning False cancels (raises "
       "contactcore.Cancelled); it is called from the calling thread. Tolerances default to the "
       "model's scale. More than `max_pairs` body pairs with meeting boxes (default 2,000,000) "
-      "stops with ContactsError saying how many. `clearance_gap` > 0 also reports clearance fits.");
+      "stops with ContactsError saying how many. `clearance_gap` > 0 also reports clearance fits. "
+      "`check_solids`: 'quick' (default) or 'full' (also OCCT's BRepCheck_Analyzer, about 10x the cost).");
 
   m.def(
       "common_area",

@@ -22,12 +22,18 @@ py::object& argument_error() {
   return error;
 }
 
+const py::object& memory_error() {
+  static const py::object error = py::reinterpret_borrow<py::object>(PyExc_MemoryError);
+  return error;
+}
+
 const py::object& error_type(StatusCode code) {
   switch (code) {
     case StatusCode::Cancelled: return cancelled_error();
     case StatusCode::InvalidInput:
     case StatusCode::ReadError: return input_error();
     case StatusCode::InvalidArgument: return argument_error();
+    case StatusCode::OutOfMemory: return memory_error();
     default: return contacts_error();
   }
 }

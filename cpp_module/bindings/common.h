@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <Standard_Failure.hxx>
+#include <Standard_OutOfMemory.hxx>
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
 
@@ -83,13 +84,15 @@ Status guarded(Work&& work) {
   py::gil_scoped_release release;
   try {
     return work();
+  } catch (const Standard_OutOfMemory&) {
+    return Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const Standard_Failure& failure) {
     // Some OCCT exceptions carry no message: name their type then.
     const char* text = failure.GetMessageString();
     return Status::failure(StatusCode::GeometryError, std::string("OCCT ") + failure.DynamicType()->Name() +
                                                           (text && *text ? std::string(": ") + text : ""));
   } catch (const std::bad_alloc&) {
-    return Status::failure(StatusCode::GeometryError, "out of memory");
+    return Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const std::exception& error) {
     return Status::failure(StatusCode::GeometryError,
                            *error.what() ? error.what() : "C++ exception without a message");

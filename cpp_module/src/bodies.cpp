@@ -1,5 +1,6 @@
 #include "contactcore/bodies.h"
 #include "contactcore/occt_guard.h"
+#include "contactcore/out_of_memory.h"
 #include "contactcore/step_check.h"
 
 #include "contactcore/instances.h"
@@ -9,6 +10,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -356,7 +358,18 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
     if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
       std::string why;
       for (const std::string& line : guard.messages()) why += (why.empty() ? "" : "; ") + line;
-      fail(StatusCode::ReadError, "not a readable STEP file" + (why.empty() ? std::string() : ": " + why));
+      // OCCT's reader catches its own Standard_OutOfMemory and only says so,
+      // or fails silently (its buffers): then 16 MB cannot be had either.
+      const auto memory_left = [] {
+        void* probe = std::malloc(16 << 20);
+        std::free(probe);
+        return probe != nullptr;
+      };
+      if (why.find("Standard_OutOfMemory") != std::string::npos || why.find("malloc failed") != std::string::npos ||
+          (why.empty() && !memory_left()))
+        fail(StatusCode::OutOfMemory, "out of memory while reading the STEP file");
+      else
+        fail(StatusCode::ReadError, "not a readable STEP file" + (why.empty() ? std::string() : ": " + why));
     } else {
       read_units(reader, result.assembly);
       const StepModelCheck check =
@@ -384,7 +397,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
         try {
           OCC_CATCH_SIGNALS
           transferred = reader.Transfer(doc);
-        } catch (const Standard_Failure& failure) {
+        } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
           if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
           message += ")";
@@ -415,6 +428,10 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
       }
       keep_reader_notes(guard, result.assembly.messages);
     }
+  } catch (const Standard_OutOfMemory&) {
+    fail(StatusCode::OutOfMemory, "out of memory while reading the STEP file");
+  } catch (const std::bad_alloc&) {
+    fail(StatusCode::OutOfMemory, "out of memory while reading the STEP file");
   } catch (const Standard_Failure& failure) {
     std::string message = std::string("OCCT ") + failure.DynamicType()->Name();
     if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
@@ -448,6 +465,8 @@ Status shape_from_brep(const std::string& brep, TopoDS_Shape& shape) {
     stream.exceptions(std::ios::failbit | std::ios::badbit);
     BRep_Builder builder;
     BRepTools::Read(shape, stream, builder);
+  } catch (const Standard_OutOfMemory&) {
+    return Status::failure(StatusCode::OutOfMemory, "out of memory while reading BRep");
   } catch (const Standard_Failure& failure) {
     const char* text = failure.GetMessageString();
     return Status::failure(StatusCode::InvalidInput, std::string("unreadable BRep: ") +
@@ -496,6 +515,8 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
       }
     }
     make_names_unique(result.assembly.bodies);
+  } catch (const Standard_OutOfMemory&) {
+    result.status = Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::InvalidInput,
                                     std::string("OCCT: ") + failure.GetMessageString());

@@ -1,4 +1,5 @@
 #include "contactcore/contacts.h"
+#include "contactcore/out_of_memory.h"
 #include "contactcore/clearances.h"
 
 #include "contactcore/common_area.h"
@@ -259,7 +260,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       BodyPartitions& body = result.partitions[i];
       try {
         body = partition_shape(assembly.bodies[i].shape, result.tolerances);
-      } catch (const Standard_Failure& failure) {
+      } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
         body.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
       } catch (const std::exception& error) {
         body.status = Status::failure(StatusCode::GeometryError, error.what());
@@ -356,7 +357,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
             try {
               if (options.candidate_hook) options.candidate_hook(c.body_a, c.partition_a, c.body_b, c.partition_b);
               test_candidate(c.body_a, pa, c.body_b, pb, ctx, out);
-            } catch (const Standard_Failure& error) {
+            } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& error) {
               failed = true;
               failure = std::string("OCCT: ") + error.GetMessageString();
             } catch (const std::exception& error) {
@@ -399,7 +400,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
     result.times.area = seconds_since(start);
-    const Status checked = check_solids(assembly, result, progress, threads);
+    const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks);
     if (!checked.ok()) {
       result.status = checked;
       return result;
@@ -409,6 +410,10 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       result.status = interferences;
       return result;
     }
+  } catch (const Standard_OutOfMemory&) {
+    result.status = Status::failure(StatusCode::OutOfMemory, "out of memory");
+  } catch (const std::bad_alloc&) {
+    result.status = Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
   }

@@ -10,6 +10,7 @@ const char* to_string(StatusCode code) {
     case StatusCode::GeometryError: return "geometry error";
     case StatusCode::Cancelled: return "cancelled";
     case StatusCode::InvalidArgument: return "invalid argument";
+    case StatusCode::OutOfMemory: return "out of memory";
   }
   return "unknown";
 }

@@ -5,6 +5,7 @@
 #include "face_typing.h"
 
 #include "outlines.h"
+#include "contactcore/out_of_memory.h"
 #include "quadrature.h"
 #include "surface_fitting.h"
 
@@ -583,7 +584,7 @@ Status type_face(const TopoDS_Face& face, const Tolerances& tol, FaceInfo& out) 
       BRepBndLib::Add(face, out.box);  // planes: from the edges' 3D curves
     }
     return Status::success();
-  } catch (const Standard_Failure& failure) {
+  } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
     const TopoDS_Face kept = face;  // `face` may be out.face itself
     out = FaceInfo{};
     out.face = kept;

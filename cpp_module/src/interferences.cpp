@@ -23,6 +23,7 @@
 #include "contactcore/boundary_crossing.h"
 #include "contactcore/occt_guard.h"
 #include "contactcore/parallel.h"
+#include "contactcore/out_of_memory.h"
 #include "contactcore/separation.h"
 
 namespace contactcore {
@@ -295,7 +296,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
         try {
           OCC_CATCH_SIGNALS
           outcomes[k] = test_pair(assembly, result, a, b);
-        } catch (const Standard_Failure& failure) {
+        } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           outcomes[k].kind = PairOutcome::Failed;
           outcomes[k].message = "interference test of '" + assembly.bodies[a].name + "' and '" +
                                 assembly.bodies[b].name + "' failed: " + failure.GetMessageString();

@@ -5,6 +5,7 @@
 // tolerances, and the angular interval sets and surface comparison the
 // other files share.
 #include "contactcore/partitions.h"
+#include "contactcore/out_of_memory.h"
 
 #include "face_typing.h"
 #include "partition_merging.h"
@@ -229,7 +230,7 @@ BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol)
     }
 
     result.partitions = detail::merge_faces(shape, face_map, result.faces, tol);
-  } catch (const Standard_Failure& failure) {
+  } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError,
                                     std::string("OCCT failed while partitioning: ") + failure.GetMessageString());
   } catch (const std::exception& error) {

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <BRepCheck_Analyzer.hxx>
+#include <BRepCheck_Edge.hxx>
+#include <BRepCheck_ListOfStatus.hxx>
+#include <BRepCheck_Result.hxx>
 #include <BRepCheck_Status.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_BSplineCurve.hxx>
@@ -12,9 +16,14 @@
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS_Edge.hxx>
+#include <gp_Pnt.hxx>
 
 #include "contactcore/parallel.h"
+#include "contactcore/out_of_memory.h"
+#include "outlines.h"
+#include "signed_volume.h"
 
 namespace contactcore {
 
@@ -111,7 +120,189 @@ std::vector<int> self_intersecting_faces(const BodyPartitions& body) {
   return faces;
 }
 
+// Faces (1-based FaceN) with an edge used by no other face, and faces turned
+// against their neighbours: across every edge two faces must run it in
+// opposite directions. Each connected set of faces is given orientations
+// from its first face; the fewer faces of the two orientations are the
+// ones turned (a box with one face reversed: that face).
+struct ShellFaults {
+  std::vector<int> open, misoriented;
+};
+
+ShellFaults shell_faults(const BodyPartitions& body) {
+  struct Use {
+    int face;  // position in body.faces
+    bool reversed;
+  };
+  TopTools_IndexedMapOfShape edges;
+  std::vector<std::vector<Use>> uses;
+  for (std::size_t k = 0; k < body.faces.size(); ++k) {
+    for (TopExp_Explorer e(body.faces[k].face, TopAbs_EDGE); e.More(); e.Next()) {
+      const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+      if (BRep_Tool::Degenerated(edge) || !detail::bounds_the_face(edge)) continue;
+      const int index = edges.Add(edge);
+      if (static_cast<std::size_t>(index) > uses.size()) uses.resize(index);
+      uses[index - 1].push_back({static_cast<int>(k), edge.Orientation() == TopAbs_REVERSED});
+    }
+  }
+  ShellFaults faults;
+  struct Link {
+    int face;
+    bool flip;
+  };
+  std::vector<std::vector<Link>> links(body.faces.size());
+  bool turned = false;
+  for (const std::vector<Use>& u : uses) {
+    if (u.size() == 1) faults.open.push_back(body.faces[u[0].face].index);
+    if (u.size() != 2) continue;  // open, or shared by more faces (non-manifold): no orientation to compare
+    const bool flip = u[0].reversed == u[1].reversed;
+    if (u[0].face == u[1].face) {  // a seam: both ways in one face
+      turned |= flip;
+      continue;
+    }
+    turned |= flip;
+    links[u[0].face].push_back({u[1].face, flip});
+    links[u[1].face].push_back({u[0].face, flip});
+  }
+  if (turned) {
+    std::vector<int> parity(body.faces.size(), -1);
+    for (std::size_t seed = 0; seed < body.faces.size(); ++seed) {
+      if (parity[seed] >= 0) continue;
+      std::vector<int> component{static_cast<int>(seed)}, stack{static_cast<int>(seed)};
+      parity[seed] = 0;
+      std::vector<int> conflicts;  // a Moebius-like loop: no consistent orientation
+      while (!stack.empty()) {
+        const int f = stack.back();
+        stack.pop_back();
+        for (const Link& link : links[f]) {
+          const int wanted = parity[f] ^ static_cast<int>(link.flip);
+          if (parity[link.face] < 0) {
+            parity[link.face] = wanted;
+            component.push_back(link.face);
+            stack.push_back(link.face);
+          } else if (parity[link.face] != wanted) {
+            conflicts.push_back(f);
+            conflicts.push_back(link.face);
+          }
+        }
+      }
+      const std::size_t flipped = std::count_if(component.begin(), component.end(), [&](int f) { return parity[f]; });
+      const int minority = 2 * flipped <= component.size() ? 1 : 0;
+      for (int f : component)
+        if (flipped > 0 && parity[f] == minority) faults.misoriented.push_back(body.faces[f].index);
+      for (int f : conflicts) faults.misoriented.push_back(body.faces[f].index);
+    }
+  }
+  for (std::vector<int>* list : {&faults.open, &faults.misoriented}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+  return faults;
+}
+
+bool has_fault(const BRepCheck_ListOfStatus& statuses) {
+  for (BRepCheck_ListIteratorOfListOfStatus it(statuses); it.More(); it.Next())
+    if (it.Value() != BRepCheck_NoError) return true;
+  return false;
+}
+
+// Faces with an edge whose 3D curve and curve on the face's surface part by
+// more than the edge's tolerance (or lack one), as BRepCheck_Edge finds.
+// BRepCheck_Edge::InContext looks the edge up among all of its face's edges,
+// quadratic in them (a plate of 25,281 holes: hours), so faces of more than
+// kMostEdgesChecked edges are left to the full analyzer.
+constexpr int kMostEdgesChecked = 1000;
+
+std::vector<int> faces_with_edges_off_their_surface(const BodyPartitions& body) {
+  std::vector<int> faces;
+  for (const FaceInfo& info : body.faces) {
+    int edges = 0;
+    for (TopExp_Explorer e(info.face, TopAbs_EDGE); e.More() && edges <= kMostEdgesChecked; e.Next()) ++edges;
+    if (edges > kMostEdgesChecked) continue;
+    for (TopExp_Explorer e(info.face, TopAbs_EDGE); e.More(); e.Next()) {
+      Handle(BRepCheck_Edge) check = new BRepCheck_Edge(TopoDS::Edge(e.Current()));
+      check->InContext(info.face);
+      if (check->IsStatusOnShape(info.face) && has_fault(check->StatusOnShape(info.face))) {
+        faces.push_back(info.index);
+        break;
+      }
+    }
+  }
+  return faces;
+}
+
+// The faces BRepCheck_Analyzer finds fault with: the face, or one of its
+// wires, edges or vertices, alone or in any context (a vertex off its edge
+// is faulty in the edge's); empty when the fault is the shell's or solid's.
+std::vector<int> faces_failing_the_analyzer(const BRepCheck_Analyzer& analyzer, const TopoDS_Shape& shape) {
+  const auto faulty = [&](const TopoDS_Shape& sub) {
+    Handle(BRepCheck_Result) result;
+    try {
+      result = analyzer.Result(sub);
+    } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure&) {
+      return false;  // not checked by the analyzer (not in its map)
+    }
+    if (result.IsNull()) return false;
+    if (has_fault(result->Status())) return true;
+    for (result->InitContextIterator(); result->MoreShapeInContext(); result->NextShapeInContext())
+      if (has_fault(result->StatusOnShape())) return true;
+    return false;
+  };
+  std::vector<int> faces;
+  int index = 0;
+  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) {
+    ++index;
+    bool bad = faulty(f.Current());
+    for (TopAbs_ShapeEnum kind : {TopAbs_WIRE, TopAbs_EDGE, TopAbs_VERTEX})
+      for (TopExp_Explorer e(f.Current(), kind); e.More() && !bad; e.Next()) bad = faulty(e.Current());
+    if (bad) faces.push_back(index);
+  }
+  return faces;
+}
+
+double total_area(const BodyPartitions& body) {
+  double area = 0;
+  for (const FaceInfo& info : body.faces) area += info.area;
+  return area;
+}
+
+// The first fault found, in the order of the reasons in validity.h (empty
+// reason: valid).
+InvalidBody check_one(const Body& body, const BodyPartitions& partitions, const Tolerances& tol, SolidChecks checks) {
+  InvalidBody verdict;
+  const auto found = [&](std::vector<int> faces, const char* reason) {
+    if (faces.empty()) return false;
+    verdict.faces = std::move(faces);
+    verdict.reason = reason;
+    return true;
+  };
+  if (found(self_intersecting_faces(partitions), kSelfIntersecting)) return verdict;
+  ShellFaults shells = shell_faults(partitions);
+  if (found(std::move(shells.open), kOpenShell) || found(std::move(shells.misoriented), kMisorientedFaces))
+    return verdict;
+  if (found(faces_with_edges_off_their_surface(partitions), kEdgesOffSurface)) return verdict;
+  // Thinner on average than the linear tolerance (volume / area is half a
+  // slab's thickness): no material, or the faces enclose it the wrong way.
+  double x0, y0, z0, x1, y1, z1;
+  partitions.box.Get(x0, y0, z0, x1, y1, z1);
+  const double volume = detail::signed_volume(partitions, gp_Pnt((x0 + x1) / 2, (y0 + y1) / 2, (z0 + z1) / 2));
+  const double least = total_area(partitions) * tol.linear / 2;
+  if (!(volume > least)) {  // NaN too
+    verdict.reason = volume < -least ? kInsideOut : kZeroVolume;
+    return verdict;
+  }
+  if (checks == SolidChecks::Full) {
+    const BRepCheck_Analyzer analyzer(body.shape);
+    if (!analyzer.IsValid()) {
+      verdict.faces = faces_failing_the_analyzer(analyzer, body.shape);
+      verdict.reason = kFailsAnalyzer;
+    }
+  }
+  return verdict;
+}
+
 std::string face_list(const std::vector<int>& faces) {
+  if (faces.empty()) return "whole solid";
   std::string text;
   for (int f : faces) text += (text.empty() ? "Face" : ", Face") + std::to_string(f);
   return text;
@@ -119,18 +310,19 @@ std::string face_list(const std::vector<int>& faces) {
 
 }  // namespace
 
-Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads) {
+Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads,
+                    SolidChecks checks) {
   const std::size_t n = result.partitions.size();
   const auto source_of = [&](std::size_t i) {
     return i < result.instance_of.size() ? static_cast<std::size_t>(result.instance_of[i]) : i;
   };
-  std::vector<std::vector<int>> faces(n);
+  std::vector<InvalidBody> verdicts(n);
   std::vector<std::string> failures(n);
   if (!parallel_for(n, threads, progress, "checking solids", [&](std::size_t i) {
         if (source_of(i) != i) return;
         try {
-          faces[i] = self_intersecting_faces(result.partitions[i]);
-        } catch (const Standard_Failure& failure) {
+          verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks);
+        } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           failures[i] = std::string("its check failed: ") + failure.GetMessageString();
         }
       }))
@@ -142,8 +334,8 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
       result.messages.push_back("body '" + name + "': " + failures[source]);
       continue;
     }
-    if (faces[source].empty()) continue;
-    InvalidBody invalid{static_cast<int>(i), faces[source], "self-intersecting boundary"};
+    if (verdicts[source].reason.empty()) continue;
+    InvalidBody invalid{static_cast<int>(i), verdicts[source].faces, verdicts[source].reason};
     result.messages.push_back("body '" + name + "' is not a valid solid: " + invalid.reason + " (" +
                               face_list(invalid.faces) + "); its contacts and areas may be wrong");
     result.invalid_bodies.push_back(std::move(invalid));

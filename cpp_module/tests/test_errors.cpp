@@ -1,6 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <new>
+
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <Standard_OutOfMemory.hxx>
+
+#include "contactcore/contacts.h"
 #include "contactcore/errors.h"
+#include "test_helpers.h"
 
 using namespace contactcore;
 
@@ -19,4 +26,25 @@ TEST(Errors, DescribeNamesFileBodyAndFace) {
 
 TEST(Errors, DescribeWithoutContextIsTheMessage) {
   EXPECT_EQ(Status::failure(StatusCode::Cancelled, "").describe(), "cancelled");
+}
+
+// Out of memory in a candidate pair's test (on a worker thread or not) ends
+// the call with OutOfMemory: never a skipped pair with the rest kept.
+TEST(Errors, OutOfMemoryInACandidateTestEndsTheCall) {
+  const Assembly assembly = contactcore::testing::make_assembly({{"a", BRepPrimAPI_MakeBox(10, 10, 10).Shape()},
+                                                    {"b", BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 10), 10, 10, 5).Shape()}});
+  for (int threads : {1, 2}) {
+    for (bool occt : {false, true}) {
+      ContactOptions options;
+      options.threads = threads;
+      options.candidate_hook = [occt](int, int, int, int) {
+        if (occt) throw Standard_OutOfMemory("Standard_MMgrRaw::Allocate(): malloc failed");
+        throw std::bad_alloc();
+      };
+      const ContactsResult result = find_contacts(assembly, options);
+      EXPECT_EQ(result.status.code, StatusCode::OutOfMemory) << result.status.describe();
+      EXPECT_EQ(result.status.describe(), "out of memory");
+      EXPECT_TRUE(result.skipped.empty());
+    }
+  }
 }

@@ -1,7 +1,28 @@
-// Validity of solids: a self-intersecting solid is named with its faces, a
-// valid one is not.
+// Validity of solids: a self-intersecting, open, misoriented, inside-out or
+// empty solid is named (with its faces where the fault lies), a valid one is
+// not; the signed volume the checks use against OCCT's adaptive integration.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <filesystem>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_GTransform.hxx>
+#include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
+#include <Geom_Line.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TopExp.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Shell.hxx>
+#include <TopoDS_Solid.hxx>
+#include <gp_GTrsf.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -14,6 +35,7 @@
 #include "contactcore/contacts.h"
 #include "contactcore/validity.h"
 #include "test_helpers.h"
+#include "../src/signed_volume.h"
 
 using namespace contactcore;
 using namespace contactcore::testing;
@@ -94,4 +116,218 @@ TEST(Validity, MotorSolidsAreValidSerialAndParallel) {
     ASSERT_TRUE(result.status.ok());
     EXPECT_TRUE(result.invalid_bodies.empty());
   }
+}
+
+namespace {
+
+TopoDS_Shape box(double x, double dx = 10, double dy = 10, double dz = 10) {
+  return BRepPrimAPI_MakeBox(gp_Pnt(x, 0, 0), dx, dy, dz).Shape();
+}
+
+// A box's faces sewn again into a solid, face `turned` (1-based FaceN)
+// reversed and face `left_out` (1-based, 0: none) missing.
+TopoDS_Shape rebuilt_box(int turned, int left_out) {
+  BRep_Builder builder;
+  TopoDS_Shell shell;
+  builder.MakeShell(shell);
+  int index = 0;
+  for (TopExp_Explorer f(box(0), TopAbs_FACE); f.More(); f.Next()) {
+    ++index;
+    if (index == left_out) continue;
+    builder.Add(shell, index == turned ? f.Current().Reversed() : f.Current());
+  }
+  TopoDS_Solid solid;
+  builder.MakeSolid(solid);
+  builder.Add(solid, shell);
+  return solid;
+}
+
+// FaceN of the faces of `shape` holding `sub` (an edge or vertex).
+std::vector<int> faces_holding(const TopoDS_Shape& shape, const TopoDS_Shape& sub) {
+  std::vector<int> found;
+  int index = 0;
+  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) {
+    ++index;
+    for (TopExp_Explorer e(f.Current(), sub.ShapeType()); e.More(); e.Next())
+      if (e.Current().IsSame(sub)) {
+        found.push_back(index);
+        break;
+      }
+  }
+  return found;
+}
+
+const InvalidBody* verdict_of(const ContactsResult& result, int body) {
+  for (const InvalidBody& invalid : result.invalid_bodies)
+    if (invalid.body == body) return &invalid;
+  return nullptr;
+}
+
+ContactsResult checked(const Assembly& assembly, SolidChecks checks) {
+  ContactOptions options;
+  options.solid_checks = checks;
+  ContactsResult result = find_contacts(assembly, options);
+  EXPECT_TRUE(result.status.ok()) << result.status.describe();
+  return result;
+}
+
+}  // namespace
+
+TEST(Validity, BowtieHealedByTheStepReaderHasZeroVolume) {
+  // Through STEP the reader splits the crossing wires into two triangles
+  // each: eight valid faces, two of them crossing inside, enclosing +125 and
+  // -125 mm^3. Only the volume shows it: the whole solid is named.
+  const std::string path = (std::filesystem::temp_directory_path() / "contacts_validity_bowtie.step").string();
+  {
+    STEPControl_Writer writer;
+    writer.Transfer(box(0, 10, 10, 5), STEPControl_AsIs);
+    gp_Trsf up;
+    up.SetTranslation(gp_Vec(0, 0, 5));
+    writer.Transfer(bowtie_prism(0).Moved(TopLoc_Location(up)), STEPControl_AsIs);
+    ASSERT_EQ(writer.Write(path.c_str()), IFSelect_RetDone);
+  }
+  const AssemblyResult read = read_step(path);
+  std::remove(path.c_str());
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  ASSERT_EQ(read.assembly.bodies.size(), 2u);
+  const ContactsResult result = contacts_of(read.assembly);
+  ASSERT_EQ(result.invalid_bodies.size(), 1u);
+  EXPECT_EQ(result.invalid_bodies[0].body, 1);
+  EXPECT_TRUE(result.invalid_bodies[0].faces.empty());
+  EXPECT_EQ(result.invalid_bodies[0].reason, "zero volume");
+  bool named = false;
+  for (const std::string& m : result.messages)
+    named |= m == "body '" + read.assembly.bodies[1].name +
+                      "' is not a valid solid: zero volume (whole solid); its contacts and areas may be wrong";
+  EXPECT_TRUE(named);
+}
+
+TEST(Validity, InsideOutBoxIsNamed) {
+  const ContactsResult result = contacts_of(make_assembly({{"base", box(0)}, {"turned", box(10).Reversed()}}));
+  ASSERT_EQ(result.invalid_bodies.size(), 1u);
+  EXPECT_EQ(result.invalid_bodies[0].body, 1);
+  EXPECT_TRUE(result.invalid_bodies[0].faces.empty());
+  EXPECT_EQ(result.invalid_bodies[0].reason, "inside out");
+}
+
+TEST(Validity, ZeroHeightBoxIsNamed) {
+  // A box flattened to height 0 (as FreeCAD's transformGeometry does): its
+  // four sides have area 0, its top and bottom enclose nothing.
+  gp_GTrsf flatten;
+  flatten.SetValue(3, 3, 0);
+  const TopoDS_Shape flat = BRepBuilderAPI_GTransform(box(0), flatten, Standard_True).Shape();
+  const TopoDS_Shape base = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, -10), 20, 20, 10).Shape();
+  const ContactsResult result = contacts_of(make_assembly({{"base", base}, {"flat", flat}}));
+  ASSERT_EQ(result.invalid_bodies.size(), 1u);
+  EXPECT_EQ(result.invalid_bodies[0].body, 1);
+  EXPECT_TRUE(result.invalid_bodies[0].faces.empty());
+  EXPECT_EQ(result.invalid_bodies[0].reason, "zero volume");
+}
+
+TEST(Validity, FaceTurnedAgainstItsNeighboursIsNamed) {
+  // Face 3 reversed: its four edges run the same way in it and in each
+  // neighbour; the smaller of the two consistently oriented sets is face 3.
+  const ContactsResult result = contacts_of(make_assembly({{"box", rebuilt_box(3, 0)}}));
+  ASSERT_EQ(result.invalid_bodies.size(), 1u);
+  EXPECT_EQ(result.invalid_bodies[0].faces, std::vector<int>{3});
+  EXPECT_EQ(result.invalid_bodies[0].reason, "faces turned inside out");
+}
+
+TEST(Validity, OpenShellIsNamedWithTheFacesAroundTheHole) {
+  // Face 6 (the top, z = 10) left out: the four sides each have one free edge.
+  const TopoDS_Shape open = rebuilt_box(0, 6);
+  ASSERT_EQ(faces_at_height(box(0), 10), std::vector<int>{6});
+  const ContactsResult result = contacts_of(make_assembly({{"open", open}}));
+  ASSERT_EQ(result.invalid_bodies.size(), 1u);
+  EXPECT_EQ(result.invalid_bodies[0].faces, (std::vector<int>{1, 2, 3, 4}));
+  EXPECT_EQ(result.invalid_bodies[0].reason, "open shell");
+}
+
+TEST(Validity, EdgeMovedOffItsFacesIsNamedWithBoth) {
+  // One edge's 3D line moved 1 mm away: its two faces' curves on surface no
+  // longer meet it (tolerance 1e-7).
+  const TopoDS_Shape moved = box(0);
+  TopTools_IndexedMapOfShape edges;
+  TopExp::MapShapes(moved, TopAbs_EDGE, edges);
+  const TopoDS_Edge& edge = TopoDS::Edge(edges(1));
+  double first, last;
+  const Handle(Geom_Curve) line = BRep_Tool::Curve(edge, first, last);
+  const Handle(Geom_Curve) shifted = Handle(Geom_Curve)::DownCast(line->Translated(gp_Vec(0.7, 0.7, 0)));
+  BRep_Builder().UpdateEdge(edge, shifted, BRep_Tool::Tolerance(edge));
+  const std::vector<int> expected = faces_holding(moved, edge);
+  ASSERT_EQ(expected.size(), 2u);
+  const ContactsResult result = contacts_of(make_assembly({{"moved", moved}}));
+  ASSERT_EQ(result.invalid_bodies.size(), 1u);
+  EXPECT_EQ(result.invalid_bodies[0].faces, expected);
+  EXPECT_EQ(result.invalid_bodies[0].reason, "edges off their faces");
+}
+
+TEST(Validity, VertexOffItsEdgesIsFoundByTheFullAnalyzerOnly) {
+  // A vertex moved 0.5 mm from its three edges' ends: the edges and faces
+  // still agree and the volume holds, so the quick checks pass; OCCT's
+  // analyzer (BRepCheck_Vertex) names the three faces around it.
+  const TopoDS_Shape moved = box(0);
+  TopTools_IndexedMapOfShape vertices;
+  TopExp::MapShapes(moved, TopAbs_VERTEX, vertices);
+  const TopoDS_Vertex& vertex = TopoDS::Vertex(vertices(1));
+  BRep_Builder().UpdateVertex(vertex, BRep_Tool::Pnt(vertex).Translated(gp_Vec(0.5, 0.5, 0.5)),
+                              BRep_Tool::Tolerance(vertex));
+  const std::vector<int> expected = faces_holding(moved, vertex);
+  ASSERT_EQ(expected.size(), 3u);
+  const Assembly assembly = make_assembly({{"moved", moved}});
+  EXPECT_TRUE(checked(assembly, SolidChecks::Quick).invalid_bodies.empty());
+  const ContactsResult full = checked(assembly, SolidChecks::Full);
+  ASSERT_EQ(full.invalid_bodies.size(), 1u);
+  EXPECT_EQ(full.invalid_bodies[0].faces, expected);
+  EXPECT_EQ(full.invalid_bodies[0].reason, "fails BRepCheck_Analyzer");
+}
+
+TEST(Validity, GeneratedSolidsAreValidInBothModes) {
+  const TopoDS_Shape drilled =
+      BRepAlgoAPI_Cut(box(100, 30, 30, 10), BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(115, 15, -1), gp_Dir(0, 0, 1)), 5, 12).Shape())
+          .Shape();
+  const Assembly assembly = make_assembly(
+      {{"box", box(0)},
+       {"cylinder", BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(30, 5, 0), gp_Dir(0, 0, 1)), 5, 10).Shape()},
+       {"cone", BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(50, 5, 0), gp_Dir(0, 0, 1)), 5, 2, 10).Shape()},
+       {"ball", BRepPrimAPI_MakeSphere(gp_Pnt(70, 5, 5), 5).Shape()},
+       {"ring", BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(90, 5, 5), gp_Dir(0, 0, 1)), 6, 2).Shape()},
+       {"drilled", drilled}});
+  for (SolidChecks checks : {SolidChecks::Quick, SolidChecks::Full}) {
+    const ContactsResult result = checked(assembly, checks);
+    EXPECT_TRUE(result.invalid_bodies.empty()) << result.invalid_bodies.front().reason;
+  }
+}
+
+TEST(Validity, MotorSolidsPassTheFullAnalyzer) {
+  const AssemblyResult read = read_step(sample("motor.step"));
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  EXPECT_TRUE(checked(read.assembly, SolidChecks::Full).invalid_bodies.empty());
+}
+
+TEST(Validity, SignedVolumeMatchesOcctsAdaptiveIntegration) {
+  // Planes, cylinders, cones and spheres by the face formulas, the rest by
+  // OCCT: against BRepGProp's adaptive integration (relative 1e-10) on the
+  // motor's and generated solids, and negated for a reversed solid.
+  std::vector<TopoDS_Shape> shapes = {
+      box(0), BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(3, 4, 5), gp_Dir(1, 2, 3)), 5, 10).Shape(),
+      BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(-3, 4, 5), gp_Dir(0, 1, 0)), 5, 2, 10).Shape(),
+      BRepPrimAPI_MakeSphere(gp_Pnt(70, 5, 5), 5).Shape(),
+      BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(90, 5, 5), gp_Dir(0, 0, 1)), 6, 2).Shape(),
+      BRepAlgoAPI_Cut(box(100, 30, 30, 10),
+                      BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(115, 15, -1), gp_Dir(0, 0, 1)), 5, 12).Shape())
+          .Shape()};
+  const AssemblyResult motor = read_step(sample("motor.step"));
+  ASSERT_TRUE(motor.status.ok());
+  for (const Body& body : motor.assembly.bodies) shapes.push_back(body.shape);
+  shapes.push_back(box(0).Reversed());
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const BodyPartitions body = partition_shape(shapes[i], Tolerances{});
+    ASSERT_TRUE(body.status.ok());
+    GProp_GProps props;
+    BRepGProp::VolumeProperties(shapes[i], props, 1e-10);
+    const double ours = detail::signed_volume(body, gp_Pnt(1, 2, 3));
+    EXPECT_NEAR(ours, props.Mass(), 1e-8 * std::abs(props.Mass())) << "shape " << i;
+  }
+  EXPECT_LT(detail::signed_volume(partition_shape(box(0).Reversed(), Tolerances{}), gp_Pnt()), -999.99);
 }

@@ -41,6 +41,10 @@ struct Contact {
   Tolerances tolerances;    // tolerances used
 };
 
+// Which solid checks run (validity.h): Quick, the default, or also OCCT's
+// whole BRepCheck_Analyzer (Full, about 10x the cost).
+enum class SolidChecks { Quick, Full };
+
 struct ContactOptions {
   std::optional<double> linear;   // mm; unset: scaled to the model (default_tolerances)
   std::optional<double> angular;  // radians; unset: the default
@@ -52,6 +56,7 @@ struct ContactOptions {
   // a Status (heavily overlapping input: duplicates placed in place) instead
   // of enumerating them all. Raise it to go on.
   std::size_t max_body_pairs = 2'000'000;
+  SolidChecks solid_checks = SolidChecks::Quick;
   // For tests: called before each candidate pair's test (bodies, partitions);
   // what it throws skips that pair as a failing test would.
   std::function<void(int, int, int, int)> candidate_hook;
@@ -63,12 +68,12 @@ struct Interference {
   int body_a = 0, body_b = 0;  // body_a < body_b
   double volume = 0;           // mm^3 of the common solid
 };
-// A body whose solid BRepCheck finds invalid (a self-intersecting boundary):
-// its contacts and areas may be wrong.
+// A body whose solid is not valid (validity.h: a self-intersecting boundary,
+// open, inside out, zero volume, ...): its contacts and areas may be wrong.
 struct InvalidBody {
   int body = 0;
-  std::vector<int> faces;  // 1-based FaceN where the fault lies
-  std::string reason;
+  std::vector<int> faces;  // 1-based FaceN where the fault lies; empty: the whole solid
+  std::string reason;      // one of the k* strings of validity.h
 };
 // Same surface type and axis, radii differing by less than the clearance gap
 // (a nut on its bolt): a fit with play, not a contact.

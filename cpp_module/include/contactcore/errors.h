@@ -14,6 +14,7 @@ enum class StatusCode {
   GeometryError,   // OCCT raised Standard_Failure on a body or face
   Cancelled,       // the caller's progress callback asked to stop
   InvalidArgument, // an option out of range (a tolerance that is NaN, negative, too large)
+  OutOfMemory,     // std::bad_alloc or OCCT's Standard_OutOfMemory (out_of_memory.h)
 };
 
 struct Status {
