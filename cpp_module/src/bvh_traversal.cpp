@@ -30,6 +30,36 @@ inline double point_bv_distance(const Bvh& a, int node, const Vector3d& p) {
   return std::max(0.0, (local - on).norm() - rss.r);
 }
 
+// Splits the larger of two nodes (a's when b is a leaf) and calls visit(child_a, child_b, disjoint) for
+// its two children against the other node, by FCL's oriented-box test. The node kept is transformed
+// once for both children (FCL's overlap() would redo it per pair): the boxes' relative rotation is
+// axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
+template <typename Visit>
+inline void split_by_obb(const Bvh& a, const fcl::BVNode<fcl::OBBRSSd>& na, int node_a, const Bvh& b,
+                         const fcl::BVNode<fcl::OBBRSSd>& nb, int node_b, const Relative& rel, Visit&& visit) {
+  const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
+  if (split_a) {
+    const fcl::OBBd& kept = nb.bv.obb;
+    const fcl::Matrix3d rotated = rel.R * kept.axis;
+    const Vector3d moved = rel.R * kept.To + rel.T;
+    for (int child : {na.rightChild(), na.leftChild()}) {
+      const fcl::OBBd& box = a.getBV(child).bv.obb;
+      visit(child, node_b,
+            fcl::obbDisjoint<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
+                                     box.extent, kept.extent));
+    }
+  } else {
+    const fcl::OBBd& kept = na.bv.obb;
+    const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
+    const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
+    for (int child : {nb.rightChild(), nb.leftChild()}) {
+      const fcl::OBBd& box = b.getBV(child).bv.obb;
+      visit(node_a, child,
+            fcl::obbDisjoint<double>(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent));
+    }
+  }
+}
+
 }  // namespace
 
 double Traversal::triangle_distance(const Bvh& a, int triangle_a, const Bvh& b, int triangle_b, const Relative& rel,
@@ -141,30 +171,10 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
       }
       continue;
     }
-    // The node kept is transformed once for both children (FCL's overlap() would redo it per pair):
-    // the boxes' relative rotation is axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
-    const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
     bv_tests += 2;
-    if (split_a) {
-      const fcl::OBBd& kept = nb.bv.obb;
-      const fcl::Matrix3d rotated = rel.R * kept.axis;
-      const Vector3d moved = rel.R * kept.To + rel.T;
-      for (int child : {na.rightChild(), na.leftChild()}) {
-        const fcl::OBBd& box = a.getBV(child).bv.obb;
-        if (!fcl::obbDisjoint<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
-                                      box.extent, kept.extent))
-          stack_.push_back({child, e.b, 0});
-      }
-    } else {
-      const fcl::OBBd& kept = na.bv.obb;
-      const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
-      const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
-      for (int child : {nb.rightChild(), nb.leftChild()}) {
-        const fcl::OBBd& box = b.getBV(child).bv.obb;
-        if (!fcl::obbDisjoint<double>(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent))
-          stack_.push_back({e.a, child, 0});
-      }
-    }
+    split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, bool disjoint) {
+      if (!disjoint) stack_.push_back({child_a, child_b, 0});
+    });
   }
   return hits.size() > before;
 }
@@ -234,29 +244,10 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
         }
         continue;
       }
-      const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
       bv_tests += 2;
-      if (split_a) {
-        const fcl::OBBd& kept = nb.bv.obb;
-        const fcl::Matrix3d rotated = rel.R * kept.axis;
-        const Vector3d moved = rel.R * kept.To + rel.T;
-        for (int child : {na.rightChild(), na.leftChild()}) {
-          const fcl::OBBd& box = a.getBV(child).bv.obb;
-          const bool disjoint = fcl::obbDisjoint<double>(box.axis.transpose() * rotated,
-                                                         box.axis.transpose() * (moved - box.To), box.extent, kept.extent);
-          stack_.push_back({child, e.b, disjoint ? 0.0 : 1.0});
-        }
-      } else {
-        const fcl::OBBd& kept = na.bv.obb;
-        const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
-        const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
-        for (int child : {nb.rightChild(), nb.leftChild()}) {
-          const fcl::OBBd& box = b.getBV(child).bv.obb;
-          const bool disjoint =
-              fcl::obbDisjoint<double>(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent);
-          stack_.push_back({e.a, child, disjoint ? 0.0 : 1.0});
-        }
-      }
+      split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, bool disjoint) {
+        stack_.push_back({child_a, child_b, disjoint ? 0.0 : 1.0});
+      });
     }
   }
   return false;
