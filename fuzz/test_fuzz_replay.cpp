@@ -252,6 +252,11 @@ TEST(FuzzRegressions, BrepBooleanCrashInTheInterferencePassIsReported) {
   const contactcore::ContactsResult result = contactcore::find_contacts(bodies.assembly, options);
   ASSERT_TRUE(result.status.ok()) << result.status.describe();
   EXPECT_TRUE(result.interferences.empty());
+  // Both solids have edges without 3D curves: named by the solid checks
+  // (whose BRepCheck_Edge would dereference them as null).
+  ASSERT_EQ(result.invalid_bodies.size(), 2u);
+  for (const contactcore::InvalidBody& invalid : result.invalid_bodies)
+    EXPECT_EQ(invalid.reason, "edges off their faces") << invalid.body;
   int about_the_pair = 0;
   for (const std::string& message : result.messages) {
     if (message.find("'Body1' and 'Body2'") == std::string::npos) continue;

@@ -13,6 +13,7 @@
 #include <Geom2d_Line.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
 #include <BRepCheck_Wire.hxx>
+#include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
@@ -21,6 +22,7 @@
 #include <gp_Pnt.hxx>
 
 #include "contactcore/parallel.h"
+#include "contactcore/occt_guard.h"
 #include "contactcore/out_of_memory.h"
 #include "outlines.h"
 #include "signed_volume.h"
@@ -221,8 +223,11 @@ std::vector<int> faces_with_edges_off_their_surface(const BodyPartitions& body) 
     if (edges > kMostEdgesChecked) continue;
     for (TopExp_Explorer e(info.face, TopAbs_EDGE); e.More(); e.Next()) {
       Handle(BRepCheck_Edge) check = new BRepCheck_Edge(TopoDS::Edge(e.Current()));
-      check->InContext(info.face);
-      if (check->IsStatusOnShape(info.face) && has_fault(check->StatusOnShape(info.face))) {
+      // An edge without its 3D curve (faulted by the constructor's own
+      // checks) would be dereferenced as null by InContext in OCCT 7.6.
+      const bool bad_alone = has_fault(check->Status());
+      if (!bad_alone) check->InContext(info.face);
+      if (bad_alone || (check->IsStatusOnShape(info.face) && has_fault(check->StatusOnShape(info.face)))) {
         faces.push_back(info.index);
         break;
       }
@@ -318,9 +323,14 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
   };
   std::vector<InvalidBody> verdicts(n);
   std::vector<std::string> failures(n);
+  // BRepCheck_Edge dereferences null curves of some damaged shapes (make
+  // fuzz, fuzz_brep): OCCT's signal handler makes that a failed check of the
+  // body, not a crash.
+  const OcctGuard guard;
   if (!parallel_for(n, threads, progress, "checking solids", [&](std::size_t i) {
         if (source_of(i) != i) return;
         try {
+          OCC_CATCH_SIGNALS
           verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks);
         } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           failures[i] = std::string("its check failed: ") + failure.GetMessageString();
