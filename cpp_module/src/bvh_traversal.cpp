@@ -30,8 +30,16 @@ inline double point_bv_distance(const Bvh& a, int node, const Vector3d& p) {
   return std::max(0.0, (local - on).norm() - rss.r);
 }
 
+// The separation of a's node and b's node (their oriented boxes), transformed as FCL's overlap() does.
+inline BoxSeparation bv_separation(const Bvh& a, int node_a, const Bvh& b, int node_b, const Relative& rel) {
+  const fcl::OBBd& box_a = a.getBV(node_a).bv.obb;
+  const fcl::OBBd& box_b = b.getBV(node_b).bv.obb;
+  return box_separation(box_a.axis.transpose() * rel.R * box_b.axis,
+                        box_a.axis.transpose() * (rel.R * box_b.To + rel.T - box_a.To), box_a.extent, box_b.extent);
+}
+
 // Splits the larger of two nodes (a's when b is a leaf) and calls visit(child_a, child_b, disjoint) for
-// its two children against the other node, by FCL's oriented-box test. The node kept is transformed
+// its two children against the other node, by the oriented-box test (box_separation). The node kept is transformed
 // once for both children (FCL's overlap() would redo it per pair): the boxes' relative rotation is
 // axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
 template <typename Visit>
@@ -45,8 +53,8 @@ inline void split_by_obb(const Bvh& a, const fcl::BVNode<fcl::OBBRSSd>& na, int 
     for (int child : {na.rightChild(), na.leftChild()}) {
       const fcl::OBBd& box = a.getBV(child).bv.obb;
       visit(child, node_b,
-            fcl::obbDisjoint<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
-                                     box.extent, kept.extent));
+            box_separation(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To), box.extent,
+                           kept.extent));
     }
   } else {
     const fcl::OBBd& kept = na.bv.obb;
@@ -55,12 +63,49 @@ inline void split_by_obb(const Bvh& a, const fcl::BVNode<fcl::OBBRSSd>& na, int 
     for (int child : {nb.rightChild(), nb.leftChild()}) {
       const fcl::OBBd& box = b.getBV(child).bv.obb;
       visit(node_a, child,
-            fcl::obbDisjoint<double>(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent));
+            box_separation(rotation * box.axis, rotation * box.To + offset, kept.extent, box.extent));
     }
   }
 }
 
 }  // namespace
+
+BoxSeparation box_separation(const fcl::Matrix3d& B, const Vector3d& T, const Vector3d& a, const Vector3d& b) {
+  // FCL's obbDisjoint with the separations kept: |B| widened by its 1e-6, the same 15 axes.
+  constexpr double kWiden = 1e-6;
+  fcl::Matrix3d Bf = B.cwiseAbs();
+  Bf.array() += kWiden;
+  double margin = 0;
+  bool disjoint = false;
+  for (int i = 0; i < 3; ++i) {  // A's faces: unit axes
+    const double gap = std::abs(T[i]) - (a[i] + Bf.row(i).dot(b));
+    if (gap > 0) {
+      disjoint = true;
+      margin = std::max(margin, gap);
+    }
+  }
+  for (int j = 0; j < 3; ++j) {  // B's faces
+    const double gap = std::abs(B.col(j).dot(T)) - (b[j] + Bf.col(j).dot(a));
+    if (gap > 0) {
+      disjoint = true;
+      margin = std::max(margin, gap);
+    }
+  }
+  if (disjoint) return {true, margin};
+  for (int i = 0; i < 3; ++i) {  // A's edge i across B's edge j: axis A_i x B_j, of length sin(angle)
+    const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+    for (int j = 0; j < 3; ++j) {
+      const int j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+      const double gap = std::abs(T[i2] * B(i1, j) - T[i1] * B(i2, j)) -
+                         (a[i1] * Bf(i2, j) + a[i2] * Bf(i1, j) + b[j1] * Bf(i, j2) + b[j2] * Bf(i, j1));
+      if (gap > 0) {
+        const double length_squared = 1 - B(i, j) * B(i, j);
+        return {true, length_squared > 1e-6 ? gap / std::sqrt(length_squared) : 0.0};
+      }
+    }
+  }
+  return {false, 0};
+}
 
 double Traversal::triangle_distance(const Bvh& a, int triangle_a, const Bvh& b, int triangle_b, const Relative& rel,
                                     Vector3d& point_a, Vector3d& point_b) {
@@ -172,8 +217,8 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
       continue;
     }
     bv_tests += 2;
-    split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, bool disjoint) {
-      if (!disjoint) stack_.push_back({child_a, child_b, 0});
+    split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, BoxSeparation separation) {
+      if (!separation.disjoint) stack_.push_back({child_a, child_b, 0});
     });
   }
   return hits.size() > before;
@@ -181,7 +226,7 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
 
 bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,
                                          const std::vector<int>& parent_b, const Relative& rel, double touching,
-                                         const std::vector<FrontEntry>& front, bool pull_up,
+                                         const std::vector<FrontEntry>& front, double moved, bool pull_up,
                                          std::vector<FrontEntry>& next, bool& overflow, TriangleHit& hit) {
   next.clear();
   overflow = false;
@@ -199,9 +244,10 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
       else
         break;
       ++bv_tests;
-      if (bv_overlap(a, pa, b, pb, rel)) break;
+      const BoxSeparation parent = bv_separation(a, pa, b, pb, rel);
+      if (!parent.disjoint) break;
       next.pop_back();
-      e = {pa, pb, 1};
+      e = {pa, pb, 1, parent.margin};
     }
     if (next.size() == next.capacity()) {
       overflow = true;
@@ -211,19 +257,26 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
   };
   const FrontEntry root{0, 0, 0};
   const std::size_t size = front.empty() ? 1 : front.size();
+  // Entry::lower holds the margin of a separated pair (>= 0), -1 when the boxes overlap.
+  constexpr double kOverlap = -1;
   Vector3d pa, pb;
   for (std::size_t i = 0; i < size; ++i) {
     const FrontEntry& start = front.empty() ? root : front[i];
+    if (start.separated && start.margin > moved + touching) {
+      emit({start.a, start.b, 1, start.margin - moved});  // no point of b came near enough to meet a
+      continue;
+    }
     ++bv_tests;
     stack_.clear();
-    // Entry::lower holds 1 when the pair's boxes overlap, 0 when disjoint; children are pushed right
-    // first so that the next front keeps the left-to-right order in which siblings end up adjacent.
-    stack_.push_back({start.a, start.b, bv_overlap(a, start.a, b, start.b, rel) ? 1.0 : 0.0});
+    // Children are pushed right first so that the next front keeps the left-to-right order in which
+    // siblings end up adjacent.
+    const BoxSeparation separation = bv_separation(a, start.a, b, start.b, rel);
+    stack_.push_back({start.a, start.b, separation.disjoint ? separation.margin : kOverlap});
     while (!stack_.empty()) {
       const Entry e = stack_.back();
       stack_.pop_back();
-      if (e.lower == 0) {
-        emit({e.a, e.b, 1});
+      if (e.lower >= 0) {
+        emit({e.a, e.b, 1, e.lower});
         continue;
       }
       const auto& na = a.getBV(e.a);
@@ -233,20 +286,21 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
         emit({e.a, e.b, 0});
         if (triangle_distance(a, na.primitiveId(), b, nb.primitiveId(), rel, pa, pb) <= touching) {
           hit = {na.primitiveId(), nb.primitiveId()};
-          // The pairs not reached yet complete the cut.
+          // The pairs not reached yet complete the cut, those of the old front with their margins.
           while (!stack_.empty()) {
             const Entry rest = stack_.back();
             stack_.pop_back();
-            emit({rest.a, rest.b, rest.lower == 0 ? 1 : 0});
+            emit({rest.a, rest.b, rest.lower >= 0 ? 1 : 0, std::max(rest.lower, 0.0)});
           }
-          for (std::size_t j = i + 1; j < size; ++j) emit({front[j].a, front[j].b, 0});
+          for (std::size_t j = i + 1; j < size; ++j)
+            emit({front[j].a, front[j].b, front[j].separated, std::max(front[j].margin - moved, 0.0)});
           return true;
         }
         continue;
       }
       bv_tests += 2;
-      split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, bool disjoint) {
-        stack_.push_back({child_a, child_b, disjoint ? 0.0 : 1.0});
+      split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, BoxSeparation child) {
+        stack_.push_back({child_a, child_b, child.disjoint ? child.margin : kOverlap});
       });
     }
   }

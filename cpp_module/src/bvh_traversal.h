@@ -38,10 +38,25 @@ struct TriangleHit {
 // volume test tree). Whatever the placements, a search that tests every front pair and descends
 // those whose boxes overlap visits every triangle pair a search from the roots could reach, so its
 // answer is the cold one by construction: a stale front (after a jump, a partition switched off and
-// on) costs tests, never correctness. `separated`: the boxes were disjoint when last tested.
+// on) costs tests, never correctness. `separated`: the boxes were disjoint when last tested, then
+// `margin` is a lower bound of their distance at the placements the front was made for (0: none
+// known).
 struct FrontEntry {
   int a, b, separated;
+  double margin = 0;
 };
+
+// Whether two oriented boxes are disjoint by the separating-axis test (FCL's obbDisjoint, the same
+// axes, order and tolerance), and when they are, a lower bound of their distance: the largest
+// separation along a face axis, else along the first separating edge-edge axis (normalised; 0
+// when that axis is nearly degenerate). Box A is axis-aligned at the origin with half-extents a; B
+// has rotation B, centre T and half-extents b in A's frame.
+struct BoxSeparation {
+  bool disjoint;
+  double margin;
+};
+BoxSeparation box_separation(const fcl::Matrix3d& B, const fcl::Vector3d& T, const fcl::Vector3d& a,
+                             const fcl::Vector3d& b);
 
 class Traversal {
  public:
@@ -77,10 +92,13 @@ class Traversal {
   // `overflow` is set instead and `next` is then not a front). Sibling pairs both separated are
   // replaced by their parent pair when that is separated too (pull-up, when `pull_up`), so the front
   // follows a sliding contact without growing. parent_a/parent_b: each node's parent (-1: root).
+  // `moved`: at most how far any point of b's hierarchy has moved relative to a's since `front` was
+  // made (infinity: unknown); a separated pair whose margin exceeds it (and `touching`) is still
+  // separated, and kept without a test, its margin less `moved` (motion-bounded pruning).
   bool touching_pair_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,
                                 const std::vector<int>& parent_b, const Relative& rel, double touching,
-                                const std::vector<FrontEntry>& front, bool pull_up, std::vector<FrontEntry>& next,
-                                bool& overflow, TriangleHit& hit);
+                                const std::vector<FrontEntry>& front, double moved, bool pull_up,
+                                std::vector<FrontEntry>& next, bool& overflow, TriangleHit& hit);
 
   // Lowers `best` (point_b unused) to the distance from point p (a's frame) to a's triangles.
   void point_distance(const Bvh& a, const fcl::Vector3d& p, Closest& best);

@@ -19,9 +19,13 @@
 #include <gp_Quaternion.hxx>
 #include <gp_Trsf.hxx>
 
+#include <fcl/geometry/shape/box.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/narrowphase/distance.h>
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
 
 #include "contactcore/collision.h"
+#include "../src/bvh_traversal.h"
 #include "contactcore/meshes.h"
 
 using namespace contactcore;
@@ -422,6 +426,16 @@ TEST(Collision, FrontTrackingGivesTheColdAnswers) {
         i < 120 ? at_gap(sphere, holed, RigidTransform::translated(slide - 3, 0.2, 9.05), {0, 0, 1}, gap)
                 : at_gap(sphere, holed, RigidTransform::translated(11.05, 0.5, slide), {1, 0, 0}, gap));
   }
+  // Sphere on sphere, B spinning in place about its own z axis (0.02 rad a tick, then a jump of 1
+  // rad at 120) while grazing A along x: the contact runs round B's equator, 0.1 mm a tick, by its
+  // turn alone, which the motion bound of the front's separated pairs must cover.
+  paths.push_back({&sphere, {}});
+  for (int i = 0; i < 240; ++i) {
+    const double gap = 0.003 * std::sin(0.37 * i), turn = 0.02 * i + (i >= 120 ? 1.0 : 0.0);
+    RigidTransform nominal = RigidTransform::translated(10.05, 0, 0);
+    nominal.rotation = {std::cos(turn), -std::sin(turn), 0, std::sin(turn), std::cos(turn), 0, 0, 0, 1};
+    paths[2].placements.push_back(at_gap(sphere, sphere, nominal, {1, 0, 0}, gap));
+  }
   for (std::size_t p = 0; p < paths.size(); ++p) {
     const Body& b = *paths[p].b;
     const int switched = b.mesh.triangle_partition[0];
@@ -450,7 +464,9 @@ TEST(Collision, FrontTrackingGivesTheColdAnswers) {
         const auto& va = sphere.mesh.vertices[sphere.mesh.triangles[f.triangle_a][v]];
         const auto& vb = b.mesh.vertices[b.mesh.triangles[f.triangle_b][v]];
         ta[v] = fcl::Vector3d(va[0], va[1], va[2]);
-        tb[v] = fcl::Vector3d(vb[0] + place.translation[0], vb[1] + place.translation[1], vb[2] + place.translation[2]);
+        for (int k = 0; k < 3; ++k)
+          tb[v][k] = place.rotation[3 * k] * vb[0] + place.rotation[3 * k + 1] * vb[1] + place.rotation[3 * k + 2] * vb[2] +
+                     place.translation[k];
       }
       EXPECT_LE(fcl::detail::TriangleDistanced::triDistance(ta, tb, pa, pb), 1e-9) << where;
     }
@@ -525,4 +541,44 @@ TEST(Collision, DistanceLimitAnswersFartherBeyondIt) {
   // spheres): gaps up to 0.5 (i <= 14) stay below 0.525, gaps from 0.55 (i >= 15) beyond it.
   EXPECT_EQ(below, 15);
   EXPECT_EQ(beyond, 5);
+}
+
+// The front's box test: disjoint exactly when FCL's obbDisjoint says so, and its margin a lower
+// bound of the boxes' distance (FCL's GJK distance between the same boxes), equal to the gap for
+// boxes side by side.
+TEST(Collision, BoxSeparationAgreesWithFclAndBoundsTheDistance) {
+  using contactcore::bvh::box_separation;
+  // Side by side along x: half-extents 1 and 2, centres 4 apart: a gap of exactly 1.
+  const auto side = box_separation(fcl::Matrix3d::Identity(), fcl::Vector3d(4, 0.5, 0), fcl::Vector3d(1, 1, 1),
+                                   fcl::Vector3d(2, 1, 1));
+  EXPECT_TRUE(side.disjoint);
+  // Along B's x face axis 4 - 2 - (1 + 1e-6 + 1e-6 + 1e-6), |B| widened by FCL's 1e-6 per entry
+  // (along A's: 4 - 1 - (2 + 2e-6 + 1e-6 + 1e-6), smaller).
+  EXPECT_NEAR(side.margin, 1.0 - 3e-6, 1e-12);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1), size(0.01, 2);
+  int disjoint = 0, from_edges = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const fcl::Quaterniond q(unit(rng), unit(rng), unit(rng), unit(rng));
+    const fcl::Matrix3d B = q.normalized().toRotationMatrix();
+    const fcl::Vector3d a(size(rng), size(rng), size(rng)), b(size(rng), size(rng), size(rng));
+    const fcl::Vector3d T = 3.0 * fcl::Vector3d(unit(rng), unit(rng), unit(rng));
+    const auto separation = box_separation(B, T, a, b);
+    ASSERT_EQ(separation.disjoint, fcl::obbDisjoint<double>(B, T, a, b)) << i;
+    if (!separation.disjoint) continue;
+    ++disjoint;
+    fcl::Transform3d place = fcl::Transform3d::Identity();
+    place.linear() = B;
+    place.translation() = T;
+    const fcl::Boxd box_a(2 * a), box_b(2 * b);
+    fcl::DistanceRequestd request;
+    request.gjk_solver_type = fcl::GST_INDEP;
+    fcl::DistanceResultd result;
+    fcl::distance(&box_a, fcl::Transform3d::Identity(), &box_b, place, request, result);
+    EXPECT_LE(separation.margin, result.min_distance + 1e-6) << i;
+    EXPECT_GE(separation.margin, 0) << i;
+    if (separation.margin < 0.5 * result.min_distance) ++from_edges;  // separated by an edge axis, or loosely
+  }
+  EXPECT_GT(disjoint, 1000);
+  EXPECT_LT(from_edges, disjoint / 2);  // mostly a face axis, the margin close to the distance
 }
