@@ -68,6 +68,39 @@ inline void split_by_obb(const Bvh& a, const fcl::BVNode<fcl::OBBRSSd>& na, int 
   }
 }
 
+// Splits the larger of a node pair (a's when b's is a leaf) into its two children pairs, each with
+// the lower bound of its distance (FCL's RSS distance). The node kept is transformed once for both
+// children (FCL's RSS distance would redo it per pair): the rectangles' relative rotation is
+// axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
+template <typename Entry>
+inline void split_by_rss(const Bvh& a, const fcl::BVNode<fcl::OBBRSSd>& na, const Entry& e, const Bvh& b,
+                         const fcl::BVNode<fcl::OBBRSSd>& nb, const Relative& rel, Entry children[2]) {
+  const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
+  if (split_a) {
+    const fcl::RSSd& kept = nb.bv.rss;
+    const fcl::Matrix3d rotated = rel.R * kept.axis;
+    const Vector3d moved = rel.R * kept.To + rel.T;
+    const int ids[2] = {na.leftChild(), na.rightChild()};
+    for (int k = 0; k < 2; ++k) {
+      const fcl::RSSd& box = a.getBV(ids[k]).bv.rss;
+      const double gap = fcl::rectDistance<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
+                                                   box.l, kept.l) - (box.r + kept.r);
+      children[k] = {ids[k], e.b, std::max(0.0, gap)};
+    }
+  } else {
+    const fcl::RSSd& kept = na.bv.rss;
+    const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
+    const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
+    const int ids[2] = {nb.leftChild(), nb.rightChild()};
+    for (int k = 0; k < 2; ++k) {
+      const fcl::RSSd& box = b.getBV(ids[k]).bv.rss;
+      const double gap = fcl::rectDistance<double>(rotation * box.axis, rotation * box.To + offset, kept.l, box.l) -
+                         (kept.r + box.r);
+      children[k] = {e.a, ids[k], std::max(0.0, gap)};
+    }
+  }
+}
+
 }  // namespace
 
 BoxSeparation box_separation(const fcl::Matrix3d& B, const Vector3d& T, const Vector3d& a, const Vector3d& b) {
@@ -124,24 +157,27 @@ double Traversal::point_triangle_distance(const Bvh& a, int triangle, const Vect
                                        on_point);
 }
 
-bool Traversal::distance(const Bvh& a, const Bvh& b, const Relative& rel, Closest& best, double stop_at,
-                         Held held) {
-  if (best.distance <= stop_at) return false;
-  bool replaced = false;
+template <typename Stopped>
+bool Traversal::distance_search(const Bvh& a, const Bvh& b, const Relative& rel, int start_a, int start_b,
+                                double lower, Closest& best, double stop_at, Held& held, bool& replaced,
+                                Stopped&& stopped) {
   stack_.clear();
-  ++bv_tests;
-  stack_.push_back({0, 0, bv_distance(a, 0, b, 0, rel)});
+  stack_.push_back({start_a, start_b, lower});
   Vector3d pa, pb;
   while (!stack_.empty()) {
     const Entry e = stack_.back();
     stack_.pop_back();
-    if (e.lower > best.distance) continue;  // the bound fell since it was pushed (a tie may still win)
+    if (e.lower > best.distance + kTieSlack) {  // the bound fell since it was pushed (a tie may still win)
+      stopped(e.a, e.b, e.lower, false);
+      continue;
+    }
     const auto& na = a.getBV(e.a);
     const auto& nb = b.getBV(e.b);
     if (na.isLeaf() && nb.isLeaf()) {
       ++triangle_tests;
       const int ta = na.primitiveId(), tb = nb.primitiveId();
       const double d = triangle_distance(a, ta, b, tb, rel, pa, pb);
+      stopped(e.a, e.b, d, true);
       const bool tie_wins = held == Held::Later ||
                             (held == Held::Same && (ta < best.triangle_a || (ta == best.triangle_a && tb < best.triangle_b)));
       if (d < best.distance || (d == best.distance && tie_wins)) {
@@ -152,42 +188,87 @@ bool Traversal::distance(const Bvh& a, const Bvh& b, const Relative& rel, Closes
         best.triangle_b = nb.primitiveId();
         best.point_a = pa;
         best.point_b = pb;
-        if (d <= stop_at) return true;
+        if (d <= stop_at) {
+          for (const Entry& rest : stack_) stopped(rest.a, rest.b, rest.lower, false);
+          return true;
+        }
       }
       continue;
     }
-    // The kept node transformed once for both children (FCL's RSS distance would redo it per pair):
-    // the rectangles' relative rotation is axis_a^T R axis_b, their offset axis_a^T (R To_b + T - To_a).
     Entry children[2];
-    const bool split_a = !na.isLeaf() && (nb.isLeaf() || na.bv.size() > nb.bv.size());
     bv_tests += 2;
-    if (split_a) {
-      const fcl::RSSd& kept = nb.bv.rss;
-      const fcl::Matrix3d rotated = rel.R * kept.axis;
-      const Vector3d moved = rel.R * kept.To + rel.T;
-      const int ids[2] = {na.leftChild(), na.rightChild()};
-      for (int k = 0; k < 2; ++k) {
-        const fcl::RSSd& box = a.getBV(ids[k]).bv.rss;
-        const double gap = fcl::rectDistance<double>(box.axis.transpose() * rotated, box.axis.transpose() * (moved - box.To),
-                                                     box.l, kept.l) - (box.r + kept.r);
-        children[k] = {ids[k], e.b, std::max(0.0, gap)};
-      }
-    } else {
-      const fcl::RSSd& kept = na.bv.rss;
-      const fcl::Matrix3d rotation = kept.axis.transpose() * rel.R;
-      const Vector3d offset = kept.axis.transpose() * (rel.T - kept.To);
-      const int ids[2] = {nb.leftChild(), nb.rightChild()};
-      for (int k = 0; k < 2; ++k) {
-        const fcl::RSSd& box = b.getBV(ids[k]).bv.rss;
-        const double gap = fcl::rectDistance<double>(rotation * box.axis, rotation * box.To + offset, kept.l, box.l) -
-                           (kept.r + box.r);
-        children[k] = {e.a, ids[k], std::max(0.0, gap)};
-      }
-    }
+    split_by_rss(a, na, e, b, nb, rel, children);
     // The nearer pair pushed last: visited first, it lowers the bound for the other.
     if (children[0].lower < children[1].lower) std::swap(children[0], children[1]);
-    for (const Entry& child : children)
-      if (child.lower <= best.distance) stack_.push_back(child);
+    for (const Entry& child : children) {
+      if (child.lower <= best.distance + kTieSlack)
+        stack_.push_back(child);
+      else
+        stopped(child.a, child.b, child.lower, false);
+    }
+  }
+  return false;
+}
+
+bool Traversal::distance(const Bvh& a, const Bvh& b, const Relative& rel, Closest& best, double stop_at,
+                         Held held) {
+  if (best.distance <= stop_at) return false;
+  bool replaced = false;
+  ++bv_tests;
+  distance_search(a, b, rel, 0, 0, bv_distance(a, 0, b, 0, rel), best, stop_at, held, replaced,
+                  [](int, int, double, bool) {});
+  return replaced;
+}
+
+bool Traversal::distance_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,
+                                    const std::vector<int>& parent_b, const Relative& rel, Closest& best,
+                                    double stop_at, Held held, const std::vector<FrontEntry>& front, double moved,
+                                    bool pull_up, std::vector<FrontEntry>& next, bool& overflow) {
+  next.clear();
+  overflow = false;
+  // Appends a pair to the next front (margin: its distance bound; separated: not a measured leaf
+  // pair). Two pruned siblings merge into their parent pair while the parent's bound is above the
+  // best too (pull-up, as in touching_pair_from_front).
+  auto emit = [&](FrontEntry e) {
+    while (pull_up && e.separated && !next.empty() && next.back().separated) {
+      const FrontEntry& last = next.back();
+      int pa = e.a, pb = e.b;
+      if (last.b == e.b && last.a != e.a && parent_a[e.a] >= 0 && parent_a[last.a] == parent_a[e.a])
+        pa = parent_a[e.a];
+      else if (last.a == e.a && last.b != e.b && parent_b[e.b] >= 0 && parent_b[last.b] == parent_b[e.b])
+        pb = parent_b[e.b];
+      else
+        break;
+      ++bv_tests;
+      const double parent = bv_distance(a, pa, b, pb, rel);
+      if (!(parent > best.distance + kTieSlack)) break;
+      next.pop_back();
+      e = {pa, pb, 1, parent};
+    }
+    if (next.size() == next.capacity()) {
+      overflow = true;
+      return;
+    }
+    next.push_back(e);
+  };
+  const auto stopped = [&](int node_a, int node_b, double lower, bool leaf) {
+    emit({node_a, node_b, leaf ? 0 : 1, lower});
+  };
+  const FrontEntry root{0, 0, 1, 0};
+  const std::size_t size = front.empty() ? 1 : front.size();
+  bool replaced = false, done = best.distance <= stop_at;
+  for (std::size_t i = 0; i < size; ++i) {
+    const FrontEntry& start = front.empty() ? root : front[i];
+    // Every triangle pair under a front pair was at least its margin apart when the front was made,
+    // and no point of b has moved more than `moved` since.
+    const double lower_now = start.margin - moved;
+    if (done || lower_now > best.distance + kTieSlack) {
+      emit({start.a, start.b, start.separated, std::max(lower_now, 0.0)});
+      continue;
+    }
+    ++bv_tests;
+    done = distance_search(a, b, rel, start.a, start.b, bv_distance(a, start.a, b, start.b, rel), best, stop_at,
+                           held, replaced, stopped);
   }
   return replaced;
 }

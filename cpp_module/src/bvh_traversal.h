@@ -16,6 +16,13 @@ namespace contactcore::bvh {
 
 using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
 
+// Node pairs (and partition pairs) are pruned only when their bound exceeds the best distance by
+// this much (mm): a pair holding a tie (a closest point on a corner or edge belongs to every
+// triangle around it; a sphere's pole touching a plane, to the whole fan) is then always reached,
+// whatever the rounding of the bounds on the way to it, so that every search order (from the roots,
+// from a warm start, from a front) breaks the tie the same way.
+constexpr double kTieSlack = 1e-9;
+
 // B's frame expressed in A's: a point x of B is at R x + T in A's frame.
 struct Relative {
   fcl::Matrix3d R = fcl::Matrix3d::Identity();
@@ -82,6 +89,16 @@ class Traversal {
   // whether it replaced the held pair.
   bool distance(const Bvh& a, const Bvh& b, const Relative& rel, Closest& best, double stop_at, Held held);
 
+  // distance() started from `front` (empty: the roots) instead of the roots, with the same answer
+  // (the front is a cut): a front pair whose margin (its distance bound when the front was made)
+  // less `moved` (as in touching_pair_from_front) exceeds the best distance is kept without a test.
+  // The pairs where this search stopped (pruned, leaves measured) go into `next` with their bounds,
+  // `overflow` set instead when its capacity would be exceeded.
+  bool distance_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,
+                           const std::vector<int>& parent_b, const Relative& rel, Closest& best, double stop_at,
+                           Held held, const std::vector<FrontEntry>& front, double moved, bool pull_up,
+                           std::vector<FrontEntry>& next, bool& overflow);
+
   // Triangle pairs at most `touching` apart, appended to `hits` until it holds `limit` pairs.
   // Returns whether any was found.
   bool touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
@@ -112,6 +129,13 @@ class Traversal {
     int a, b;
     double lower;
   };
+  // distance()'s depth-first search from one node pair (its bound `lower`): every pair where it
+  // stops (pruned by the best distance, a leaf pair measured, left on the stack when it stopped
+  // early) goes to stopped(a, b, bound, leaf). Returns whether it stopped early (best <= stop_at).
+  template <typename Stopped>
+  bool distance_search(const Bvh& a, const Bvh& b, const Relative& rel, int start_a, int start_b, double lower,
+                       Closest& best, double stop_at, Held& held, bool& replaced, Stopped&& stopped);
+
   std::vector<Entry> stack_;
   std::vector<Entry> single_stack_;
 };

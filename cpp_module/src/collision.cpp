@@ -56,9 +56,9 @@ struct CollisionPair::State {
   std::vector<bvh::TriangleHit> cached_hit;
   std::vector<int> ring[2];
   bool warm_start = true;
-  // Front tracking (see bvh::FrontEntry): per slot the front of the last Intersect traversal of
-  // one partition pair (owner: a * partitions of B + b, -1 when free); front_slot maps a partition
-  // pair to its slot (-1: none, i.e. start from the roots).
+  // Front tracking (see bvh::FrontEntry), of Intersect and of Distance apart: per slot the front of
+  // the last traversal of one partition pair (owner: a * partitions of B + b, -1 when free);
+  // slot_of maps a partition pair to its slot (-1: none, i.e. start from the roots).
   struct FrontSlot {
     std::vector<bvh::FrontEntry> entries;
     bvh::Relative made_at;  // the placement the entries' margins hold for (when entries is not empty)
@@ -66,13 +66,20 @@ struct CollisionPair::State {
     unsigned long used = 0;
     unsigned ticks = 0;
   };
-  FrontSlot fronts[kFrontSlots];
-  std::vector<int> front_slot;
+  struct Fronts {
+    FrontSlot slots[kFrontSlots];
+    std::vector<int> slot_of;
+    unsigned long clock = 0;
+    FrontSlot& of(int pair_index);
+    void clear();
+  };
+  Fronts intersect_fronts, distance_fronts;
   std::vector<bvh::FrontEntry> front_next;
-  unsigned long front_clock = 0;
   bool front_tracking = true;
-  FrontSlot& front_of(int pair_index);
-  void clear_fronts();
+  void clear_fronts() {
+    intersect_fronts.clear();
+    distance_fronts.clear();
+  }
   double distance_limit = std::numeric_limits<double>::infinity();
 
   // Whether the cached touching pair of partitions (pa, pb), or a pair of triangles sharing a corner
@@ -105,34 +112,36 @@ CollisionPair::CollisionPair(CollisionModelPtr a, CollisionModelPtr b) : state_(
   for (auto& ring : s.ring) ring.reserve(kMaxRing);
   s.cached_hit.assign(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count(),
                       {-1, -1});
-  s.front_slot.assign(s.cached_hit.size(), -1);
-  for (auto& slot : s.fronts) slot.entries.reserve(kFrontCapacity);
+  for (State::Fronts* fronts : {&s.intersect_fronts, &s.distance_fronts}) {
+    fronts->slot_of.assign(s.cached_hit.size(), -1);
+    for (auto& slot : fronts->slots) slot.entries.reserve(kFrontCapacity);
+  }
   s.front_next.reserve(kFrontCapacity);
 }
 
-CollisionPair::State::FrontSlot& CollisionPair::State::front_of(int pair_index) {
-  ++front_clock;
-  if (front_slot[pair_index] >= 0) {
-    FrontSlot& slot = fronts[front_slot[pair_index]];
-    slot.used = front_clock;
+CollisionPair::State::FrontSlot& CollisionPair::State::Fronts::of(int pair_index) {
+  ++clock;
+  if (slot_of[pair_index] >= 0) {
+    FrontSlot& slot = slots[slot_of[pair_index]];
+    slot.used = clock;
     return slot;
   }
   std::size_t chosen = 0;
   for (std::size_t k = 1; k < kFrontSlots; ++k)
-    if (fronts[k].used < fronts[chosen].used) chosen = k;
-  FrontSlot& slot = fronts[chosen];
-  if (slot.owner >= 0) front_slot[slot.owner] = -1;
+    if (slots[k].used < slots[chosen].used) chosen = k;
+  FrontSlot& slot = slots[chosen];
+  if (slot.owner >= 0) slot_of[slot.owner] = -1;
   slot.owner = pair_index;
-  slot.used = front_clock;
+  slot.used = clock;
   slot.ticks = 0;
   slot.entries.clear();  // empty: from the roots
-  front_slot[pair_index] = static_cast<int>(chosen);
+  slot_of[pair_index] = static_cast<int>(chosen);
   return slot;
 }
 
-void CollisionPair::State::clear_fronts() {
-  for (auto& slot : fronts) {
-    if (slot.owner >= 0) front_slot[slot.owner] = -1;
+void CollisionPair::State::Fronts::clear() {
+  for (auto& slot : slots) {
+    if (slot.owner >= 0) slot_of[slot.owner] = -1;
     slot.owner = -1;
     slot.used = 0;
     slot.entries.clear();
@@ -387,7 +396,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       if (!found && !want_all && s.warm_start && s.front_tracking) {
         // From the last traversal's front of this partition pair (exact whatever the front: a cut).
         const int pair_index = static_cast<int>(static_cast<std::size_t>(c.a) * subs_b.size() + c.b);
-        State::FrontSlot& slot = s.front_of(pair_index);
+        State::FrontSlot& slot = s.intersect_fronts.of(pair_index);
         bool overflow = false;
         bvh::TriangleHit hit{-1, -1};
         const bool pull_up = ++slot.ticks % kPullUpEvery == 0;
@@ -471,13 +480,35 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
     std::sort(s.candidates.begin(), s.candidates.end(),
               [](const State::Candidate& x, const State::Candidate& y) { return x.lower_bound < y.lower_bound; });
     for (const State::Candidate& c : s.candidates) {
-      if (c.lower_bound > best.distance) break;
+      if (c.lower_bound > best.distance + bvh::kTieSlack) break;
       // Ties between partition pairs go to the lower (partition A, partition B).
       using Held = bvh::Traversal::Held;
       const Held held = best_pa < 0 || std::make_pair(c.a, c.b) < std::make_pair(best_pa, best_pb) ? Held::Later
                         : std::make_pair(c.a, c.b) == std::make_pair(best_pa, best_pb)          ? Held::Same
                                                                                                  : Held::Earlier;
-      if (s.traversal.distance(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, best, 0.0, held)) {
+      bool replaced = false;
+      if (s.warm_start && s.front_tracking) {
+        // From the last traversal's front of this partition pair: the same answer (a cut), the pairs
+        // pruned last time skipped while their bound, less B's motion since, stays above the best.
+        const int pair_index = static_cast<int>(static_cast<std::size_t>(c.a) * subs_b.size() + c.b);
+        State::FrontSlot& slot = s.distance_fronts.of(pair_index);
+        bool overflow = false;
+        const bool pull_up = ++slot.ticks % kPullUpEvery == 0;
+        const double moved = slot.entries.empty() ? std::numeric_limits<double>::infinity()
+                                                  : motion_bound(slot.made_at, s.relative, subs_b[c.b]);
+        replaced = s.traversal.distance_from_front(*subs_a[c.a].bvh, subs_a[c.a].parent, *subs_b[c.b].bvh,
+                                                   subs_b[c.b].parent, s.relative, best, 0.0, held, slot.entries,
+                                                   moved, pull_up, s.front_next, overflow);
+        if (overflow) {
+          slot.entries.clear();
+        } else {
+          std::swap(slot.entries, s.front_next);
+          slot.made_at = s.relative;
+        }
+      } else {
+        replaced = s.traversal.distance(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, best, 0.0, held);
+      }
+      if (replaced) {
         best_pa = c.a;
         best_pb = c.b;
       }

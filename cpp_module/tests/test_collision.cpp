@@ -387,7 +387,7 @@ TEST(Collision, WarmStartGivesTheColdAnswers) {
 // only so that the fronts carry from tick to tick: a sphere grazing another (the gap between the
 // meshes a few micrometres either way, sliding), a jump to the far side, and the holed box's
 // partitions switched off and on; the witness pair touches whenever the answer is "intersecting".
-TEST(Collision, FrontTrackingGivesTheColdAnswers) {
+TEST(Collision, FrontTrackingGivesTheColdAnswers) {  // Intersect and Distance
   const Body sphere = make_body(BRepPrimAPI_MakeSphere(5).Shape());
   const Body holed = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -4), 12, 12, 8).Shape(),
                                                BRepPrimAPI_MakeSphere(4.5).Shape())
@@ -456,6 +456,11 @@ TEST(Collision, FrontTrackingGivesTheColdAnswers) {
       cold.query(RigidTransform::identity(), place, QueryKind::Intersect, k);
       expect_same(f, k, "front, " + where);
       expect_same(n, k, "no front, " + where);
+      // Distance's own fronts, kept beside Intersect's on the same pair.
+      QueryResult fd, kd;
+      front.query(RigidTransform::identity(), place, QueryKind::Distance, fd);
+      cold.query(RigidTransform::identity(), place, QueryKind::Distance, kd);
+      expect_same(fd, kd, "front distance, " + where);  // apart: the same closest triangles too
       (k.intersecting ? intersecting : apart) += 1;
       if (!f.intersecting) continue;
       // The witness triangles, placed, measured with FCL's triangle distance: touching.
