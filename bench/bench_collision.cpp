@@ -244,6 +244,7 @@ int main(int argc, char** argv) {
   const Latency intersect_path = time_queries(pair, QueryKind::Intersect, path.placements);
   pair.set_front_tracking(false);  // the warm start alone (the cached pair's neighbourhood), for comparison
   const Latency intersect_path_no_front = time_queries(pair, QueryKind::Intersect, path.placements);
+  const Latency distance_path_no_front = time_queries(pair, QueryKind::Distance, path.placements);
   pair.set_front_tracking(true);
   const Latency penetration_path = time_queries(pair, QueryKind::Penetration, path.placements);
   pair.set_warm_start(false);
@@ -253,7 +254,7 @@ int main(int argc, char** argv) {
               "\"crossing_ticks\": %d,\n",
               path.placements.size(), path.max_step, path.max_turn, path.crossing);
   for (auto [name, l] : {std::pair<const char*, Latency>{"distance", distance_path}, {"intersect", intersect_path},
-                         {"intersect_no_front", intersect_path_no_front},
+                         {"intersect_no_front", intersect_path_no_front}, {"distance_no_front", distance_path_no_front},
                          {"penetration", penetration_path}, {"distance_cold", distance_path_cold},
                          {"intersect_cold", intersect_path_cold}})
     print_latency(name, l);

@@ -91,10 +91,12 @@ def main():
               f"and {t['max_turn_rad']} rad per tick; the pair keeps its warm start from tick to tick (the cold rows: "
               "the same path with the warm start off).", ""]
     lines += header
-    for kind, label in (("intersect", "intersect, warm with front tracking (what the servo loop asks)"),
+    for kind, label in (("intersect", "intersect, warm with front tracking (what the servo loop asks; motion-bounded pruning)"),
                         ("intersect_no_front", "intersect, warm start without front tracking"),
                         ("intersect_cold", "intersect, cold"),
-                        ("distance", "distance, warm"), ("distance_cold", "distance, cold"),
+                        ("distance", "distance, warm with front tracking"),
+                        ("distance_no_front", "distance, warm start without front tracking"),
+                        ("distance_cold", "distance, cold"),
                         ("penetration", "penetration, warm")):
         lines.append(row(label, t[kind]))
     m, g = data["motor_disassembly"], data["grid_disassembly"]
