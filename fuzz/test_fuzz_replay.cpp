@@ -321,3 +321,17 @@ TEST(FuzzRegressions, BrepNumberBeyondADoubleInACurveIsAnError) {
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("number out of range '1e+3000' on line 52"), std::string::npos) << status.message;
 }
+
+// A number beyond a double in an edge's parameter range, in the shapes' records
+// after the geometry (make fuzz, fuzz_brep: "6.1e+30028318530717959"): OCCT
+// read it as infinite and one face's area came out NaN. Refused naming it.
+TEST(FuzzRegressions, BrepNumberBeyondADoubleInAShapeRecordIsAnError) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/edge_range_beyond_double.brep");
+  ASSERT_FALSE(data.empty());
+  TopoDS_Shape shape;
+  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(status.message.find("number out of range '6.1e+30028318530717959' on line 282"), std::string::npos)
+      << status.message;
+}

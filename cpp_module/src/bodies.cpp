@@ -300,6 +300,21 @@ Status check_brep_text(const std::string& brep) {
                   std::string(token.substr(0, 40)) + "' on line " + std::to_string(line));
     }
   }
+  // In the shapes' records, tolerances and parameter ranges: one out of
+  // range (6.1e+300283 in an edge's range) gave a face of area NaN (make fuzz).
+  for (size_t pos = line_start; pos != std::string::npos && pos < brep.size();) {
+    const size_t start = brep.find_first_not_of(" \t\r\n", pos);
+    if (start == std::string::npos) break;
+    const size_t end = std::min(brep.find_first_of(" \t\r\n", start), brep.size());
+    pos = end;
+    char* stop = nullptr;
+    const double value = Strtod(brep.c_str() + start, &stop);
+    if (stop == brep.c_str() + end && !std::isfinite(value)) {  // a whole number token (names and flags are not)
+      const long line = 1 + std::count(brep.begin(), brep.begin() + static_cast<long>(start), '\n');
+      return fail("number out of range '" + brep.substr(start, std::min<size_t>(end - start, 40)) + "' on line " +
+                  std::to_string(line));
+    }
+  }
   long records = 0;
   while (line_start != std::string::npos && records < expected) {
     const size_t next = brep.find('\n', line_start + 1);
