@@ -489,7 +489,9 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
   TopoDS_Shape compound;
   result.status = shape_from_brep(brep, compound);
   if (!result.status.ok()) return result;
+  const OcctGuard guard;  // the read shape explored: a signal inside OCCT is an error
   try {
+    OCC_CATCH_SIGNALS
     std::vector<TopoDS_Shape> children;
     if (compound.ShapeType() == TopAbs_COMPOUND) {
       for (TopoDS_Iterator it(compound); it.More(); it.Next()) children.push_back(it.Value());
@@ -518,8 +520,7 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
   } catch (const Standard_OutOfMemory&) {
     result.status = Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const Standard_Failure& failure) {
-    result.status = Status::failure(StatusCode::InvalidInput,
-                                    std::string("OCCT: ") + failure.GetMessageString());
+    result.status = Status::failure(StatusCode::InvalidInput, "OCCT: " + occt_failure_text(failure));
   }
   return result;
 }
