@@ -2,6 +2,7 @@
 #include "common.h"
 
 #include "contactcore/bodies.h"
+#include "contactcore/occt_guard.h"
 
 namespace contactcore::bindings {
 
@@ -10,6 +11,7 @@ namespace {
 MassProperties mass_of(const Body& body) {
   MassProperties mass;
   Status status = guarded([&] {
+    const OcctGuard guard;  // a signal inside OCCT: an error naming the body
     mass = body.mass();
     return Status::success();
   });
@@ -41,10 +43,7 @@ void bind_bodies(py::module_& m) {
       .def(
           "compute_mass_properties",
           [](const Assembly& a, int threads) {
-            raise_if_failed(guarded([&] {
-              return compute_mass_properties(a, threads) ? Status::success()
-                                                         : Status::failure(StatusCode::Cancelled, "cancelled");
-            }));
+            raise_if_failed(guarded([&] { return compute_mass_properties(a, threads); }));
           },
           py::arg("threads") = 0,
           "Volumes and centres of every body at once, on all cores (each shared shape once); "

@@ -6,6 +6,7 @@
 #include "common.h"
 #include "contactcore/bodies.h"
 #include "contactcore/meshes.h"
+#include "contactcore/occt_guard.h"
 
 namespace contactcore::bindings {
 
@@ -75,17 +76,23 @@ void bind_meshes(py::module_& m) {
          std::optional<double> angular) {
         std::vector<MeshResult> results(assembly.bodies.size());
         raise_if_failed(guarded([&] {
+          const OcctGuard guard;  // a signal inside OCCT fails the body, named
           Bnd_Box box;
           for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box);
           const Tolerances tolerances = resolve_tolerances(box, linear, angular);
           for (std::size_t i = 0; i < assembly.bodies.size(); ++i) {
             const Body& body = assembly.bodies[i];
-            const BodyPartitions partitions = partition_shape(body.shape, tolerances);
-            Status status = partitions.status;
-            if (status.ok()) {
-              results[i] = mesh_body(body.shape, partitions, options);
-              status = results[i].status;
-            }
+            Status status;
+            std::string failure;
+            if (!run_guarded([&] {
+                  const BodyPartitions partitions = partition_shape(body.shape, tolerances);
+                  status = partitions.status;
+                  if (status.ok()) {
+                    results[i] = mesh_body(body.shape, partitions, options);
+                    status = results[i].status;
+                  }
+                }, failure, "OCCT: "))
+              status = Status::failure(StatusCode::GeometryError, failure);
             if (!status.ok()) {
               status.body = body.name;
               return status;

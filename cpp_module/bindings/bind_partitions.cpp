@@ -11,6 +11,7 @@
 
 #include "common.h"
 #include "contactcore/bodies.h"
+#include "contactcore/occt_guard.h"
 #include "contactcore/partitions.h"
 
 namespace contactcore::bindings {
@@ -189,16 +190,19 @@ void bind_partitions(py::module_& m) {
       [](const std::string& brep, std::optional<double> linear, std::optional<double> angular) {
         BodyPartitions result;
         const Status status = guarded([&]() {
-          TopoDS_Shape shape;
-          const Status read = shape_from_brep(brep, shape);
-          if (!read.ok()) return read;
-          Bnd_Box box;
-          BRepBndLib::Add(shape, box);
-          const Tolerances tolerances = resolve_tolerances(box, linear, angular);
-          const Status valid = check_tolerances(box, tolerances);
-          if (!valid.ok()) return valid;
-          result = partition_shape(shape, tolerances);
-          return Status::success();
+          const OcctGuard guard;  // a signal inside OCCT: an error, not a crash
+          return with_occt_signals([&]() -> Status {
+            TopoDS_Shape shape;
+            const Status read = shape_from_brep(brep, shape);
+            if (!read.ok()) return read;
+            Bnd_Box box;
+            BRepBndLib::Add(shape, box);
+            const Tolerances tolerances = resolve_tolerances(box, linear, angular);
+            const Status valid = check_tolerances(box, tolerances);
+            if (!valid.ok()) return valid;
+            result = partition_shape(shape, tolerances);
+            return Status::success();
+          });
         });
         raise_if_failed(status);
         return result;

@@ -5,6 +5,7 @@
 
 #include "common.h"
 #include "contactcore/bodies.h"
+#include "contactcore/occt_guard.h"
 #include "contactcore/simplify.h"
 
 namespace contactcore::bindings {
@@ -42,6 +43,7 @@ void bind_simplify(py::module_& m) {
         }
         std::vector<SimulationModels> results(chosen.size());
         raise_if_failed(guarded([&] {
+          const OcctGuard guard;  // a signal inside OCCT fails the body, named
           Bnd_Box box;
           for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box);
           const Tolerances tolerances = resolve_tolerances(box, linear, angular);
@@ -52,12 +54,17 @@ void bind_simplify(py::module_& m) {
           options.envelope = envelope;
           for (std::size_t k = 0; k < chosen.size(); ++k) {
             const Body& body = assembly.bodies[chosen[k]];
-            const BodyPartitions partitions = partition_shape(body.shape, tolerances);
-            Status status = partitions.status;
-            if (status.ok()) {
-              results[k] = simulation_models(body.shape, partitions, options);
-              status = results[k].status;
-            }
+            Status status;
+            std::string failure;
+            if (!run_guarded([&] {
+                  const BodyPartitions partitions = partition_shape(body.shape, tolerances);
+                  status = partitions.status;
+                  if (status.ok()) {
+                    results[k] = simulation_models(body.shape, partitions, options);
+                    status = results[k].status;
+                  }
+                }, failure, "OCCT: "))
+              status = Status::failure(StatusCode::GeometryError, failure);
             if (!status.ok()) {
               status.body = body.name;
               return status;

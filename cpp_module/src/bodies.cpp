@@ -504,7 +504,9 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
   TopoDS_Shape compound;
   result.status = shape_from_brep(brep, compound);
   if (!result.status.ok()) return result;
+  const OcctGuard guard;  // the read shape explored: a signal inside OCCT is an error
   try {
+    OCC_CATCH_SIGNALS
     std::vector<TopoDS_Shape> children;
     if (compound.ShapeType() == TopAbs_COMPOUND) {
       for (TopoDS_Iterator it(compound); it.More(); it.Next()) children.push_back(it.Value());
@@ -533,8 +535,7 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
   } catch (const Standard_OutOfMemory&) {
     result.status = Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const Standard_Failure& failure) {
-    result.status = Status::failure(StatusCode::InvalidInput,
-                                    std::string("OCCT: ") + failure.GetMessageString());
+    result.status = Status::failure(StatusCode::InvalidInput, "OCCT: " + occt_failure_text(failure));
   }
   return result;
 }
@@ -546,26 +547,40 @@ MassProperties mass_properties(const TopoDS_Shape& shape) {
 }
 
 const MassProperties& Body::mass() const {
-  std::call_once(mass_cache->once, [this] { mass_cache->value = mass_properties(shape); });
+  // A fault inside OCCT leaves call_once by an exception (the flag stays
+  // unset), never by the signal handler's jump, which would leave it taken.
+  std::call_once(mass_cache->once, [this] {
+    with_occt_signals([this] { mass_cache->value = mass_properties(shape); });
+  });
   return mass_cache->value;
 }
 
-bool compute_mass_properties(const Assembly& assembly, int threads, Progress* progress) {
+Status compute_mass_properties(const Assembly& assembly, int threads, Progress* progress) {
   const std::vector<Body>& bodies = assembly.bodies;
   const std::vector<int> sources = instance_sources(bodies);
+  std::vector<std::string> failures(bodies.size());
+  const OcctGuard guard;  // a fault in OCCT's integration fails that body
   if (!parallel_for(bodies.size(), threads, progress, "mass properties", [&](std::size_t i) {
-        if (sources[i] == static_cast<int>(i)) bodies[i].mass();
+        if (sources[i] == static_cast<int>(i)) run_guarded([&] { bodies[i].mass(); }, failures[i], "OCCT: ");
       }, 4))
-    return false;
-  return parallel_for(bodies.size(), threads, progress, "mass properties", [&](std::size_t i) {
-    const int source = sources[i];
-    if (source == static_cast<int>(i)) return;
-    std::call_once(bodies[i].mass_cache->once, [&] {
-      MassProperties moved = bodies[source].mass();  // a rigid motion keeps the volume
-      moved.centre.Transform(relative_motion(bodies[source], bodies[i]));
-      bodies[i].mass_cache->value = moved;
-    });
-  }, 64);
+    return Status::failure(StatusCode::Cancelled, "cancelled");
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (failures[i].empty()) continue;
+    Status failed = Status::failure(StatusCode::GeometryError, "mass properties failed: " + failures[i]);
+    failed.body = bodies[i].name;
+    return failed;
+  }
+  if (!parallel_for(bodies.size(), threads, progress, "mass properties", [&](std::size_t i) {
+        const int source = sources[i];
+        if (source == static_cast<int>(i)) return;
+        std::call_once(bodies[i].mass_cache->once, [&] {
+          MassProperties moved = bodies[source].mass();  // a rigid motion keeps the volume
+          moved.centre.Transform(relative_motion(bodies[source], bodies[i]));
+          bodies[i].mass_cache->value = moved;
+        });
+      }, 64))
+    return Status::failure(StatusCode::Cancelled, "cancelled");
+  return Status::success();
 }
 
 TopoDS_Shape assembly_compound(const Assembly& assembly) {

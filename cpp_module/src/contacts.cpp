@@ -5,6 +5,7 @@
 #include "contactcore/common_area.h"
 #include "contactcore/instances.h"
 #include "contactcore/interferences.h"
+#include "contactcore/occt_guard.h"
 #include "contactcore/parallel.h"
 #include "contactcore/validity.h"
 
@@ -226,6 +227,11 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   const std::size_t n = assembly.bodies.size();
   const int threads = options.threads;
   auto start = Clock::now();
+  // OCCT dereferences null handles on some damaged shapes: with its signal
+  // handler installed for the whole call, a fault in a body's partitioning or
+  // a pair's test fails that body or pair (run_guarded in each worker item),
+  // not the process.
+  const OcctGuard guard;
   try {
     // Bodies that instance one shape (a TShape placed by rigid motions).
     std::vector<int> sources(n);
@@ -238,10 +244,18 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     // The model's box, for the tolerances: instances take their source's
     // box moved (exact for translations, a little larger when turned).
     std::vector<Bnd_Box> boxes(n);
+    std::vector<std::string> box_failures(n);
     if (!parallel_for(n, threads, progress, "partitions", [&](std::size_t i) {
-          if (sources[i] == static_cast<int>(i)) BRepBndLib::Add(assembly.bodies[i].shape, boxes[i], false);
+          if (sources[i] == static_cast<int>(i))
+            run_guarded([&] { BRepBndLib::Add(assembly.bodies[i].shape, boxes[i], false); }, box_failures[i], "OCCT: ");
         }, 16))
       return cancelled();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (box_failures[i].empty()) continue;
+      result.status = Status::failure(StatusCode::GeometryError, box_failures[i]);
+      result.status.body = assembly.bodies[i].name;
+      return result;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       const int source = sources[i];
       if (source != static_cast<int>(i) && !boxes[source].IsVoid())
@@ -258,13 +272,9 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     // concurrently), then moved to the other placements of that shape.
     const auto partition_body = [&](std::size_t i) {
       BodyPartitions& body = result.partitions[i];
-      try {
-        body = partition_shape(assembly.bodies[i].shape, result.tolerances);
-      } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
-        body.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
-      } catch (const std::exception& error) {
-        body.status = Status::failure(StatusCode::GeometryError, error.what());
-      }
+      std::string failure;
+      if (!run_guarded([&] { body = partition_shape(assembly.bodies[i].shape, result.tolerances); }, failure, "OCCT: "))
+        body.status = Status::failure(StatusCode::GeometryError, failure);
     };
     result.partitions.resize(n);
     result.instance_of.resize(n);
@@ -279,8 +289,12 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
           if (source != static_cast<int>(i)) {
             const BodyPartitions& original = result.partitions[source];
             if (original.status.ok()) {
-              result.partitions[i] = moved_partitions(original, relative_motion(assembly.bodies[source], assembly.bodies[i]),
-                                                      assembly.bodies[i].shape);
+              std::string failure;
+              if (!run_guarded([&] {
+                    result.partitions[i] = moved_partitions(
+                        original, relative_motion(assembly.bodies[source], assembly.bodies[i]), assembly.bodies[i].shape);
+                  }, failure, "OCCT: "))
+                result.partitions[i].status = Status::failure(StatusCode::GeometryError, failure);
             }
             if (!original.status.ok() || !result.partitions[i].status.ok()) {
               partition_body(i);
@@ -348,24 +362,26 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     if (!parallel_for(tested.size(), threads, progress, "contacts", [&](std::size_t t) {
           const std::size_t k = tested[t];
           std::vector<Contact>& out = pair_contacts[k];
+          const auto test = [&](const Candidate& c) {
+            if (options.candidate_hook) options.candidate_hook(c.body_a, c.partition_a, c.body_b, c.partition_b);
+            test_candidate(c.body_a, result.partitions[c.body_a].partitions[c.partition_a], c.body_b,
+                           result.partitions[c.body_b].partitions[c.partition_b], ctx, out);
+          };
+          // One signal guard for the body pair (a setjmp per candidate costs
+          // 0.1-0.2 us, as much as a quick test); when a test fails, the
+          // pair's candidates are tested again one by one to skip only it.
+          std::string failure;
+          if (run_guarded([&] { for (const Candidate& c : pair_candidates_of[k]) test(c); }, failure, "OCCT: ")) {
+            std::vector<Candidate>().swap(pair_candidates_of[k]);
+            return;
+          }
+          out.clear();
           for (const Candidate& c : pair_candidates_of[k]) {
-            const Partition& pa = result.partitions[c.body_a].partitions[c.partition_a];
-            const Partition& pb = result.partitions[c.body_b].partitions[c.partition_b];
             const std::size_t before = out.size();
-            std::string failure;
-            bool failed = false;
-            try {
-              if (options.candidate_hook) options.candidate_hook(c.body_a, c.partition_a, c.body_b, c.partition_b);
-              test_candidate(c.body_a, pa, c.body_b, pb, ctx, out);
-            } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& error) {
-              failed = true;
-              failure = std::string("OCCT: ") + error.GetMessageString();
-            } catch (const std::exception& error) {
-              failed = true;
-              failure = error.what();
-            }
-            if (failed) {
+            if (!run_guarded([&] { test(c); }, failure, "OCCT: ")) {
               out.resize(before);  // nothing half-done from the failed pair
+              const Partition& pa = result.partitions[c.body_a].partitions[c.partition_a];
+              const Partition& pb = result.partitions[c.body_b].partitions[c.partition_b];
               pair_skipped[k].push_back({c.body_a, c.body_b, c.partition_a, c.partition_b, pa.faces, pb.faces,
                                          failure.empty() ? "unknown error" : failure});
             }
@@ -415,7 +431,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   } catch (const std::bad_alloc&) {
     result.status = Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const Standard_Failure& failure) {
-    result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
+    result.status = Status::failure(StatusCode::GeometryError, "OCCT: " + occt_failure_text(failure));
   }
   if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap, result.tolerances);
   if (progress) progress->report("contacts", 1.0);

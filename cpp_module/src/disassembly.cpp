@@ -12,6 +12,7 @@
 #include <Standard_Failure.hxx>
 
 #include "contactcore/joints.h"
+#include "contactcore/occt_guard.h"
 
 namespace contactcore {
 
@@ -366,6 +367,9 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
                               const MeshOptions& mesh_options, const DisassemblyOptions& options,
                               const std::vector<std::vector<Direction>>& extra_directions, Progress* progress) {
   DisassemblyResult result;
+  // A signal inside OCCT while a body is measured or meshed fails the call
+  // naming the body (find_contacts guards its own stages).
+  const OcctGuard guard;
   const ContactsResult found = find_contacts(assembly, contact_options, progress);
   if (!found.status.ok()) {
     result.status = found.status;
@@ -375,8 +379,13 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const Body& body = assembly.bodies[i];
     parts[i].name = body.name;
-    parts[i].volume = mass_properties(body.shape).volume;
-    const MeshResult meshed = mesh_body(body.shape, found.partitions[i], mesh_options);
+    MeshResult meshed;
+    std::string failure;
+    if (!run_guarded([&] {
+          parts[i].volume = mass_properties(body.shape).volume;
+          meshed = mesh_body(body.shape, found.partitions[i], mesh_options);
+        }, failure, "OCCT: "))
+      meshed.status = Status::failure(StatusCode::GeometryError, failure);
     if (!meshed.status.ok()) {
       result.status = meshed.status;
       result.status.body = body.name;

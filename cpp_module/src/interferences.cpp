@@ -293,20 +293,26 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
   const OcctGuard guard;
   if (!parallel_for(deep.size(), threads, progress, "interferences", [&](std::size_t k) {
         const auto [a, b] = deep[k];
-        try {
-          OCC_CATCH_SIGNALS
-          outcomes[k] = test_pair(assembly, result, a, b);
-        } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
+        std::string failure;
+        if (!run_guarded([&] { outcomes[k] = test_pair(assembly, result, a, b); }, failure)) {
           outcomes[k].kind = PairOutcome::Failed;
           outcomes[k].message = "interference test of '" + assembly.bodies[a].name + "' and '" +
-                                assembly.bodies[b].name + "' failed: " + failure.GetMessageString();
+                                assembly.bodies[b].name + "' failed: " + failure;
         }
       }))
     return Status::failure(StatusCode::Cancelled, "cancelled");
+  std::vector<std::string> copy_failures(copies.size());
   if (!parallel_for(copies.size(), threads, progress, "interferences", [&](std::size_t k) {
-        copies[k].volume = std::abs(shape_volume(assembly.bodies[copies[k].body_a].shape));
+        run_guarded([&] { copies[k].volume = std::abs(shape_volume(assembly.bodies[copies[k].body_a].shape)); },
+                    copy_failures[k]);
       }))
     return Status::failure(StatusCode::Cancelled, "cancelled");
+  for (std::size_t k = 0; k < copies.size(); ++k) {
+    if (copy_failures[k].empty()) continue;
+    copies[k].volume = 0;  // unknown: the copy is still reported
+    result.messages.push_back("the volume of '" + assembly.bodies[copies[k].body_a].name +
+                              "' could not be computed: " + copy_failures[k]);
+  }
 
   std::vector<std::pair<int, int>> overlapping;  // general overlaps: their contacts are not contacts
   for (const Interference& copy : copies) result.interferences.push_back(copy);

@@ -17,6 +17,7 @@
 #include <gp_Trsf.hxx>
 
 #include "contactcore/joints.h"
+#include "contactcore/occt_guard.h"
 #include "twist_math.h"
 
 namespace contactcore {
@@ -97,7 +98,8 @@ class MassCache {
  private:
   static MassData compute(const TopoDS_Shape& shape) {
     GProp_GProps props;
-    BRepGProp::VolumeProperties(shape, props);
+    // A signal inside OCCT (under assembly_mobility's OcctGuard) is a Standard_Failure.
+    with_occt_signals([&] { BRepGProp::VolumeProperties(shape, props); });
     MassData out;
     out.mass = props.Mass();
     out.centre = vec(props.CentreOfMass());
@@ -295,6 +297,7 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
   MobilityResult out;
   const int n = static_cast<int>(assembly.bodies.size());
   if (n == 0) return out;
+  const OcctGuard guard;  // the bodies' volumes and inertia: a signal inside OCCT is an error
   int ground = options.ground;
   if (ground >= n) {
     out.status = Status::failure(StatusCode::InvalidInput,

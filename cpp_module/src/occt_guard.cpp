@@ -20,7 +20,10 @@ class CapturingPrinter : public Message_Printer {
 
  protected:
   void send(const TCollection_AsciiString& text, const Message_Gravity gravity) const override {
-    if (gravity < Message_Warning || lines.size() >= kMaxLines) return;
+    if (gravity < Message_Warning) return;
+    // Worker threads of a guarded stage may send at once.
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (lines.size() >= kMaxLines) return;
     std::string line = text.ToCString();
     // OCCT colours its console output: drop the escape sequences.
     std::string clean;
@@ -36,6 +39,7 @@ class CapturingPrinter : public Message_Printer {
 
  private:
   static constexpr size_t kMaxLines = 200;
+  mutable std::mutex mutex_;
 };
 
 std::recursive_mutex& guard_mutex() {
@@ -102,5 +106,10 @@ OcctGuard::~OcctGuard() {
 }
 
 std::vector<std::string> OcctGuard::messages() const { return state_->capture->lines; }
+
+std::string occt_failure_text(const Standard_Failure& failure) {
+  const char* text = failure.GetMessageString();
+  return text && *text ? std::string(text) : std::string(failure.DynamicType()->Name());
+}
 
 }  // namespace contactcore

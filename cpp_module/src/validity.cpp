@@ -329,12 +329,10 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
   const OcctGuard guard;
   if (!parallel_for(n, threads, progress, "checking solids", [&](std::size_t i) {
         if (source_of(i) != i) return;
-        try {
-          OCC_CATCH_SIGNALS
-          verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks);
-        } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
-          failures[i] = std::string("its check failed: ") + failure.GetMessageString();
-        }
+        std::string failure;
+        if (!run_guarded([&] { verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks); },
+                         failure))
+          failures[i] = "its check failed: " + failure;
       }))
     return Status::failure(StatusCode::Cancelled, "cancelled");
   for (std::size_t i = 0; i < n; ++i) {

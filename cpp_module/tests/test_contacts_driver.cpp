@@ -4,6 +4,8 @@
 // pair limit, cancellation from every stage.
 #include <gtest/gtest.h>
 
+#include <csignal>
+
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -19,6 +21,7 @@
 #include "contactcore/common_area.h"
 #include "contactcore/contacts.h"
 #include "contactcore/instances.h"
+#include "contactcore/occt_guard.h"
 #include "test_helpers.h"
 
 using namespace contactcore;
@@ -361,6 +364,40 @@ TEST(Driver, AFailingPairIsSkippedAndTheRestKept) {
                                    " / 'box2' Face" + std::to_string(skipped.faces_b[0]) + ": " + skipped.message;
       EXPECT_EQ(result.messages[0], expected);
     }
+  }
+}
+
+// The same pair's test faulting inside OCCT (a null dereference, SIGSEGV):
+// skipped with the signal's message under OCCT's handler, the other pairs
+// kept, on one thread and on worker threads; the process's handlers are
+// given back.
+TEST(Driver, ASignalInsideOcctSkipsThePairAndTheRestKept) {
+  const Assembly assembly = three_stacked_boxes();
+  { const OcctGuard first; }  // glibc reports flags as set once any handler was (SA_RESTORER)
+  struct sigaction before;
+  sigaction(SIGSEGV, nullptr, &before);
+  for (const int threads : {1, 3}) {
+    ContactOptions options;
+    options.threads = threads;
+    options.candidate_hook = [](int body_a, int partition_a, int body_b, int partition_b) {
+      if (body_a == 1 && partition_a == 5 && body_b == 2 && partition_b == 4)
+        contactcore::testing::dereference_null_inside_occt();
+    };
+    const ContactsResult result = find_contacts(assembly, options);
+    ASSERT_TRUE(result.status.ok()) << result.status.describe();
+    ASSERT_EQ(result.contacts.size(), 1u);  // box0-box1 kept
+    EXPECT_EQ(result.contacts[0].body_a, 0);
+    EXPECT_EQ(result.contacts[0].body_b, 1);
+    ASSERT_EQ(result.skipped.size(), 1u);
+    EXPECT_EQ(result.skipped[0].body_a, 1);
+    EXPECT_EQ(result.skipped[0].partition_a, 5);
+    EXPECT_EQ(result.skipped[0].body_b, 2);
+    EXPECT_EQ(result.skipped[0].partition_b, 4);
+    EXPECT_EQ(result.skipped[0].message.rfind("OCCT: SIGSEGV", 0), 0u) << result.skipped[0].message;
+    struct sigaction after;
+    sigaction(SIGSEGV, nullptr, &after);
+    EXPECT_EQ(reinterpret_cast<void*>(after.sa_sigaction), reinterpret_cast<void*>(before.sa_sigaction));
+    EXPECT_EQ(after.sa_flags, before.sa_flags);
   }
 }
 

@@ -8,12 +8,24 @@
 #include <utility>
 #include <vector>
 
+#include <BRep_Tool.hxx>
+#include <TopoDS_Face.hxx>
+
 #include "contactcore/contacts.h"
 
 namespace contactcore::testing {
 
 inline std::string shared_step(const std::string& name) {
   return std::string(CONTACTS_SHARED_DATA) + "/step/" + name;
+}
+
+// A null dereference inside OCCT's own code (BRep_Tool::Surface of a face
+// without a TShape reads through a null pointer): a real SIGSEGV, as OCCT
+// faults on damaged shapes; in OCCT's code, not ours, so `make sanitize`'s
+// UBSan leaves it to the signal handler.
+inline void dereference_null_inside_occt() {
+  const TopoDS_Face none;
+  BRep_Tool::Surface(none);
 }
 
 inline std::string sample(const std::string& name) { return std::string(CONTACTS_SAMPLES) + "/" + name; }

@@ -71,8 +71,9 @@ MassProperties mass_properties(const TopoDS_Shape& shape);
 
 // Fills every body's mass cache on `threads` threads (0: all cores), each
 // shared shape computed once and moved to its other placements. Reports
-// "mass properties"; false when cancelled.
-bool compute_mass_properties(const Assembly& assembly, int threads = 0, Progress* progress = nullptr);
+// "mass properties"; Cancelled when cancelled; a body whose computation
+// fails inside OCCT (an exception or a signal) fails the call, named.
+Status compute_mass_properties(const Assembly& assembly, int threads = 0, Progress* progress = nullptr);
 
 // Names made unique by appending ".2", ".3", ... to repeats (the smallest
 // suffix not yet taken), keeping order; linear time however many repeat.

@@ -8,6 +8,8 @@
 #include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
 
+#include "contactcore/occt_guard.h"
+
 namespace contactcore::haptics {
 
 std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const std::string& part,
@@ -28,6 +30,9 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
   }
   scene->moving_ = moving;
   scene->part_name_ = part;
+  // A signal inside OCCT while a body is partitioned or meshed fails the
+  // build naming the body. The servo loop and the queries run no OCCT.
+  const OcctGuard guard;
   try {
     // Partitions with the same tolerances the contact stage uses.
     Bnd_Box model_box;
@@ -36,7 +41,14 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
     const Tolerances tol = resolve_tolerances(model_box, defaults.linear, defaults.angular);
     const std::size_t n = assembly.bodies.size();
     for (std::size_t i = 0; i < n; ++i) {
-      scene->partitions_.push_back(partition_shape(assembly.bodies[i].shape, tol));
+      std::string failure;
+      scene->partitions_.emplace_back();
+      if (!run_guarded([&] { scene->partitions_.back() = partition_shape(assembly.bodies[i].shape, tol); }, failure,
+                       "OCCT: ")) {
+        status = Status::failure(StatusCode::GeometryError, failure);
+        status.body = assembly.bodies[i].name;
+        return nullptr;
+      }
       if (progress && !progress->report("partitions", double(i + 1) / n)) {
         status = Status::failure(StatusCode::Cancelled, "cancelled");
         return nullptr;
@@ -56,7 +68,11 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
     mesh_options.deflection = options.deflection;
     mesh_options.angle = options.angle;
     for (std::size_t i = 0; i < n; ++i) {
-      const MeshResult mesh = mesh_body(assembly.bodies[i].shape, scene->partitions_[i], mesh_options);
+      MeshResult mesh;
+      std::string failure;
+      if (!run_guarded([&] { mesh = mesh_body(assembly.bodies[i].shape, scene->partitions_[i], mesh_options); }, failure,
+                       "OCCT: "))
+        mesh.status = Status::failure(StatusCode::GeometryError, failure);
       if (!mesh.status.ok()) {
         status = mesh.status;
         status.body = assembly.bodies[i].name;
@@ -76,7 +92,7 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
     }
     scene->collision_ = std::make_unique<StageCollision>(models, moving, scene->groups_);
   } catch (const Standard_Failure& failure) {
-    status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
+    status = Status::failure(StatusCode::GeometryError, "OCCT: " + occt_failure_text(failure));
     status.body = part;
     return nullptr;
   }
