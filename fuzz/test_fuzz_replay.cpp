@@ -335,3 +335,24 @@ TEST(FuzzRegressions, BrepNumberBeyondADoubleInAShapeRecordIsAnError) {
   EXPECT_NE(status.message.find("number out of range '6.1e+30028318530717959' on line 282"), std::string::npos)
       << status.message;
 }
+
+// Two damaged bodies whose contact test's Boolean common made OCCT 7.6
+// dereference null in IntTools_EdgeEdge::FindSolutions (make fuzz, fuzz_brep,
+// after the signal guard reached the interference pass only): the candidate
+// pair is skipped with its message, the analysis ends normally.
+TEST(FuzzRegressions, BrepBooleanCrashInAContactTestSkipsThePair) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/contact_boolean_edge_edge_null.brep");
+  const contactcore::AssemblyResult bodies = contactcore::bodies_from_brep(std::string(data.begin(), data.end()), {});
+  ASSERT_TRUE(bodies.status.ok()) << bodies.status.describe();
+  ASSERT_EQ(bodies.assembly.bodies.size(), 2u);
+  contactcore::ContactOptions options;
+  options.threads = 1;
+  const contactcore::ContactsResult result = contactcore::find_contacts(bodies.assembly, options);
+  ASSERT_TRUE(result.status.ok()) << result.status.describe();
+  ASSERT_EQ(result.skipped.size(), 1u);
+  EXPECT_EQ(result.skipped[0].body_a, 0);
+  EXPECT_EQ(result.skipped[0].body_b, 1);
+  EXPECT_EQ(result.skipped[0].message.rfind("OCCT: ", 0), 0u) << result.skipped[0].message;
+  EXPECT_TRUE(result.contacts.empty());
+}
