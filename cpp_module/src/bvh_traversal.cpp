@@ -101,6 +101,34 @@ inline void split_by_rss(const Bvh& a, const fcl::BVNode<fcl::OBBRSSd>& na, cons
   }
 }
 
+// Appends e to a front; while e is pruned and the pair appended just before is its sibling (same
+// node on the other side), pruned too, the two merge into their parent pair when parent_pruned(pa,
+// pb, margin) says the parent is pruned as well (the leaves covered stay the same: the front stays
+// a cut). Sets `overflow` instead of exceeding next's capacity.
+template <typename ParentPruned>
+void append_to_front(FrontEntry e, std::vector<FrontEntry>& next, bool& overflow, bool pull_up,
+                     const std::vector<int>& parent_a, const std::vector<int>& parent_b, ParentPruned&& parent_pruned) {
+  while (pull_up && e.separated && !next.empty() && next.back().separated) {
+    const FrontEntry& last = next.back();
+    int pa = e.a, pb = e.b;
+    if (last.b == e.b && last.a != e.a && parent_a[e.a] >= 0 && parent_a[last.a] == parent_a[e.a])
+      pa = parent_a[e.a];
+    else if (last.a == e.a && last.b != e.b && parent_b[e.b] >= 0 && parent_b[last.b] == parent_b[e.b])
+      pb = parent_b[e.b];
+    else
+      break;
+    double margin = 0;
+    if (!parent_pruned(pa, pb, margin)) break;
+    next.pop_back();
+    e = {pa, pb, 1, margin};
+  }
+  if (next.size() == next.capacity()) {
+    overflow = true;
+    return;
+  }
+  next.push_back(e);
+}
+
 }  // namespace
 
 BoxSeparation box_separation(const fcl::Matrix3d& B, const Vector3d& T, const Vector3d& a, const Vector3d& b) {
@@ -230,26 +258,11 @@ bool Traversal::distance_from_front(const Bvh& a, const std::vector<int>& parent
   // pair). Two pruned siblings merge into their parent pair while the parent's bound is above the
   // best too (pull-up, as in touching_pair_from_front).
   auto emit = [&](FrontEntry e) {
-    while (pull_up && e.separated && !next.empty() && next.back().separated) {
-      const FrontEntry& last = next.back();
-      int pa = e.a, pb = e.b;
-      if (last.b == e.b && last.a != e.a && parent_a[e.a] >= 0 && parent_a[last.a] == parent_a[e.a])
-        pa = parent_a[e.a];
-      else if (last.a == e.a && last.b != e.b && parent_b[e.b] >= 0 && parent_b[last.b] == parent_b[e.b])
-        pb = parent_b[e.b];
-      else
-        break;
+    append_to_front(e, next, overflow, pull_up, parent_a, parent_b, [&](int pa, int pb, double& margin) {
       ++bv_tests;
-      const double parent = bv_distance(a, pa, b, pb, rel);
-      if (!(parent > best.distance + kTieSlack)) break;
-      next.pop_back();
-      e = {pa, pb, 1, parent};
-    }
-    if (next.size() == next.capacity()) {
-      overflow = true;
-      return;
-    }
-    next.push_back(e);
+      margin = bv_distance(a, pa, b, pb, rel);
+      return margin > best.distance + kTieSlack;
+    });
   };
   const auto stopped = [&](int node_a, int node_b, double lower, bool leaf) {
     emit({node_a, node_b, leaf ? 0 : 1, lower});
@@ -315,26 +328,12 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
   // was appended just before and is separated too merges with it into their parent pair when the
   // parent's boxes are disjoint (the leaves covered stay the same: the front stays a cut).
   auto emit = [&](FrontEntry e) {
-    while (pull_up && e.separated && !next.empty() && next.back().separated) {
-      const FrontEntry& last = next.back();
-      int pa = e.a, pb = e.b;
-      if (last.b == e.b && last.a != e.a && parent_a[e.a] >= 0 && parent_a[last.a] == parent_a[e.a])
-        pa = parent_a[e.a];
-      else if (last.a == e.a && last.b != e.b && parent_b[e.b] >= 0 && parent_b[last.b] == parent_b[e.b])
-        pb = parent_b[e.b];
-      else
-        break;
+    append_to_front(e, next, overflow, pull_up, parent_a, parent_b, [&](int pa, int pb, double& margin) {
       ++bv_tests;
       const BoxSeparation parent = bv_separation(a, pa, b, pb, rel);
-      if (!parent.disjoint) break;
-      next.pop_back();
-      e = {pa, pb, 1, parent.margin};
-    }
-    if (next.size() == next.capacity()) {
-      overflow = true;
-      return;
-    }
-    next.push_back(e);
+      margin = parent.margin;
+      return parent.disjoint;
+    });
   };
   const FrontEntry root{0, 0, 0};
   const std::size_t size = front.empty() ? 1 : front.size();
