@@ -239,7 +239,8 @@ def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=
     cores). `progress(stage, fraction)` may return False to cancel (raises
     contactwb.core.Cancelled). More than `max_pairs` body pairs with meeting
     boxes (default 2,000,000) raise ContactsError. `check_solids` "full" adds
-    OCCT's whole BRepCheck_Analyzer to the solid checks. The core result is
+    OCCT's whole BRepCheck_Analyzer and faces crossing each other to the
+    solid checks. The core result is
     not kept: only what the Analysis reports."""
     result = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress,
                                             threads=threads, max_pairs=max_pairs, check_solids=check_solids)

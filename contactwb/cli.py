@@ -106,7 +106,8 @@ def main(argv=None):
     parser.add_argument("--check-solids", choices=("quick", "full"), default="quick",
                         help="solid checks: quick (default: self-intersecting wires, open or misoriented shells, "
                              "edges off their faces, zero or negative volume) or full (also OCCT's whole "
-                             "BRepCheck_Analyzer, about 10x slower); see docs/reliability.md")
+                             "BRepCheck_Analyzer and faces crossing each other: seconds on a large "
+                             "model); see docs/reliability.md")
     args = parser.parse_args(argv)
     if args.disassembly:
         from contactwb import cli_mesh

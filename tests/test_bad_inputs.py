@@ -201,6 +201,29 @@ def test_self_intersecting_solid_through_step_is_named_zero_volume(corpus):
     assert "  Bowtie  zero volume: whole solid" in done.stdout.decode().splitlines()
 
 
+def test_healed_bowtie_of_unequal_halves_is_found_by_the_full_checks(corpus):
+    # Healed through STEP, its halves enclose 200/3 and -50/3 mm^2 times 5:
+    # 250 mm^3 net, so the volume check passes it; its two faces on the
+    # diagonals cross each other, which only `--check-solids full` finds.
+    path = _corpus_file(corpus, "self_intersecting_unequal.step")
+    quick = run_cli(path, ["--json"])
+    assert quick.returncode == 0, quick.stderr
+    assert json.loads(quick.stdout)["invalid_bodies"] == []
+    full = run_cli(path, ["--json", "--check-solids", "full"])
+    assert full.returncode == 0, full.stderr
+    report = json.loads(full.stdout)
+    assert [(b["body"], b["reason"], len(b["faces"])) for b in report["invalid_bodies"]] == \
+        [("Bowtie", "faces crossing each other", 2)]
+    import FreeCAD  # noqa: F401  (before Part)
+    import Part
+    bowtie = Part.read(path).Solids[1]
+    assert abs(bowtie.Volume - 250) < 1e-6
+    diagonal = sorted(f"Face{i + 1}" for i, face in enumerate(bowtie.Faces)
+                      if abs(face.normalAt(0, 0).z) < 1e-9 and min(abs(face.normalAt(0, 0).x),
+                                                                   abs(face.normalAt(0, 0).y)) > 1e-3)
+    assert report["invalid_bodies"][0]["faces"] == diagonal
+
+
 def test_self_intersecting_solid_in_a_document_is_named_invalid(corpus):
     # The same bow-tie kept as it is in an .FCStd: its bottom and top faces
     # cross themselves, and the report says so by body and face.

@@ -140,7 +140,8 @@ void bind_contacts(py::module_& m) {
       "contactcore.Cancelled); it is called from the calling thread. Tolerances default to the "
       "model's scale. More than `max_pairs` body pairs with meeting boxes (default 2,000,000) "
       "stops with ContactsError saying how many. `clearance_gap` > 0 also reports clearance fits. "
-      "`check_solids`: 'quick' (default) or 'full' (also OCCT's BRepCheck_Analyzer, about 10x the cost).");
+      "`check_solids`: 'quick' (default) or 'full' (also OCCT's BRepCheck_Analyzer and faces crossing "
+      "each other: seconds on a large model).");
 
   m.def(
       "common_area",

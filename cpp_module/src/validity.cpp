@@ -1,20 +1,29 @@
 #include "contactcore/validity.h"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <optional>
+#include <thread>
 
+#include <BOPAlgo_ArgumentAnalyzer.hxx>
+#include <BOPAlgo_CheckResult.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepCheck_Edge.hxx>
 #include <BRepCheck_ListOfStatus.hxx>
 #include <BRepCheck_Result.hxx>
 #include <BRepCheck_Status.hxx>
 #include <BRep_Tool.hxx>
+#include <Message_ProgressIndicator.hxx>
+#include <Message_ProgressScope.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Line.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
 #include <BRepCheck_Wire.hxx>
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -265,6 +274,90 @@ std::vector<int> faces_failing_the_analyzer(const BRepCheck_Analyzer& analyzer, 
   return faces;
 }
 
+// Cancel reaches inside OCCT's long checks (the self-interference of one
+// body of free-form faces takes seconds): the caller's progress is wrapped,
+// and OCCT's UserBreak reads what it last answered. On the calling thread
+// (one worker: nobody else reports) UserBreak also asks it, every 50 ms.
+class CancelWatch final : public Progress {
+ public:
+  explicit CancelWatch(Progress* inner) : inner_(inner), owner_(std::this_thread::get_id()) {}
+  bool report(const char* stage, double fraction) override {
+    if (inner_ != nullptr && !inner_->report(stage, fraction)) cancelled_ = true;
+    fraction_ = fraction;
+    return !cancelled_;
+  }
+  bool cancelled() const { return cancelled_; }
+  // From OCCT, inside a work item.
+  bool poll() {
+    if (!cancelled_ && inner_ != nullptr && std::this_thread::get_id() == owner_) {
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_poll_ >= std::chrono::milliseconds(50)) {
+        last_poll_ = now;
+        report(kStage, fraction_);
+      }
+    }
+    return cancelled_;
+  }
+  static constexpr const char* kStage = "checking solids";
+
+ private:
+  Progress* inner_;
+  std::thread::id owner_;
+  std::atomic<bool> cancelled_{false};
+  std::atomic<double> fraction_{0.0};
+  std::chrono::steady_clock::time_point last_poll_{};
+};
+
+class OcctBreak final : public Message_ProgressIndicator {
+ public:
+  explicit OcctBreak(CancelWatch& watch) : watch_(watch) {}
+  Standard_Boolean UserBreak() override { return watch_.poll(); }
+  void Show(const Message_ProgressScope&, const Standard_Boolean) override {}
+
+ private:
+  CancelWatch& watch_;
+};
+
+// FaceN of the faces that cross or overlap other faces of the same solid
+// (BOPAlgo_ArgumentAnalyzer's self-interference, the intersection of every
+// pair of its sub-shapes, face against face); nullopt when none does.
+// Interferences of edges and vertices only (a boundary touching itself
+// along coincident edges or at points, as R08's VERIN does at a shoulder)
+// are not reported: they change no area or volume.
+std::optional<std::vector<int>> faces_crossing_each_other(const TopoDS_Shape& shape, CancelWatch& watch) {
+  BOPAlgo_ArgumentAnalyzer analyzer;
+  analyzer.SetShape1(shape);
+  analyzer.ArgumentTypeMode() = Standard_False;
+  analyzer.SelfInterMode() = Standard_True;
+  analyzer.SmallEdgeMode() = Standard_False;
+  analyzer.RebuildFaceMode() = Standard_False;
+  analyzer.TangentMode() = Standard_False;
+  analyzer.MergeVertexMode() = Standard_False;
+  analyzer.MergeEdgeMode() = Standard_False;
+  analyzer.ContinuityMode() = Standard_False;
+  analyzer.CurveOnSurfaceMode() = Standard_False;
+  analyzer.SetRunParallel(Standard_False);  // bodies are already checked in parallel
+  Handle(OcctBreak) indicator = new OcctBreak(watch);
+  analyzer.Perform(indicator->Start());
+  if (watch.cancelled() || !analyzer.HasFaulty()) return std::nullopt;
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  std::vector<int> named;
+  for (BOPAlgo_ListIteratorOfListOfCheckResult it(analyzer.GetCheckResult()); it.More(); it.Next()) {
+    if (it.Value().GetCheckStatus() != BOPAlgo_SelfIntersect) continue;
+    const TopTools_ListOfShape& pair = it.Value().GetFaultyShapes1();
+    bool faces_only = !pair.IsEmpty();
+    for (TopTools_ListIteratorOfListOfShape s(pair); s.More(); s.Next())
+      faces_only &= s.Value().ShapeType() == TopAbs_FACE && faces.Contains(s.Value());
+    if (!faces_only) continue;
+    for (TopTools_ListIteratorOfListOfShape s(pair); s.More(); s.Next()) named.push_back(faces.FindIndex(s.Value()));
+  }
+  if (named.empty()) return std::nullopt;
+  std::sort(named.begin(), named.end());
+  named.erase(std::unique(named.begin(), named.end()), named.end());
+  return named;
+}
+
 double total_area(const BodyPartitions& body) {
   double area = 0;
   for (const FaceInfo& info : body.faces) area += info.area;
@@ -273,7 +366,8 @@ double total_area(const BodyPartitions& body) {
 
 // The first fault found, in the order of the reasons in validity.h (empty
 // reason: valid).
-InvalidBody check_one(const Body& body, const BodyPartitions& partitions, const Tolerances& tol, SolidChecks checks) {
+InvalidBody check_one(const Body& body, const BodyPartitions& partitions, const Tolerances& tol, SolidChecks checks,
+                      CancelWatch& watch) {
   InvalidBody verdict;
   const auto found = [&](std::vector<int> faces, const char* reason) {
     if (faces.empty()) return false;
@@ -301,6 +395,11 @@ InvalidBody check_one(const Body& body, const BodyPartitions& partitions, const 
     if (!analyzer.IsValid()) {
       verdict.faces = faces_failing_the_analyzer(analyzer, body.shape);
       verdict.reason = kFailsAnalyzer;
+      return verdict;
+    }
+    if (std::optional<std::vector<int>> crossing = faces_crossing_each_other(body.shape, watch)) {
+      verdict.faces = std::move(*crossing);
+      verdict.reason = kFacesCrossing;
     }
   }
   return verdict;
@@ -327,13 +426,16 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
   // fuzz, fuzz_brep): OCCT's signal handler makes that a failed check of the
   // body, not a crash.
   const OcctGuard guard;
-  if (!parallel_for(n, threads, progress, "checking solids", [&](std::size_t i) {
-        if (source_of(i) != i) return;
+  CancelWatch watch(progress);
+  if (!parallel_for(n, threads, &watch, CancelWatch::kStage, [&](std::size_t i) {
+        if (source_of(i) != i || watch.cancelled()) return;
         std::string failure;
-        if (!run_guarded([&] { verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks); },
-                         failure))
+        if (!run_guarded(
+                [&] { verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks, watch); },
+                failure))
           failures[i] = "its check failed: " + failure;
-      }))
+      }) ||
+      watch.cancelled())
     return Status::failure(StatusCode::Cancelled, "cancelled");
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t source = source_of(i);

@@ -16,6 +16,7 @@ inline constexpr const char* kEdgesOffSurface = "edges off their faces";  // BRe
 inline constexpr const char* kInsideOut = "inside out";    // negative volume (whole solid)
 inline constexpr const char* kZeroVolume = "zero volume";  // encloses (almost) nothing (whole solid)
 inline constexpr const char* kFailsAnalyzer = "fails BRepCheck_Analyzer";  // SolidChecks::Full only
+inline constexpr const char* kFacesCrossing = "faces crossing each other";  // SolidChecks::Full only
 
 // On a result whose partitions are found (partitions, instance_of): checks
 // each distinct shape once (instances share their source's verdict), on
@@ -24,7 +25,9 @@ inline constexpr const char* kFailsAnalyzer = "fails BRepCheck_Analyzer";  // So
 // opposite ways in them, every edge's curves against its faces'
 // surfaces (BRepCheck_Edge), the signed volume against the surface area
 // times the linear tolerance; with SolidChecks::Full, also the whole
-// BRepCheck_Analyzer (about 10x the cost). Fills `invalid_bodies` (body
+// BRepCheck_Analyzer and the faces' intersections with each other
+// (BOPAlgo_ArgumentAnalyzer's self-interference; together many times the
+// cost of the quick checks). Fills `invalid_bodies` (body
 // order; faces empty: the whole solid) and one message per invalid body.
 Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* progress = nullptr, int threads = 0,
                     SolidChecks checks = SolidChecks::Quick);
