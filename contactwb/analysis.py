@@ -256,7 +256,7 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pa
     if not os.path.isfile(path):
         raise core.InputError(f"no such file: '{path}'")
     # As bytes: a file name that is not UTF-8 reaches OCCT unchanged.
-    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)))  # its errors name the file
+    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)), progress=progress)  # errors name the file
     try:
         return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
                                          max_pairs=max_pairs, check_solids=check_solids)

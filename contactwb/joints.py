@@ -202,7 +202,7 @@ def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, 
     """(analysis.Analysis, Joints) of a STEP file, read in C++."""
     if not os.path.isfile(path):
         raise core.ContactsError(f"no such file: '{path}'")
-    assembly = core.contactcore.read_step(os.path.abspath(path))
+    assembly = core.contactcore.read_step(os.path.abspath(path), progress=progress)
     try:
         return joints_in_assembly(assembly, os.path.basename(path), linear, angular, progress, ground=ground,
                                   clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids)

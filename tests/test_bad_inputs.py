@@ -388,3 +388,29 @@ print("alive")
     assert done.returncode == 0, done.stderr.decode(errors="replace")[-2000:]
     assert re.search(r"^MemoryError: out of memory.*same_place_3000\.step", out, re.M), out
     assert out.rstrip().endswith("alive")
+
+
+def test_cancel_reaches_inside_the_step_transfer(tmp_path):
+    # 300 nested GEOMETRIC_SETs (the fuzz regression's set-in-itself made a
+    # chain): OCCT's transfer of them takes seconds. Its progress is the
+    # read's from 0.3 to 0.9, and a cancel there stops the read.
+    source = os.path.join(REPO, "fuzz", "regressions", "fuzz_step", "geometric_set_in_itself.step")
+    with open(source) as f:
+        text = f.read()
+    chain = "\n".join(f"#{9000 + i} = GEOMETRIC_SET('',(#{9001 + i}));" for i in range(1, 300)) + \
+        "\n#9300 = GEOMETRIC_SET('',());"
+    assert "#9001 = GEOMETRIC_SET('',(#9001));" in text
+    path = tmp_path / "nested_sets.step"
+    path.write_text(text.replace("#9001 = GEOMETRIC_SET('',(#9001));", chain))
+    reports = []
+
+    def cancel_in_transfer(stage, fraction):
+        # the read reports 0 and 0.3 itself before the transfer: a third
+        # report below 0.9 comes from inside OCCT's transfer
+        reports.append((stage, fraction))
+        return len(reports) < 3
+
+    with pytest.raises(core.Cancelled):
+        analysis.find_contacts_in_step(str(path), progress=cancel_in_transfer)
+    assert [stage for stage, _ in reports] == ["read"] * 3
+    assert [f for _, f in reports[:2]] == [0.0, 0.3] and 0.3 <= reports[2][1] < 0.9, reports

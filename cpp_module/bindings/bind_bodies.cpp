@@ -55,16 +55,22 @@ void bind_bodies(py::module_& m) {
 
   m.def(
       "read_step",
-      [](const std::string& path) {
+      [](const std::string& path, py::object progress) {
+        std::unique_ptr<PythonProgress> reporter;
+        if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         AssemblyResult result;
-        raise_if_failed(guarded([&] {
-          result = read_step(path);
+        const Status status = guarded([&] {
+          result = read_step(path, reporter.get());
           return result.status;
-        }));
+        });
+        if (reporter) reporter->rethrow_if_raised();
+        raise_if_failed(status);
         return result.assembly;
       },
-      py::arg("path"),
-      "Reads a STEP file through OCCT's XDE reader: product names, instances, units (shapes in mm).");
+      py::arg("path"), py::arg("progress") = py::none(),
+      "Reads a STEP file through OCCT's XDE reader: product names, instances, units (shapes in mm). "
+      "`progress(\"read\", fraction)` returning False cancels (raises contactcore.Cancelled), also "
+      "inside OCCT's transfer.");
 
   m.def("unique_names", &unique_names, py::arg("names"),
         "Names made unique by appending '.2', '.3', ... to repeats, in order (linear time).");

@@ -5,6 +5,7 @@
 
 #include "contactcore/instances.h"
 #include "contactcore/parallel.h"
+#include "occt_progress.h"
 
 #include <algorithm>
 #include <cctype>
@@ -409,9 +410,14 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
           result.assembly.messages.push_back(std::to_string(check.damaged_count) +
                                              " damaged STEP entities ignored: " + describe_damaged(check));
         bool transferred = false;
+        // OCCT's transfer is most of the read (quadratic on some chains of
+        // references): its progress is the read's from 0.3 to 0.9, and
+        // Cancel stops it.
+        detail::CancelWatch watch(progress, "read");
         try {
           OCC_CATCH_SIGNALS
-          transferred = reader.Transfer(doc);
+          Handle(detail::OcctBreak) indicator = new detail::OcctBreak(watch, 0.3, 0.9);
+          transferred = reader.Transfer(doc, indicator->Start());
         } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
           if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
@@ -419,6 +425,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
           if (check.damaged_count) message += "; damaged entities: " + describe_damaged(check);
           fail(StatusCode::ReadError, message);
         }
+        if (result.status.ok() && watch.cancelled()) fail(StatusCode::Cancelled, "cancelled");
         if (result.status.ok() && !transferred) {
           fail(StatusCode::ReadError, check.damaged_count ? "STEP transfer failed; damaged entities: " + describe_damaged(check)
                                                           : std::string("STEP transfer failed: no solid in the file"));

@@ -1,11 +1,8 @@
 #include "contactcore/validity.h"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <optional>
-#include <thread>
 
 #include <BOPAlgo_ArgumentAnalyzer.hxx>
 #include <BOPAlgo_CheckResult.hxx>
@@ -15,8 +12,6 @@
 #include <BRepCheck_Result.hxx>
 #include <BRepCheck_Status.hxx>
 #include <BRep_Tool.hxx>
-#include <Message_ProgressIndicator.hxx>
-#include <Message_ProgressScope.hxx>
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom2d_Line.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
@@ -33,6 +28,7 @@
 #include "contactcore/parallel.h"
 #include "contactcore/occt_guard.h"
 #include "contactcore/out_of_memory.h"
+#include "occt_progress.h"
 #include "outlines.h"
 #include "signed_volume.h"
 
@@ -274,49 +270,9 @@ std::vector<int> faces_failing_the_analyzer(const BRepCheck_Analyzer& analyzer, 
   return faces;
 }
 
-// Cancel reaches inside OCCT's long checks (the self-interference of one
-// body of free-form faces takes seconds): the caller's progress is wrapped,
-// and OCCT's UserBreak reads what it last answered. On the calling thread
-// (one worker: nobody else reports) UserBreak also asks it, every 50 ms.
-class CancelWatch final : public Progress {
- public:
-  explicit CancelWatch(Progress* inner) : inner_(inner), owner_(std::this_thread::get_id()) {}
-  bool report(const char* stage, double fraction) override {
-    if (inner_ != nullptr && !inner_->report(stage, fraction)) cancelled_ = true;
-    fraction_ = fraction;
-    return !cancelled_;
-  }
-  bool cancelled() const { return cancelled_; }
-  // From OCCT, inside a work item.
-  bool poll() {
-    if (!cancelled_ && inner_ != nullptr && std::this_thread::get_id() == owner_) {
-      const auto now = std::chrono::steady_clock::now();
-      if (now - last_poll_ >= std::chrono::milliseconds(50)) {
-        last_poll_ = now;
-        report(kStage, fraction_);
-      }
-    }
-    return cancelled_;
-  }
-  static constexpr const char* kStage = "checking solids";
-
- private:
-  Progress* inner_;
-  std::thread::id owner_;
-  std::atomic<bool> cancelled_{false};
-  std::atomic<double> fraction_{0.0};
-  std::chrono::steady_clock::time_point last_poll_{};
-};
-
-class OcctBreak final : public Message_ProgressIndicator {
- public:
-  explicit OcctBreak(CancelWatch& watch) : watch_(watch) {}
-  Standard_Boolean UserBreak() override { return watch_.poll(); }
-  void Show(const Message_ProgressScope&, const Standard_Boolean) override {}
-
- private:
-  CancelWatch& watch_;
-};
+// The solid checks' stage, as reported; OCCT's self-interference check of
+// one body of free-form faces takes seconds, so Cancel reaches inside it.
+constexpr const char* kStage = "checking solids";
 
 // FaceN of the faces that cross or overlap other faces of the same solid
 // (BOPAlgo_ArgumentAnalyzer's self-interference, the intersection of every
@@ -324,7 +280,7 @@ class OcctBreak final : public Message_ProgressIndicator {
 // Interferences of edges and vertices only (a boundary touching itself
 // along coincident edges or at points, as R08's VERIN does at a shoulder)
 // are not reported: they change no area or volume.
-std::optional<std::vector<int>> faces_crossing_each_other(const TopoDS_Shape& shape, CancelWatch& watch) {
+std::optional<std::vector<int>> faces_crossing_each_other(const TopoDS_Shape& shape, detail::CancelWatch& watch) {
   BOPAlgo_ArgumentAnalyzer analyzer;
   analyzer.SetShape1(shape);
   analyzer.ArgumentTypeMode() = Standard_False;
@@ -337,7 +293,7 @@ std::optional<std::vector<int>> faces_crossing_each_other(const TopoDS_Shape& sh
   analyzer.ContinuityMode() = Standard_False;
   analyzer.CurveOnSurfaceMode() = Standard_False;
   analyzer.SetRunParallel(Standard_False);  // bodies are already checked in parallel
-  Handle(OcctBreak) indicator = new OcctBreak(watch);
+  Handle(detail::OcctBreak) indicator = new detail::OcctBreak(watch);
   analyzer.Perform(indicator->Start());
   if (watch.cancelled() || !analyzer.HasFaulty()) return std::nullopt;
   TopTools_IndexedMapOfShape faces;
@@ -367,7 +323,7 @@ double total_area(const BodyPartitions& body) {
 // The first fault found, in the order of the reasons in validity.h (empty
 // reason: valid).
 InvalidBody check_one(const Body& body, const BodyPartitions& partitions, const Tolerances& tol, SolidChecks checks,
-                      CancelWatch& watch) {
+                      detail::CancelWatch& watch) {
   InvalidBody verdict;
   const auto found = [&](std::vector<int> faces, const char* reason) {
     if (faces.empty()) return false;
@@ -426,8 +382,8 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
   // fuzz, fuzz_brep): OCCT's signal handler makes that a failed check of the
   // body, not a crash.
   const OcctGuard guard;
-  CancelWatch watch(progress);
-  if (!parallel_for(n, threads, &watch, CancelWatch::kStage, [&](std::size_t i) {
+  detail::CancelWatch watch(progress, kStage);
+  if (!parallel_for(n, threads, &watch, kStage, [&](std::size_t i) {
         if (source_of(i) != i || watch.cancelled()) return;
         std::string failure;
         if (!run_guarded(

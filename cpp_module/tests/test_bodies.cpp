@@ -9,7 +9,9 @@
 #include <fstream>
 #include <sstream>
 #include <TopExp_Explorer.hxx>
+#include <algorithm>
 #include <set>
+#include <vector>
 #include <gp_Ax1.hxx>
 #include <gp_Trsf.hxx>
 
@@ -120,6 +122,52 @@ TEST(Bodies, MissingStepFileIsAReadError) {
   const AssemblyResult result = read_step("/nonexistent/file.step");
   EXPECT_EQ(result.status.code, StatusCode::ReadError);
   EXPECT_NE(result.status.describe().find("/nonexistent/file.step"), std::string::npos);
+}
+
+namespace {
+
+// Records the read's fractions; cancels at the first one OCCT's transfer
+// reports (strictly between 0.3 and 0.9: the read's own reports are 0, 0.3,
+// the tree walk's after 0.9, and 1) when asked to.
+struct TransferWatch : Progress {
+  explicit TransferWatch(bool cancel_in_transfer) : cancel_in_transfer(cancel_in_transfer) {}
+  bool report(const char* stage, double fraction) override {
+    if (cancelled) ++after;
+    if (std::string(stage) == "read") {
+      fractions.push_back(fraction);
+      if (cancel_in_transfer && fraction > 0.3 && fraction < 0.9) cancelled = true;
+    }
+    return !cancelled;
+  }
+  bool cancel_in_transfer;
+  bool cancelled = false;
+  int after = 0;
+  std::vector<double> fractions;
+};
+
+}  // namespace
+
+TEST(Bodies, StepTransferReportsProgressAndStopsOnCancel) {
+  // The motor's transfer takes long enough for OCCT to be asked (every
+  // 50 ms): its fractions climb from 0.3 to 0.9, and a cancel there stops
+  // the read with no bodies.
+  TransferWatch watch(false);
+  const AssemblyResult read = read_step(contactcore::testing::sample("motor.step"), &watch);
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  EXPECT_EQ(read.assembly.bodies.size(), 18u);
+  std::vector<double> inside;
+  for (double f : watch.fractions)
+    if (f > 0.3 && f < 0.9) inside.push_back(f);
+  ASSERT_FALSE(inside.empty());
+  EXPECT_TRUE(std::is_sorted(inside.begin(), inside.end()));
+  EXPECT_EQ(watch.fractions.back(), 1.0);
+
+  TransferWatch cancelling(true);
+  const AssemblyResult cancelled = read_step(contactcore::testing::sample("motor.step"), &cancelling);
+  EXPECT_TRUE(cancelling.cancelled);
+  EXPECT_EQ(cancelled.status.code, StatusCode::Cancelled) << cancelled.status.describe();
+  EXPECT_TRUE(cancelled.assembly.bodies.empty());
+  EXPECT_EQ(cancelling.after, 0);
 }
 
 // A NaN in one vertex's point made OCCT 7.6's shape healing loop forever in
