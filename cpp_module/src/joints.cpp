@@ -142,7 +142,7 @@ ContactConstraints constraints_of(const ContactsResult& result, int index, const
       break;
     }
     case ContactType::SPF: {
-      for (const Vec3 e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())}) {
+      for (const Vec3& e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())}) {
         out.rows.push_back(frame.force_row(p, e));
         out.bilateral_forces.push_back(e);
       }

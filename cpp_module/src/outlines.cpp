@@ -244,9 +244,6 @@ void outline_edge(const TopoDS_Edge& edge, const PlaneFrame& frame, double sag, 
 void discretise_curve(const BRepAdaptor_Curve& curve, bool reversed, std::vector<gp_Pnt>& points, double arc_step) {
   const std::size_t first_index = points.size();
   const double first = curve.FirstParameter(), last = curve.LastParameter();
-  auto uniform = [&](double a, double b, int segments) {
-    for (int i = 0; i < segments; ++i) points.push_back(curve.Value(a + (b - a) * i / segments));
-  };
   switch (curve.GetType()) {
     case GeomAbs_Line: points.push_back(curve.Value(first)); break;
     case GeomAbs_Circle: {
