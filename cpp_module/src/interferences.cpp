@@ -292,7 +292,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
   // the pair (OCC_CATCH_SIGNALS in each worker), not a crash.
   const OcctGuard guard;
   if (!parallel_for(deep.size(), threads, progress, "interferences", [&](std::size_t k) {
-        const auto [a, b] = deep[k];
+        const auto a = deep[k].first, b = deep[k].second;  // not a structured binding: the lambda below captures them (clang 14)
         std::string failure;
         if (!run_guarded([&] { outcomes[k] = test_pair(assembly, result, a, b); }, failure)) {
           outcomes[k].kind = PairOutcome::Failed;
