@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cfenv>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -14,12 +15,15 @@
 #include <string>
 #include <vector>
 
+#include <BRepBndLib.hxx>
+#include <Bnd_Box.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <XCAFApp_Application.hxx>
 
 #include "contactcore/bodies.h"
 #include "contactcore/contacts.h"
+#include "contactcore/partitions.h"
 #include "contactcore/step_check.h"
 #include "fuzz_inputs.h"
 
@@ -224,7 +228,7 @@ TEST(FuzzReplay, StepReadsLeaveTheProcessAsFound) {
       }
     }
   }
-  EXPECT_EQ(reads, 3 * (6 + 6));
+  EXPECT_EQ(reads, 3 * (6 + 7));
   const ProcessState after = ProcessState::now();
   EXPECT_EQ(after.printers, before.printers);
   EXPECT_EQ(after.documents, before.documents);
@@ -309,6 +313,34 @@ TEST(FuzzRegressions, StepDuplicateCheckSkipsStringsAndComments) {
   std::remove(path.c_str());
 }
 
+// The fuzz_step timeout again (make fuzz, 41 s inside SetEntityNumbers, 0.2 s
+// alone): a damaged line left a quote open. OCCT 7.6's lexer ends a string
+// only at a quote followed by ',' or ')' (blanks between), so it read 729
+// lines as one string and then saw entities defined twice; our scan had
+// closed strings at any quote and found none. It now ends them as OCCT does.
+TEST(FuzzRegressions, StepQuoteLeftOpenIsScannedAsOcctLexesIt) {
+  const contactcore::AssemblyResult result = read_regression("quote_left_open_duplicates_timeout.step");
+  EXPECT_EQ(result.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_NE(result.status.message.find("entities defined more than once: #91 (again on line 197), #92 (again on "
+                                       "line 198)"),
+            std::string::npos)
+      << result.status.describe();
+  // A quote inside a name, not before ',' or ')', does not end it: "#5 ="
+  // after it is text, as OCCT reads the name "it's; #5 = x; ".
+  const std::vector<std::uint8_t> seed = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_step/seed_boxes.step");
+  std::string text(seed.begin(), seed.end());
+  const std::string product = "#7 = PRODUCT('Open CASCADE STEP translator 7.6 1'";
+  ASSERT_NE(text.find(product), std::string::npos);
+  text.replace(text.find(product), product.size(), "#7 = PRODUCT('it's; #5 = x; ' \n ");
+  const std::string path = ::testing::TempDir() + "contacts_quote_in_name.step";
+  std::ofstream(path, std::ios::binary) << text;
+  EXPECT_EQ(contactcore::find_duplicate_identifiers(path).count, 0);
+  const contactcore::AssemblyResult read = contactcore::read_step(path);
+  EXPECT_TRUE(read.status.ok()) << read.status.describe();
+  EXPECT_EQ(read.assembly.bodies.size(), 2u);
+  std::remove(path.c_str());
+}
+
 // A pcurve coefficient of 1e+3000 (beyond a double: infinite) gave a face of
 // infinite area in partition_brep's path (make fuzz, fuzz_brep check): refused
 // with the BRep number check, naming the line.
@@ -334,6 +366,30 @@ TEST(FuzzRegressions, BrepNumberBeyondADoubleInAShapeRecordIsAnError) {
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("number out of range '6.1e+30028318530717959' on line 282"), std::string::npos)
       << status.message;
+}
+
+// A pcurve's range of 0 to 4.1e13 (make fuzz, fuzz_brep check: "partition
+// area not finite"): two faces integrated to NaN. They are errors typed
+// Other (area 0), named in the status; the rest of the body is partitioned.
+TEST(FuzzRegressions, BrepFaceOfNonFiniteAreaIsAnErrorAndTheRestKept) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/pcurve_range_4e13_area_nan.brep");
+  TopoDS_Shape shape;
+  ASSERT_TRUE(contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape).ok());
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box);
+  const contactcore::BodyPartitions body = contactcore::partition_shape(shape, contactcore::default_tolerances(box));
+  ASSERT_TRUE(body.status.ok()) << body.status.describe();
+  EXPECT_EQ(body.status.face, 2);
+  EXPECT_NE(body.status.message.find("2 face(s) could not be evaluated"), std::string::npos) << body.status.message;
+  EXPECT_NE(body.status.message.find("the face's area is not a finite number (nan)"), std::string::npos)
+      << body.status.message;
+  ASSERT_EQ(body.faces.size(), 8u);
+  for (const contactcore::FaceInfo& face : body.faces) {
+    EXPECT_TRUE(std::isfinite(face.area) && face.area >= 0) << "Face" << face.index;
+    if (face.index == 2 || face.index == 6) EXPECT_EQ(face.params.kind, contactcore::SurfaceKind::Other);
+  }
+  for (const contactcore::Partition& partition : body.partitions) EXPECT_TRUE(std::isfinite(partition.area));
 }
 
 // Two damaged bodies whose contact test's Boolean common made OCCT 7.6

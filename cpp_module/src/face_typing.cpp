@@ -583,6 +583,16 @@ Status type_face(const TopoDS_Face& face, const Tolerances& tol, FaceInfo& out) 
     } else if (out.box.IsVoid()) {  // surfaces of revolution have theirs already
       BRepBndLib::Add(face, out.box);  // planes: from the edges' 3D curves
     }
+    // Damaged geometry (a pcurve range of 4e13 on a cylinder: make fuzz)
+    // integrates to NaN or infinity: the face is an error, typed Other.
+    if (!std::isfinite(out.area) || out.area < 0) {
+      const TopoDS_Face kept = face;
+      const std::string area = std::to_string(out.area);
+      out = FaceInfo{};
+      out.face = kept;
+      return Status::failure(StatusCode::GeometryError, "the face's area is not a finite number (" + area +
+                                                            "): damaged geometry");
+    }
     return Status::success();
   } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
     const TopoDS_Face kept = face;  // `face` may be out.face itself

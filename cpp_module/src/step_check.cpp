@@ -250,9 +250,13 @@ DuplicateIdentifiers find_duplicate_identifiers(const std::string& path) {
     return !sparse.insert(id).second;
   };
   // A statement's start: "#<digits> =" there defines an entity; quoted
-  // strings ('' inside is a quote) and /* comments */ are skipped.
+  // strings and /* comments */ are skipped. A string ends, as OCCT 7.6's
+  // lexer (step.lex) ends it, only at a quote followed by blanks or line
+  // ends and then ',' or ')': any other quote is part of it (a quote left
+  // open by damaged text runs on, and definitions after it are text).
   enum class At { StatementStart, Hash, Number, AfterNumber, Body } at = At::StatementStart;
   bool in_string = false, in_comment = false;
+  bool quote_in_string = false;  // in a string, a quote seen and only blanks since
   char previous = 0;
   unsigned long long id = 0;
   int digits = 0;
@@ -269,9 +273,15 @@ DuplicateIdentifiers find_duplicate_identifiers(const std::string& path) {
         continue;
       }
       if (in_string) {
-        if (c == '\'') in_string = false;
-        previous = c;
-        continue;
+        const bool blank = c == ' ' || c == '\n' || c == '\r';
+        if (quote_in_string && (c == ',' || c == ')')) {
+          in_string = quote_in_string = false;  // the string ended at that quote: `c` is outside
+        } else {
+          if (c == '\'') quote_in_string = true;
+          else if (!blank) quote_in_string = false;
+          previous = c;
+          continue;
+        }
       }
       if (previous == '/' && c == '*') {
         in_comment = true;
