@@ -128,7 +128,8 @@ class StepTreeWalker {
   // product; the product's own name otherwise.
   bool walk(const TDF_Label& label, const TopLoc_Location& location, const std::string& parent_path,
             const std::string& instance_name = {}) {
-    if (progress_ && !progress_->report("read", 0.5)) return false;
+    // OCCT's transfer reported 0.3 to 0.9: the walk is the rest of the read.
+    if (progress_ && !progress_->report("read", 0.9)) return false;
     std::string name = instance_name.empty() ? label_name(label) : instance_name;
     if (name.empty()) name = "Body";
     const std::string path = parent_path.empty() ? name : parent_path + "/" + name;
