@@ -241,19 +241,28 @@ TEST(FuzzReplay, StepReadsLeaveTheProcessAsFound) {
   EXPECT_EQ(last.assembly.bodies.size(), first.assembly.bodies.size());
 }
 
+namespace {
+
+// A fuzz_brep regression input of two damaged bodies, analysed on one thread
+// (a failed read fails the calling test).
+contactcore::ContactsResult analyse_two_body_regression(const std::string& name) {
+  const std::vector<std::uint8_t> data = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep" / name);
+  const contactcore::AssemblyResult bodies = contactcore::bodies_from_brep(std::string(data.begin(), data.end()), {});
+  EXPECT_TRUE(bodies.status.ok()) << bodies.status.describe();
+  EXPECT_EQ(bodies.assembly.bodies.size(), 2u);
+  contactcore::ContactOptions options;
+  options.threads = 1;
+  return contactcore::find_contacts(bodies.assembly, options);
+}
+
+}  // namespace
+
 // Two bodies whose Boolean common made OCCT 7.6 dereference a null common
 // block (BOPAlgo_Tools::ComputeToleranceOfCB; make fuzz, fuzz_brep, under
 // ASan's allocator): the pair is reported as not measured, once, and the
 // analysis ends normally. Without ASan the same Boolean fails without a signal.
 TEST(FuzzRegressions, BrepBooleanCrashInTheInterferencePassIsReported) {
-  const std::vector<std::uint8_t> data =
-      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/boolean_common_null_common_block.brep");
-  const contactcore::AssemblyResult bodies = contactcore::bodies_from_brep(std::string(data.begin(), data.end()), {});
-  ASSERT_TRUE(bodies.status.ok()) << bodies.status.describe();
-  ASSERT_EQ(bodies.assembly.bodies.size(), 2u);
-  contactcore::ContactOptions options;
-  options.threads = 1;
-  const contactcore::ContactsResult result = contactcore::find_contacts(bodies.assembly, options);
+  const contactcore::ContactsResult result = analyse_two_body_regression("boolean_common_null_common_block.brep");
   ASSERT_TRUE(result.status.ok()) << result.status.describe();
   EXPECT_TRUE(result.interferences.empty());
   // Both solids have edges without 3D curves: named by the solid checks
@@ -397,14 +406,7 @@ TEST(FuzzRegressions, BrepFaceOfNonFiniteAreaIsAnErrorAndTheRestKept) {
 // after the signal guard reached the interference pass only): the candidate
 // pair is skipped with its message, the analysis ends normally.
 TEST(FuzzRegressions, BrepBooleanCrashInAContactTestSkipsThePair) {
-  const std::vector<std::uint8_t> data =
-      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/contact_boolean_edge_edge_null.brep");
-  const contactcore::AssemblyResult bodies = contactcore::bodies_from_brep(std::string(data.begin(), data.end()), {});
-  ASSERT_TRUE(bodies.status.ok()) << bodies.status.describe();
-  ASSERT_EQ(bodies.assembly.bodies.size(), 2u);
-  contactcore::ContactOptions options;
-  options.threads = 1;
-  const contactcore::ContactsResult result = contactcore::find_contacts(bodies.assembly, options);
+  const contactcore::ContactsResult result = analyse_two_body_regression("contact_boolean_edge_edge_null.brep");
   ASSERT_TRUE(result.status.ok()) << result.status.describe();
   ASSERT_EQ(result.skipped.size(), 1u);
   EXPECT_EQ(result.skipped[0].body_a, 0);
