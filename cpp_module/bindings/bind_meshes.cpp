@@ -81,22 +81,12 @@ void bind_meshes(py::module_& m) {
           for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box);
           const Tolerances tolerances = resolve_tolerances(box, linear, angular);
           for (std::size_t i = 0; i < assembly.bodies.size(); ++i) {
-            const Body& body = assembly.bodies[i];
-            Status status;
-            std::string failure;
-            if (!run_guarded([&] {
-                  const BodyPartitions partitions = partition_shape(body.shape, tolerances);
-                  status = partitions.status;
-                  if (status.ok()) {
-                    results[i] = mesh_body(body.shape, partitions, options);
-                    status = results[i].status;
-                  }
-                }, failure, "OCCT: "))
-              status = Status::failure(StatusCode::GeometryError, failure);
-            if (!status.ok()) {
-              status.body = body.name;
-              return status;
-            }
+            const Status status = partition_and_build(
+                assembly.bodies[i], tolerances, results[i],
+                [&](const TopoDS_Shape& shape, const BodyPartitions& partitions) {
+                  return mesh_body(shape, partitions, options);
+                });
+            if (!status.ok()) return status;
           }
           return Status::success();
         }));

@@ -53,22 +53,12 @@ void bind_simplify(py::module_& m) {
           options.feature_size = feature_size;
           options.envelope = envelope;
           for (std::size_t k = 0; k < chosen.size(); ++k) {
-            const Body& body = assembly.bodies[chosen[k]];
-            Status status;
-            std::string failure;
-            if (!run_guarded([&] {
-                  const BodyPartitions partitions = partition_shape(body.shape, tolerances);
-                  status = partitions.status;
-                  if (status.ok()) {
-                    results[k] = simulation_models(body.shape, partitions, options);
-                    status = results[k].status;
-                  }
-                }, failure, "OCCT: "))
-              status = Status::failure(StatusCode::GeometryError, failure);
-            if (!status.ok()) {
-              status.body = body.name;
-              return status;
-            }
+            const Status status = partition_and_build(
+                assembly.bodies[chosen[k]], tolerances, results[k],
+                [&](const TopoDS_Shape& shape, const BodyPartitions& partitions) {
+                  return simulation_models(shape, partitions, options);
+                });
+            if (!status.ok()) return status;
           }
           return Status::success();
         }));

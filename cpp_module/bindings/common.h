@@ -16,7 +16,10 @@
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
 
+#include "contactcore/bodies.h"
 #include "contactcore/errors.h"
+#include "contactcore/occt_guard.h"
+#include "contactcore/partitions.h"
 
 namespace contactcore::bindings {
 
@@ -97,6 +100,26 @@ Status guarded(Work&& work) {
     return Status::failure(StatusCode::GeometryError,
                            *error.what() ? error.what() : "C++ exception without a message");
   }
+}
+
+// Partitions one body and builds `out = build(shape, partitions)` (a result
+// with a `status`) under OCCT's signal guard: the first failure, of either
+// step or a signal, named after the body.
+template <class Result, class Build>
+Status partition_and_build(const Body& body, const Tolerances& tolerances, Result& out, Build&& build) {
+  Status status;
+  std::string failure;
+  if (!run_guarded([&] {
+        const BodyPartitions partitions = partition_shape(body.shape, tolerances);
+        status = partitions.status;
+        if (status.ok()) {
+          out = build(body.shape, partitions);
+          status = out.status;
+        }
+      }, failure, "OCCT: "))
+    status = Status::failure(StatusCode::GeometryError, failure);
+  if (!status.ok()) status.body = body.name;
+  return status;
 }
 
 }  // namespace contactcore::bindings
