@@ -93,14 +93,23 @@ TEST(FuzzReplay, BrepRegressions) { replay("fuzz_brep", "regressions", contactco
 TEST(FuzzReplay, HidRegressions) { replay("fuzz_hid", "regressions", contactcore::fuzz::run_hid_input); }
 #endif
 
+namespace {
+
+// The read of a fuzz_brep regression input (its status; an absent or empty
+// file fails the calling test).
+contactcore::Status read_brep_regression(const std::string& name) {
+  const std::vector<std::uint8_t> data = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep" / name);
+  EXPECT_FALSE(data.empty()) << name;
+  TopoDS_Shape shape;
+  return contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+}
+
+}  // namespace
+
 // A damaged number inside an edge record made OCCT 7.6's BRep reader loop
 // forever on its failed stream (make fuzz, fuzz_brep): now a clear error.
 TEST(FuzzRegressions, BrepEdgeRecordWithADamagedNumberIsAnError) {
-  const std::vector<std::uint8_t> data =
-      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/edge_record_damaged_number.brep");
-  ASSERT_FALSE(data.empty());
-  TopoDS_Shape shape;
-  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  const contactcore::Status status = read_brep_regression("edge_record_damaged_number.brep");
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("damaged text"), std::string::npos) << status.message;
 }
@@ -109,11 +118,7 @@ TEST(FuzzRegressions, BrepEdgeRecordWithADamagedNumberIsAnError) {
 // Boolean common of the sphere face then ran for minutes (make fuzz): now
 // the text check names it.
 TEST(FuzzRegressions, BrepDamagedNumberInTheGeometryIsAnError) {
-  const std::vector<std::uint8_t> data =
-      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/sphere_pcurve_damaged_number.brep");
-  ASSERT_FALSE(data.empty());
-  TopoDS_Shape shape;
-  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  const contactcore::Status status = read_brep_regression("sphere_pcurve_damaged_number.brep");
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("damaged number '@6.2831853071795862' on line 35"), std::string::npos) << status.message;
 }
@@ -354,11 +359,7 @@ TEST(FuzzRegressions, StepQuoteLeftOpenIsScannedAsOcctLexesIt) {
 // infinite area in partition_brep's path (make fuzz, fuzz_brep check): refused
 // with the BRep number check, naming the line.
 TEST(FuzzRegressions, BrepNumberBeyondADoubleInACurveIsAnError) {
-  const std::vector<std::uint8_t> data =
-      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/pcurve_number_beyond_double.brep");
-  ASSERT_FALSE(data.empty());
-  TopoDS_Shape shape;
-  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  const contactcore::Status status = read_brep_regression("pcurve_number_beyond_double.brep");
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("number out of range '1e+3000' on line 52"), std::string::npos) << status.message;
 }
@@ -367,11 +368,7 @@ TEST(FuzzRegressions, BrepNumberBeyondADoubleInACurveIsAnError) {
 // after the geometry (make fuzz, fuzz_brep: "6.1e+30028318530717959"): OCCT
 // read it as infinite and one face's area came out NaN. Refused naming it.
 TEST(FuzzRegressions, BrepNumberBeyondADoubleInAShapeRecordIsAnError) {
-  const std::vector<std::uint8_t> data =
-      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/edge_range_beyond_double.brep");
-  ASSERT_FALSE(data.empty());
-  TopoDS_Shape shape;
-  const contactcore::Status status = contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape);
+  const contactcore::Status status = read_brep_regression("edge_range_beyond_double.brep");
   EXPECT_EQ(status.code, contactcore::StatusCode::InvalidInput);
   EXPECT_NE(status.message.find("number out of range '6.1e+30028318530717959' on line 282"), std::string::npos)
       << status.message;

@@ -584,6 +584,7 @@ TEST(Collision, BoxSeparationAgreesWithFclAndBoundsTheDistance) {
     EXPECT_GE(separation.margin, 0) << i;
     if (separation.margin < 0.5 * result.min_distance) ++from_edges;  // separated by an edge axis, or loosely
   }
-  EXPECT_GT(disjoint, 1000);
+  // Seed 7: 1,898 of the 3,000 pairs are apart (each agreeing with FCL above).
+  EXPECT_EQ(disjoint, 1898);
   EXPECT_LT(from_edges, disjoint / 2);  // mostly a face axis, the margin close to the distance
 }

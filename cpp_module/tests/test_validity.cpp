@@ -174,23 +174,29 @@ ContactsResult checked(const Assembly& assembly, SolidChecks checks) {
   return result;
 }
 
+// A 10 x `left` x 5 base with bowtie_prism(0, left) on it, written to STEP
+// and read back (the reader heals the bow-tie's crossing wires).
+AssemblyResult bowtie_on_a_base_through_step(double left) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("contacts_validity_bowtie_" + std::to_string(left) + ".step")).string();
+  STEPControl_Writer writer;
+  writer.Transfer(box(0, 10, left, 5), STEPControl_AsIs);
+  gp_Trsf up;
+  up.SetTranslation(gp_Vec(0, 0, 5));
+  writer.Transfer(bowtie_prism(0, left).Moved(TopLoc_Location(up)), STEPControl_AsIs);
+  EXPECT_EQ(writer.Write(path.c_str()), IFSelect_RetDone);
+  AssemblyResult read = read_step(path);
+  std::remove(path.c_str());
+  return read;
+}
+
 }  // namespace
 
 TEST(Validity, BowtieHealedByTheStepReaderHasZeroVolume) {
   // Through STEP the reader splits the crossing wires into two triangles
   // each: eight valid faces, two of them crossing inside, enclosing +125 and
   // -125 mm^3. Only the volume shows it: the whole solid is named.
-  const std::string path = (std::filesystem::temp_directory_path() / "contacts_validity_bowtie.step").string();
-  {
-    STEPControl_Writer writer;
-    writer.Transfer(box(0, 10, 10, 5), STEPControl_AsIs);
-    gp_Trsf up;
-    up.SetTranslation(gp_Vec(0, 0, 5));
-    writer.Transfer(bowtie_prism(0).Moved(TopLoc_Location(up)), STEPControl_AsIs);
-    ASSERT_EQ(writer.Write(path.c_str()), IFSelect_RetDone);
-  }
-  const AssemblyResult read = read_step(path);
-  std::remove(path.c_str());
+  const AssemblyResult read = bowtie_on_a_base_through_step(10);
   ASSERT_TRUE(read.status.ok()) << read.status.describe();
   ASSERT_EQ(read.assembly.bodies.size(), 2u);
   const ContactsResult result = contacts_of(read.assembly);
@@ -211,17 +217,7 @@ TEST(Validity, HealedBowtieOfUnequalHalvesIsFoundByTheFullChecksOnly) {
   // valid faces enclosing 5 (200/3 - 50/3) = 250 mm^3 net, so the quick
   // checks pass it. The two faces on the diagonals cross each other along
   // the vertical line through the crossing: the full checks name them.
-  const std::string path = (std::filesystem::temp_directory_path() / "contacts_validity_bowtie_unequal.step").string();
-  {
-    STEPControl_Writer writer;
-    writer.Transfer(box(0, 10, 20, 5), STEPControl_AsIs);
-    gp_Trsf up;
-    up.SetTranslation(gp_Vec(0, 0, 5));
-    writer.Transfer(bowtie_prism(0, 20).Moved(TopLoc_Location(up)), STEPControl_AsIs);
-    ASSERT_EQ(writer.Write(path.c_str()), IFSelect_RetDone);
-  }
-  const AssemblyResult read = read_step(path);
-  std::remove(path.c_str());
+  const AssemblyResult read = bowtie_on_a_base_through_step(20);
   ASSERT_TRUE(read.status.ok()) << read.status.describe();
   ASSERT_EQ(read.assembly.bodies.size(), 2u);
   GProp_GProps props;
