@@ -15,63 +15,82 @@ INSTALL_DIR  := $(FREECAD_MOD)/Contacts
 BIN_DIR      ?= $(HOME)/.local/bin
 SAMPLE       ?= Resources/samples/motor.step
 
+# What `make run` needs: FreeCAD, the libraries the extension links, a compiler.
 DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
-  libocct-visualization-dev libcoin-dev libhidapi-dev pybind11-dev python3-pybind11 \
-  python3-dev python3-pytest cmake make g++ googletest libgtest-dev libbenchmark-dev \
-  libtbb-dev python3-pil xvfb xauth \
-  libeigen3-dev graphviz libfcl-dev pkg-config \
-  clang-14 clang libclang-rt-14-dev ccache
+  libocct-visualization-dev libhidapi-dev pybind11-dev python3-pybind11 \
+  python3-dev cmake make g++ libtbb-dev libeigen3-dev graphviz libfcl-dev pkg-config ccache
+# What `make test`, `make bench`, `make sanitize` and `make fuzz` add.
+DEB_TEST_PACKAGES := $(DEB_PACKAGES) libcoin-dev python3-pytest googletest libgtest-dev \
+  libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev
 
-.PHONY: run test deps build install uninstall samples bench test-cpp test-python test-gui clean fuzz sanitize
+.PHONY: run test deps deps-test build build-extension install uninstall samples bench test-cpp test-python test-gui clean fuzz sanitize
 
 # Installs only the packages that are missing (dpkg says "install ok installed").
-deps:
-	@missing=$$(for p in $(DEB_PACKAGES); do \
+define install_missing
+	@missing=$$(for p in $(1); do \
 	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing Debian packages:" $$missing; \
 	  $(SUDO) apt-get update -q && \
 	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
 	else echo "All Debian packages present."; fi
+endef
+
+deps:
+	$(call install_missing,$(DEB_PACKAGES))
+
+deps-test:
+	$(call install_missing,$(DEB_TEST_PACKAGES))
 
 # ccache, when the machine has it, makes rebuilds in several checkouts cheap.
 LAUNCHER     := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
-$(BUILD_DIR)/CMakeCache.txt:
-	cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON) $(LAUNCHER)
+CONFIGURE    := cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON) $(LAUNCHER)
 
-build: $(BUILD_DIR)/CMakeCache.txt
+# A first configure for `make run` asks for neither GoogleTest nor Google
+# Benchmark (a fresh machine has only the run packages).
+$(BUILD_DIR)/CMakeCache.txt:
+	$(CONFIGURE) -DCONTACTS_BUILD_TESTS=OFF -DCONTACTS_BUILD_BENCH=OFF
+
+# Everything: the extension, the GoogleTest suites, benchmarks and fuzz replays.
+build:
+	$(CONFIGURE) -DCONTACTS_BUILD_TESTS=ON -DCONTACTS_BUILD_BENCH=ON
 	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+# What `make run` needs and nothing more: the Python extension (the CLI and
+# the workbench are Python around it).
+build-extension: $(BUILD_DIR)/CMakeCache.txt
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target contactcore_py
 
 # Copies the workbench (and the built extension) where FreeCAD reads it, and
 # a `contacts` command-line wrapper into $(BIN_DIR).
-install: build
+install: build-extension
 	$(PYTHON) tools/install_workbench.py --build-dir $(BUILD_DIR) --mod-dir $(INSTALL_DIR) --bin-dir $(BIN_DIR)
 
 uninstall:
 	rm -rf $(INSTALL_DIR) $(BIN_DIR)/contacts
 
-run: deps build install
+run: deps install
 	$(BIN_DIR)/contacts $(SAMPLE)
 
 samples:
 	$(PYTHON) tools/make_samples.py --out Resources/samples
 
-bench: build
+bench: deps-test build
 	$(PYTHON) bench/run_benchmarks.py --build-dir $(BUILD_DIR)
 	$(PYTHON) bench/bench_bad_inputs.py --build-dir $(BUILD_DIR)
 
-test: deps build
+test: deps-test build
 	@bash tests/run_all.sh $(BUILD_DIR)
 
-test-cpp: build
+test-cpp: deps-test build
 	cd $(BUILD_DIR) && ctest --output-on-failure
 
-test-python: build
+test-python: deps-test build
 	CONTACTS_PYTHON_DIR=$(abspath $(BUILD_DIR))/python $(PYTHON) -m pytest -q tests --ignore=tests/gui
 
-test-gui: build
+test-gui: deps-test build
 	CONTACTS_BUILD_DIR=$(abspath $(BUILD_DIR)) $(PYTHON) -m pytest -q tests/gui
 
 # Reliability builds (docs/reliability.md), separate from `make test`: the core
@@ -88,14 +107,14 @@ CHECK_FLAGS  := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBIN
 SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/lsan.supp:print_suppressions=0 \
   UBSAN_OPTIONS=suppressions=$(CURDIR)/fuzz/ubsan.supp:print_stacktrace=1:halt_on_error=1
-sanitize:
+sanitize: deps-test
 	cmake -S . -B $(SANITIZE_DIR) -DCONTACTS_SANITIZE=ON $(CHECK_FLAGS)
 	$(SANITIZER_ENV) cmake --build $(SANITIZE_DIR) -j $(JOBS) --target contactcore_tests fuzz_replay_tests
 	cd $(SANITIZE_DIR) && $(SANITIZER_ENV) ctest --output-on-failure -j $(JOBS)
 
 # libFuzzer targets (clang 14) run $(FUZZ_SECONDS) s each on a copy of the
 # seed corpus in fuzz/corpus/; fails on any crash, leak, timeout or OOM.
-fuzz:
+fuzz: deps-test
 	CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_DIR) -DCONTACTS_FUZZ=ON -DCONTACTS_BUILD_TESTS=OFF $(CHECK_FLAGS)
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_step fuzz_brep fuzz_hid
 	bash fuzz/run_fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)

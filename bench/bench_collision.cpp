@@ -15,10 +15,10 @@
 
 #include <BRepPrimAPI_MakeBox.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/collision.h"
-#include "contactcore/disassembly.h"
-#include "contactcore/meshes.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/simulation/collision.h"
+#include "contactcore/simulation/disassembly.h"
+#include "contactcore/simulation/meshes.h"
 
 using namespace contactcore;
 using Clock = std::chrono::steady_clock;

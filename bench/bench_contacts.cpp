@@ -26,7 +26,7 @@
 #include <TopExp_Explorer.hxx>
 #include <XCAFApp_Application.hxx>
 
-#include "contactcore/contacts.h"
+#include "contactcore/contacts/contacts.h"
 
 using namespace contactcore;
 

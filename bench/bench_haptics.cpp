@@ -20,7 +20,7 @@
 
 #include <BRepTools.hxx>
 
-#include "contactcore/contacts.h"
+#include "contactcore/contacts/contacts.h"
 #include "contactcore/haptics/spacemouse.h"
 #include "contactcore/haptics/trial.h"
 

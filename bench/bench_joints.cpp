@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "contactcore/joints.h"
+#include "contactcore/joints/joints.h"
 
 using namespace contactcore;
 

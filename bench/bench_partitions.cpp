@@ -34,8 +34,8 @@
 #include <gp_Circ.hxx>
 #include <gp_Pln.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/partitions.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/partitions/partitions.h"
 
 using namespace contactcore;
 

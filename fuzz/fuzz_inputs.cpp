@@ -14,9 +14,9 @@
 #include <Bnd_Box.hxx>
 #include <Standard_Failure.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/contacts.h"
-#include "contactcore/partitions.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/contacts/contacts.h"
+#include "contactcore/partitions/partitions.h"
 #ifdef CONTACTS_WITH_HAPTICS
 #include "contactcore/haptics/spacemouse.h"
 #endif

@@ -21,10 +21,10 @@
 #include <Message_Messenger.hxx>
 #include <XCAFApp_Application.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/contacts.h"
-#include "contactcore/partitions.h"
-#include "contactcore/step_check.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/contacts/contacts.h"
+#include "contactcore/partitions/partitions.h"
+#include "bodies/step_check.h"
 #include "fuzz_inputs.h"
 
 namespace {

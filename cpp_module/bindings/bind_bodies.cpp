@@ -1,8 +1,8 @@
 // Bodies: STEP files read in C++, FreeCAD shapes handed over as BRep text.
 #include "common.h"
 
-#include "contactcore/bodies.h"
-#include "contactcore/occt_guard.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/common/occt_guard.h"
 
 namespace contactcore::bindings {
 

@@ -1,7 +1,7 @@
 // Stage 5b in Python: collision models and pair queries (for tests, tools and
 // scripting; the haptic loop calls the C++ API directly).
 #include "common.h"
-#include "contactcore/collision.h"
+#include "contactcore/simulation/collision.h"
 
 namespace contactcore::bindings {
 

@@ -5,7 +5,7 @@
 #include <optional>
 #include <sstream>
 
-#include "contactcore/contacts.h"
+#include "contactcore/contacts/contacts.h"
 
 namespace contactcore::bindings {
 

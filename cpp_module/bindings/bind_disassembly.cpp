@@ -1,6 +1,6 @@
 // Stage 5c in Python: blocking graphs and the removal sequence.
 #include "common.h"
-#include "contactcore/disassembly.h"
+#include "contactcore/simulation/disassembly.h"
 
 namespace contactcore::bindings {
 

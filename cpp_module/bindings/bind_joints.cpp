@@ -3,8 +3,8 @@
 
 #include <sstream>
 
-#include "contactcore/clearances.h"
-#include "contactcore/joints.h"
+#include "contactcore/contacts/clearances.h"
+#include "contactcore/joints/joints.h"
 
 namespace contactcore::bindings {
 

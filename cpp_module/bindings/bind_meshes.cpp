@@ -4,9 +4,9 @@
 #include <Bnd_Box.hxx>
 
 #include "common.h"
-#include "contactcore/bodies.h"
-#include "contactcore/meshes.h"
-#include "contactcore/occt_guard.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/simulation/meshes.h"
+#include "contactcore/common/occt_guard.h"
 
 namespace contactcore::bindings {
 

@@ -10,9 +10,9 @@
 #include <TopoDS_Shape.hxx>
 
 #include "common.h"
-#include "contactcore/bodies.h"
-#include "contactcore/occt_guard.h"
-#include "contactcore/partitions.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/common/occt_guard.h"
+#include "contactcore/partitions/partitions.h"
 
 namespace contactcore::bindings {
 

@@ -4,9 +4,9 @@
 #include <Bnd_Box.hxx>
 
 #include "common.h"
-#include "contactcore/bodies.h"
-#include "contactcore/occt_guard.h"
-#include "contactcore/simplify.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/common/occt_guard.h"
+#include "contactcore/simulation/simplify.h"
 
 namespace contactcore::bindings {
 

@@ -16,10 +16,10 @@
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/errors.h"
-#include "contactcore/occt_guard.h"
-#include "contactcore/partitions.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/common/errors.h"
+#include "contactcore/common/occt_guard.h"
+#include "contactcore/partitions/partitions.h"
 
 namespace contactcore::bindings {
 

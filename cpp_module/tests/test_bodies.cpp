@@ -15,7 +15,7 @@
 #include <gp_Ax1.hxx>
 #include <gp_Trsf.hxx>
 
-#include "contactcore/bodies.h"
+#include "contactcore/bodies/bodies.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

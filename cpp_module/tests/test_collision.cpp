@@ -24,9 +24,9 @@
 #include <fcl/narrowphase/distance.h>
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
 
-#include "contactcore/collision.h"
-#include "../src/bvh_traversal.h"
-#include "contactcore/meshes.h"
+#include "contactcore/simulation/collision.h"
+#include "simulation/bvh_traversal.h"
+#include "contactcore/simulation/meshes.h"
 
 using namespace contactcore;
 

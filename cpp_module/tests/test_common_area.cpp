@@ -28,8 +28,8 @@
 #include <gp_Ax2.hxx>
 #include <gp_Ax3.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/contacts.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/contacts/contacts.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

@@ -10,7 +10,7 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <gp_Ax2.hxx>
 
-#include "contactcore/contacts.h"
+#include "contactcore/contacts/contacts.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

@@ -18,10 +18,10 @@
 #include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 
-#include "contactcore/common_area.h"
-#include "contactcore/contacts.h"
-#include "contactcore/instances.h"
-#include "contactcore/occt_guard.h"
+#include "contacts/common_area.h"
+#include "contactcore/contacts/contacts.h"
+#include "contactcore/bodies/instances.h"
+#include "contactcore/common/occt_guard.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

@@ -8,7 +8,7 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <gp_Ax2.hxx>
 
-#include "contactcore/disassembly.h"
+#include "contactcore/simulation/disassembly.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

@@ -5,8 +5,8 @@
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <Standard_OutOfMemory.hxx>
 
-#include "contactcore/contacts.h"
-#include "contactcore/errors.h"
+#include "contactcore/contacts/contacts.h"
+#include "contactcore/common/errors.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

@@ -11,7 +11,7 @@
 #include <BRep_Tool.hxx>
 #include <TopoDS_Face.hxx>
 
-#include "contactcore/contacts.h"
+#include "contactcore/contacts/contacts.h"
 
 namespace contactcore::testing {
 

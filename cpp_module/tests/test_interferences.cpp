@@ -19,10 +19,10 @@
 #include <GProp_GProps.hxx>
 #include <gp_Ax2.hxx>
 
-#include "contactcore/boundary_crossing.h"
-#include "contactcore/contacts.h"
-#include "contactcore/interferences.h"
-#include "contactcore/separation.h"
+#include "contacts/boundary_crossing.h"
+#include "contactcore/contacts/contacts.h"
+#include "contacts/interferences.h"
+#include "contacts/separation.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

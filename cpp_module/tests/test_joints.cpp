@@ -19,8 +19,8 @@
 #include <gp_Ax2.hxx>
 #include <gp_Trsf.hxx>
 
-#include "contactcore/clearances.h"
-#include "contactcore/joints.h"
+#include "contactcore/contacts/clearances.h"
+#include "contactcore/joints/joints.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

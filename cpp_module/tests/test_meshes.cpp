@@ -14,8 +14,8 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <gp_Ax2.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/meshes.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/simulation/meshes.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

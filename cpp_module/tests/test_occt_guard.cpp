@@ -14,8 +14,8 @@
 #include <Standard_DomainError.hxx>
 #include <Standard_OutOfMemory.hxx>
 
-#include "contactcore/occt_guard.h"
-#include "contactcore/parallel.h"
+#include "contactcore/common/occt_guard.h"
+#include "contactcore/common/parallel.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

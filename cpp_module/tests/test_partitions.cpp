@@ -1,6 +1,6 @@
 // Tests of stage 2 (partitions): face typing, recognition of free-form faces,
 // merging into maximal partitions, extents and the interval helpers.
-#include "contactcore/partitions.h"
+#include "contactcore/partitions/partitions.h"
 
 #include <gtest/gtest.h>
 

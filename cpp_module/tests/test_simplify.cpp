@@ -18,8 +18,8 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <gp_Ax2.hxx>
 
-#include "contactcore/bodies.h"
-#include "contactcore/simplify.h"
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/simulation/simplify.h"
 #include "test_helpers.h"
 
 using namespace contactcore;

@@ -33,10 +33,10 @@
 #include <TopoDS.hxx>
 #include <gp_Vec.hxx>
 
-#include "contactcore/contacts.h"
-#include "contactcore/validity.h"
+#include "contactcore/contacts/contacts.h"
+#include "contacts/validity.h"
 #include "test_helpers.h"
-#include "../src/signed_volume.h"
+#include "contacts/signed_volume.h"
 
 using namespace contactcore;
 using namespace contactcore::testing;

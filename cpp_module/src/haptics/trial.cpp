@@ -8,7 +8,7 @@
 #include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
 
-#include "contactcore/occt_guard.h"
+#include "contactcore/common/occt_guard.h"
 
 namespace contactcore::haptics {
 

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "contactcore/haptics/constraints.h"
-#include "contactcore/joints.h"
+#include "contactcore/joints/joints.h"
 
 namespace contactcore::haptics {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "contactcore/contacts.h"
+#include "contactcore/contacts/contacts.h"
 #include "contactcore/haptics/constraints.h"
 
 namespace contactcore::haptics {

@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "contactcore/collision.h"
+#include "contactcore/simulation/collision.h"
 #include "contactcore/haptics/constraints.h"
 #include "contactcore/haptics/realtime_contacts.h"
 

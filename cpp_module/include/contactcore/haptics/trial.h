@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "contactcore/bodies.h"
+#include "contactcore/bodies/bodies.h"
 #include "contactcore/haptics/stage_collision.h"
 #include "contactcore/haptics/realtime_contacts.h"
 #include "contactcore/haptics/servo_loop.h"

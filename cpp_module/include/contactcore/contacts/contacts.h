@@ -1,0 +1,145 @@
+// Stage 3: contacts. Broad phase on body boxes (the paper's LBiB), candidate
+// partition pairs with the same surface parameters and opposite material
+// sides (LpC) found by sorting, then a real common-area test per candidate.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/partitions/partitions.h"
+
+namespace contactcore {
+
+enum class ContactType {
+  PLF,  // planar fit: coplanar planes, opposite normals
+  CLJ,  // cylindrical joint: shaft in a bore of the same radius and axis
+  CJU,  // cylindrical joint unidirectional: cone in a cone (same apex, axis, angle)
+  SPF,  // spherical fit: ball in a spherical cup
+  LAF,  // linear annular fit: ball in a bore of its radius, centre on the axis
+  SPT,  // sphere in a torus groove of its radius (a ball in its raceway)
+  TRF,  // torus on torus: same axis, centre and radii, opposite sides
+};
+const char* to_string(ContactType type);
+
+struct Contact {
+  ContactType type = ContactType::PLF;
+  int body_a = 0, body_b = 0;            // indices into Assembly::bodies, body_a < body_b
+  int partition_a = 0, partition_b = 0;  // partition ids within each body
+  std::vector<int> faces_a, faces_b;     // 1-based FaceN indices of the faces in contact
+  gp_Pnt point;     // PLF: a point of the common area; revolution: on the axis; sphere: centre
+  gp_Dir direction; // PLF: outward normal of body_a; revolution: axis
+  double radius = 0;        // CLJ, SPF, LAF, SPT (ball radius), TRF (minor radius)
+  double half_angle = 0;    // CJU
+  double area = 0;          // common area, mm^2 (LAF, SPT: 0, they touch along a circle)
+  bool partial = false;     // revolution contact spanning less than 180 degrees
+  double span = 0;          // common angular span, radians (revolution contacts)
+  Tolerances tolerances;    // tolerances used
+};
+
+// Which solid checks run (validity.h): Quick, the default, or also OCCT's
+// whole BRepCheck_Analyzer and faces crossing each other (Full: seconds on
+// a large model, against tens of milliseconds).
+enum class SolidChecks { Quick, Full };
+
+struct ContactOptions {
+  std::optional<double> linear;   // mm; unset: scaled to the model (default_tolerances)
+  std::optional<double> angular;  // radians; unset: the default
+  double min_area_ratio = 1e-6;   // common area below ratio * smaller partition area: no contact
+  double clearance_gap = 0;       // mm; > 0: also report clearance fits with radii this close
+  int threads = 0;                // worker threads; 0: all cores, 1: serial in the calling thread
+  bool reuse_instances = true;    // partition each shared shape once, moved to its other placements
+  // Beyond this many body pairs with meeting boxes the broad phase stops with
+  // a Status (heavily overlapping input: duplicates placed in place) instead
+  // of enumerating them all. Raise it to go on.
+  std::size_t max_body_pairs = 2'000'000;
+  SolidChecks solid_checks = SolidChecks::Quick;
+  // For tests: called before each candidate pair's test (bodies, partitions);
+  // what it throws skips that pair as a failing test would.
+  std::function<void(int, int, int, int)> candidate_hook;
+};
+
+// Found beside contacts, never counted as contacts.
+// Bodies whose material overlaps (a press fit, a duplicate placed in place).
+struct Interference {
+  int body_a = 0, body_b = 0;  // body_a < body_b
+  double volume = 0;           // mm^3 of the common solid
+};
+// A body whose solid is not valid (validity.h: a self-intersecting boundary,
+// open, inside out, zero volume, ...): its contacts and areas may be wrong.
+struct InvalidBody {
+  int body = 0;
+  std::vector<int> faces;  // 1-based FaceN where the fault lies; empty: the whole solid
+  std::string reason;      // one of the k* strings of validity.h
+};
+// Same surface type and axis, radii differing by less than the clearance gap
+// (a nut on its bolt): a fit with play, not a contact.
+struct Clearance {
+  int body_a = 0, body_b = 0;
+  int partition_a = 0, partition_b = 0;
+  SurfaceKind kind = SurfaceKind::Cylinder;
+  double gap = 0;  // mm, radial (cylinders, spheres) or normal (planes)
+};
+// A candidate pair whose test raised an exception (OCCT or C++): skipped, the rest kept.
+struct SkippedPair {
+  int body_a = 0, body_b = 0;
+  int partition_a = 0, partition_b = 0;
+  std::vector<int> faces_a, faces_b;  // 1-based FaceN of the two partitions
+  std::string message;
+};
+
+// Timings of each stage in seconds, for benchmarks and the CLI.
+struct StageTimes {
+  double partitions = 0, broad_phase = 0, candidates = 0, area = 0;
+};
+
+struct ContactsResult {
+  Status status;
+  Tolerances tolerances;
+  std::vector<BodyPartitions> partitions;  // one per body
+  // Per body, the body whose shape it instances (itself when none). An
+  // instance's partitions are its source's moved; their plane outlines are
+  // its source's (same plane frame), shared, not copied.
+  std::vector<int> instance_of;
+  std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
+  std::size_t candidates = 0;  // candidate partition pairs (those of body pairs placed alike each counted)
+  std::vector<Contact> contacts;
+  std::vector<Interference> interferences;
+  std::vector<InvalidBody> invalid_bodies;  // in body order
+  std::vector<Clearance> clearances;
+  std::vector<SkippedPair> skipped;
+  std::vector<std::string> messages;  // what was skipped or doubtful, for the user
+  StageTimes times;
+};
+
+// Body pairs (i < j, sorted) whose boxes meet within `gap`, by sort and sweep
+// on the axis along which the fewest boxes overlap (so an assembly stacked
+// along any axis does not degrade). Stops once more than `max_pairs` pairs
+// are found: `pairs` then holds max_pairs + 1 of them and the Status says how
+// many there may be and how to raise the limit.
+struct BroadPhase {
+  Status status;
+  std::vector<std::pair<int, int>> pairs;
+};
+// Reports "broad phase" progress and stops when asked (Status Cancelled).
+BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap,
+                       std::size_t max_pairs = static_cast<std::size_t>(-1), Progress* progress = nullptr);
+
+// Area of the intersection of two polygon sets (outer loops counter-clockwise,
+// holes clockwise) in the same 2D frame.
+double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol);
+
+// The whole stage on an assembly. Partitions each body (progress "partitions"),
+// then broad phase, candidates ("candidates") and area ("contacts"), the
+// partitions and the candidate tests on `options.threads` threads; the result
+// is the same whatever the number of threads (bodies, pairs and contacts in
+// the serial order). Progress is reported, and cancellation honoured within
+// one body's or one candidate's work, from the calling thread.
+ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& options,
+                             Progress* progress = nullptr);
+
+}  // namespace contactcore

@@ -1,0 +1,344 @@
+#include "contacts/interferences.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <tuple>
+
+#include <BRepAdaptor_Curve.hxx>
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepAlgoAPI_Common.hxx>
+#include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <BRepTopAdaptor_FClass2d.hxx>
+#include <BRep_Tool.hxx>
+#include <GProp_GProps.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+#include <gp_Ax1.hxx>
+
+#include "contacts/boundary_crossing.h"
+#include "contactcore/common/occt_guard.h"
+#include "contactcore/common/parallel.h"
+#include "contactcore/common/out_of_memory.h"
+#include "contacts/separation.h"
+
+namespace contactcore {
+
+namespace {
+
+// A common volume below this fraction of the smaller body is numerical noise.
+constexpr double kMinRelativeVolume = 1e-6;
+// A press fit: a shaft larger than its coaxial bore by at most this fraction
+// of the bore's radius (real press fits are a few thousandths; a part's outer
+// surface of radius 24 around another part's bore of radius 4 is not one).
+constexpr double kPressFitRelative = 0.5;
+
+double box_overlap(const Bnd_Box& a, const Bnd_Box& b) {
+  if (a.IsVoid() || b.IsVoid()) return -1;
+  double ax0, ay0, az0, ax1, ay1, az1, bx0, by0, bz0, bx1, by1, bz1;
+  a.Get(ax0, ay0, az0, ax1, ay1, az1);
+  b.Get(bx0, by0, bz0, bx1, by1, bz1);
+  return std::min({std::min(ax1, bx1) - std::max(ax0, bx0), std::min(ay1, by1) - std::max(ay0, by0),
+                   std::min(az1, bz1) - std::max(az0, bz0)});
+}
+
+double box_thickness(const Bnd_Box& box) {
+  if (box.IsVoid()) return 0;
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  return std::min({x1 - x0, y1 - y0, z1 - z0});
+}
+
+bool boxes_equal(const Bnd_Box& a, const Bnd_Box& b, double tolerance) {
+  if (a.IsVoid() || b.IsVoid()) return false;
+  double a_[6], b_[6];
+  a.Get(a_[0], a_[1], a_[2], a_[3], a_[4], a_[5]);
+  b.Get(b_[0], b_[1], b_[2], b_[3], b_[4], b_[5]);
+  for (int i = 0; i < 6; ++i)
+    if (std::abs(a_[i] - b_[i]) > tolerance) return false;
+  return true;
+}
+
+// The same solid twice at the same place: same faces, surfaces and areas.
+bool duplicates(const BodyPartitions& a, const BodyPartitions& b, double tolerance) {
+  if (a.faces.size() != b.faces.size() || a.partitions.size() != b.partitions.size()) return false;
+  if (!boxes_equal(a.box, b.box, tolerance)) return false;
+  std::vector<std::pair<int, double>> sa, sb;
+  for (const Partition& p : a.partitions) sa.push_back({static_cast<int>(p.params.kind), p.area});
+  for (const Partition& p : b.partitions) sb.push_back({static_cast<int>(p.params.kind), p.area});
+  std::sort(sa.begin(), sa.end());
+  std::sort(sb.begin(), sb.end());
+  for (size_t i = 0; i < sa.size(); ++i)
+    if (sa[i].first != sb[i].first || std::abs(sa[i].second - sb[i].second) > 1e-6 * std::max(1.0, sa[i].second))
+      return false;
+  return true;
+}
+
+// The angles a bore partition covers, measured in the shaft's frame.
+std::vector<AngularInterval> bore_angles_in(const BodyPartitions& bore_body, const Partition& bore,
+                                            const Partition& shaft, double linear) {
+  std::vector<AngularInterval> angles;
+  for (int face : bore.faces) {
+    const Extent e = revolution_extent_in(bore_body.faces[face - 1], shaft.params.location, shaft.params.axis,
+                                          shaft.extent.ref_dir, linear);
+    angles.insert(angles.end(), e.angular.begin(), e.angular.end());
+  }
+  return unite(angles);
+}
+
+// Coaxial press fits of shafts of `a` in bores of `b`: a shaft larger than the
+// bore by a small fraction of its radius, over a common axial range and
+// angle. The material they share is the ring between the two radii over that
+// range: 1/2 span (r_s^2 - r_b^2) L, exact for coaxial cylinder faces (no
+// solid Boolean). Adds the volumes found to `volume`.
+bool press_fits(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol, double& volume) {
+  bool found = false;
+  for (const Partition& shaft : a.partitions) {
+    if (shaft.params.kind != SurfaceKind::Cylinder || shaft.side != MaterialSide::Convex) continue;
+    const gp_Ax1 axis(shaft.params.location, shaft.params.axis);
+    for (const Partition& bore : b.partitions) {
+      if (bore.params.kind != SurfaceKind::Cylinder || bore.side != MaterialSide::Concave) continue;
+      const double excess = shaft.params.radius - bore.params.radius;
+      if (excess <= tol.linear || excess > kPressFitRelative * bore.params.radius) continue;
+      if (box_overlap(shaft.box, bore.box) <= tol.linear) continue;
+      if (!bore.params.axis.IsParallel(shaft.params.axis, tol.angular)) continue;
+      const gp_Vec offset(axis.Location(), bore.params.location);
+      const gp_Vec direction(axis.Direction());
+      if (offset.Crossed(direction).Magnitude() > tol.linear) continue;
+      // Axial ranges on the shaft's axis must overlap, not just meet.
+      const double shift = offset.Dot(direction);
+      const double sign = gp_Vec(bore.params.axis).Dot(direction) > 0 ? 1 : -1;
+      const double b0 = shift + sign * bore.extent.axial_min, b1 = shift + sign * bore.extent.axial_max;
+      const double low = std::max(shaft.extent.axial_min, std::min(b0, b1));
+      const double high = std::min(shaft.extent.axial_max, std::max(b0, b1));
+      if (high - low <= tol.linear) continue;
+      double span = 2 * M_PI;
+      if (shaft.extent.angular_span() < 2 * M_PI - tol.angular || bore.extent.angular_span() < 2 * M_PI - tol.angular)
+        span = overlap(shaft.extent.angular, bore_angles_in(b, bore, shaft, tol.linear));
+      if (span <= tol.angular) continue;
+      const double rs = shaft.params.radius, rb = bore.params.radius;
+      volume += 0.5 * span * (rs * rs - rb * rb) * (high - low);
+      found = true;
+    }
+  }
+  return found;
+}
+
+// Points of a body's boundary: vertices, edge midpoints and a point inside
+// each face. One of them inside the other body proves an overlap.
+std::vector<gp_Pnt> boundary_samples(const TopoDS_Shape& shape) {
+  std::vector<gp_Pnt> points;
+  for (TopExp_Explorer v(shape, TopAbs_VERTEX); v.More(); v.Next())
+    points.push_back(BRep_Tool::Pnt(TopoDS::Vertex(v.Current())));
+  for (TopExp_Explorer e(shape, TopAbs_EDGE); e.More(); e.Next()) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    if (BRep_Tool::Degenerated(edge)) continue;
+    BRepAdaptor_Curve curve(edge);
+    points.push_back(curve.Value(0.5 * (curve.FirstParameter() + curve.LastParameter())));
+  }
+  for (TopExp_Explorer f(shape, TopAbs_FACE); f.More(); f.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(f.Current());
+    BRepAdaptor_Surface surface(face);
+    const gp_Pnt2d middle(0.5 * (surface.FirstUParameter() + surface.LastUParameter()),
+                          0.5 * (surface.FirstVParameter() + surface.LastVParameter()));
+    BRepTopAdaptor_FClass2d inside(face, Precision::PConfusion());
+    if (inside.Perform(middle) == TopAbs_IN) points.push_back(surface.Value(middle.X(), middle.Y()));
+  }
+  return points;
+}
+
+// True when a boundary point of `from` lies inside `into` (deeper than the tolerance).
+bool sample_inside(const TopoDS_Shape& from, const TopoDS_Shape& into, const Bnd_Box& into_box, double tolerance) {
+  Bnd_Box inner = into_box;
+  std::unique_ptr<BRepClass3d_SolidClassifier> classifier;
+  for (const gp_Pnt& p : boundary_samples(from)) {
+    double x0, y0, z0, x1, y1, z1;
+    inner.Get(x0, y0, z0, x1, y1, z1);
+    if (p.X() <= x0 + tolerance || p.X() >= x1 - tolerance || p.Y() <= y0 + tolerance || p.Y() >= y1 - tolerance ||
+        p.Z() <= z0 + tolerance || p.Z() >= z1 - tolerance)
+      continue;
+    if (!classifier) classifier = std::make_unique<BRepClass3d_SolidClassifier>(into);
+    classifier->Perform(p, tolerance);
+    if (classifier->State() == TopAbs_IN) return true;
+  }
+  return false;
+}
+
+double shape_volume(const TopoDS_Shape& shape) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props);
+  return props.Mass();
+}
+
+double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b, double tolerance) {
+  // Arguments and tools set apart so the fuzzy value (coincident faces) applies.
+  TopTools_ListOfShape arguments, tools;
+  arguments.Append(a);
+  tools.Append(b);
+  BRepAlgoAPI_Common op;
+  op.SetArguments(arguments);
+  op.SetTools(tools);
+  op.SetFuzzyValue(tolerance);
+  // Never grow the tolerances of the bodies' own edges and vertices: their
+  // boxes, and a second analysis of the same shapes, must not change.
+  op.SetNonDestructive(Standard_True);
+  op.SetRunParallel(false);
+  op.Build();
+  if (!op.IsDone()) return -1;
+  return shape_volume(op.Shape());
+}
+
+// What the pass finds for one body pair.
+struct PairOutcome {
+  enum Kind { None, PressFit, Overlap, Failed } kind = None;
+  double volume = 0;
+  std::string message;
+};
+
+PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, int a, int b) {
+  const Tolerances& tol = result.tolerances;
+  const BodyPartitions& pa = result.partitions[a];
+  const BodyPartitions& pb = result.partitions[b];
+  PairOutcome out;
+  double volume = 0;
+  const bool shaft_in_b = press_fits(pa, pb, tol, volume);
+  const bool shaft_in_a = press_fits(pb, pa, tol, volume);
+  if (shaft_in_b || shaft_in_a) {
+    out.kind = PairOutcome::PressFit;
+    out.volume = volume;
+    return out;
+  }
+  // Instances hold no outlines of their own: their source's, same frames.
+  const auto outlines = [&](int body) -> const BodyPartitions& {
+    const int source = body < static_cast<int>(result.instance_of.size()) ? result.instance_of[body] : body;
+    return result.partitions[source];
+  };
+  if (provably_apart(pa, outlines(a), pb, outlines(b), tol)) return out;
+  const TopoDS_Shape& shape_a = assembly.bodies[a].shape;
+  const TopoDS_Shape& shape_b = assembly.bodies[b].shape;
+  // No sample strictly inside: they share volume only if their boundaries
+  // cross (boundary_crossing.h, complete for solids).
+  if (!sample_inside(shape_a, shape_b, pb.box, tol.linear) && !sample_inside(shape_b, shape_a, pa.box, tol.linear) &&
+      !boundaries_cross(shape_a, pa, shape_b, pb, tol))
+    return out;
+  const double common = common_volume(shape_a, shape_b, tol.linear);
+  if (common < 0) {
+    out.kind = PairOutcome::Failed;
+    out.message = "bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
+                  "' seem to overlap but their common volume could not be computed";
+    return out;
+  }
+  const double smaller = std::min(std::abs(shape_volume(shape_a)), std::abs(shape_volume(shape_b)));
+  if (common > kMinRelativeVolume * smaller) {
+    out.kind = PairOutcome::Overlap;
+    out.volume = common;
+  }
+  return out;
+}
+
+}  // namespace
+
+double press_fit_volume(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol) {
+  double volume = 0;
+  press_fits(a, b, tol, volume);
+  press_fits(b, a, tol, volume);
+  return volume;
+}
+
+Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads) {
+  const size_t n = assembly.bodies.size();
+  const Tolerances& tol = result.tolerances;
+  std::vector<char> dropped(n, 0);  // zero-volume bodies and second copies: no contacts of their own
+
+  for (size_t i = 0; i < n; ++i) {
+    // A solid thinner than the tolerance holds no material (a zero-height box).
+    if (box_thickness(result.partitions[i].box) <= tol.linear) {
+      dropped[i] = 1;
+      result.messages.push_back("body '" + assembly.bodies[i].name +
+                                "' has no volume (thinner than the tolerance): its contacts are not counted");
+    }
+  }
+
+  // Pairs whose boxes overlap deeper than the tolerance (the others at most
+  // touch); copies in place found first, in order (a copy drops out of the
+  // rest: its contacts repeat the first copy's).
+  std::vector<std::pair<int, int>> deep;
+  std::vector<Interference> copies;
+  for (const auto& [a, b] : result.body_pairs) {
+    if (dropped[a] || dropped[b]) continue;
+    const BodyPartitions& pa = result.partitions[a];
+    const BodyPartitions& pb = result.partitions[b];
+    if (box_overlap(pa.box, pb.box) <= tol.linear) continue;
+    if (duplicates(pa, pb, tol.linear)) {
+      dropped[b] = 1;
+      copies.push_back({a, b, -1});
+      result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
+                                "' are the same solid at the same place: an interference; the contacts of '" +
+                                assembly.bodies[b].name + "' are not counted");
+      continue;
+    }
+    deep.push_back({a, b});
+  }
+  deep.erase(std::remove_if(deep.begin(), deep.end(), [&](const auto& p) { return dropped[p.first] || dropped[p.second]; }),
+             deep.end());
+
+  std::vector<PairOutcome> outcomes(deep.size());
+  // OCCT 7.6's Boolean common dereferences a null common block on some damaged
+  // shapes (make fuzz, fuzz_brep): its signal handler makes that a failure of
+  // the pair (OCC_CATCH_SIGNALS in each worker), not a crash.
+  const OcctGuard guard;
+  if (!parallel_for(deep.size(), threads, progress, "interferences", [&](std::size_t k) {
+        const auto a = deep[k].first, b = deep[k].second;  // not a structured binding: the lambda below captures them (clang 14)
+        std::string failure;
+        if (!run_guarded([&] { outcomes[k] = test_pair(assembly, result, a, b); }, failure)) {
+          outcomes[k].kind = PairOutcome::Failed;
+          outcomes[k].message = "interference test of '" + assembly.bodies[a].name + "' and '" +
+                                assembly.bodies[b].name + "' failed: " + failure;
+        }
+      }))
+    return Status::failure(StatusCode::Cancelled, "cancelled");
+  std::vector<std::string> copy_failures(copies.size());
+  if (!parallel_for(copies.size(), threads, progress, "interferences", [&](std::size_t k) {
+        run_guarded([&] { copies[k].volume = std::abs(shape_volume(assembly.bodies[copies[k].body_a].shape)); },
+                    copy_failures[k]);
+      }))
+    return Status::failure(StatusCode::Cancelled, "cancelled");
+  for (std::size_t k = 0; k < copies.size(); ++k) {
+    if (copy_failures[k].empty()) continue;
+    copies[k].volume = 0;  // unknown: the copy is still reported
+    result.messages.push_back("the volume of '" + assembly.bodies[copies[k].body_a].name +
+                              "' could not be computed: " + copy_failures[k]);
+  }
+
+  std::vector<std::pair<int, int>> overlapping;  // general overlaps: their contacts are not contacts
+  for (const Interference& copy : copies) result.interferences.push_back(copy);
+  for (std::size_t k = 0; k < deep.size(); ++k) {
+    const PairOutcome& o = outcomes[k];
+    if (o.kind == PairOutcome::Failed) result.messages.push_back(o.message);
+    if (o.kind != PairOutcome::PressFit && o.kind != PairOutcome::Overlap) continue;
+    result.interferences.push_back({deep[k].first, deep[k].second, o.volume});
+    if (o.kind == PairOutcome::Overlap) overlapping.push_back(deep[k]);
+  }
+  std::sort(result.interferences.begin(), result.interferences.end(),
+            [](const Interference& l, const Interference& r) {
+              return std::tie(l.body_a, l.body_b) < std::tie(r.body_a, r.body_b);
+            });
+
+  // Empty bodies, second copies and bodies overlapping in a general way have
+  // no contacts there. A press-fitted pair keeps its real ones (a shoulder
+  // on its seat: the R08 press's 8 PLF + 7 CLJ).
+  result.contacts.erase(std::remove_if(result.contacts.begin(), result.contacts.end(),
+                                       [&](const Contact& c) {
+                                         return dropped[c.body_a] || dropped[c.body_b] ||
+                                                std::binary_search(overlapping.begin(), overlapping.end(),
+                                                                   std::make_pair(c.body_a, c.body_b));
+                                       }),
+                        result.contacts.end());
+  return Status::success();
+}
+
+}  // namespace contactcore

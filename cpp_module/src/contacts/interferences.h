@@ -1,0 +1,36 @@
+// Stage 3 (contacts), after the contacts: bodies whose material overlaps (press fits,
+// duplicates placed in place) and bodies that are not usable solids. Neither
+// may show up as contacts: two overlapping bodies are an interference, and a
+// zero-volume "solid" touches nothing.
+#pragma once
+
+#include "contactcore/contacts/contacts.h"
+
+namespace contactcore {
+
+// On a result whose contacts are found (partitions, body_pairs, tolerances,
+// instance_of filled): fills `interferences` with the body pairs whose
+// material overlaps, with the common volume, notes zero-volume bodies and
+// duplicates in `messages`, and drops the contacts of empty bodies, of second
+// copies (they repeat the first copy's) and of pairs overlapping in a
+// general way. A press-fitted pair keeps its real contacts (a shoulder on its
+// seat). Only pairs whose boxes overlap deeper than the tolerance are looked
+// at, on `threads` threads (0: all cores; the result is the same), each by:
+//  1. the same solid twice at one place: its volume;
+//  2. a coaxial press fit (a shaft larger than its bore by at most 5 % of the
+//     bore's radius, over a common axial range): the ring between the radii,
+//     measured from the partitions (press_fit_volume);
+//  3. a proof from the partitions that they share no material (separation.h):
+//     the common case, touching bodies, ends here;
+//  4. otherwise vertices, edge midpoints and face points of each body
+//     classified in the other; none inside: whether their boundaries cross
+//     (boundary_crossing.h, complete for solids). A point inside or a
+//     crossing: the Boolean common gives the volume (below 1e-6 of the
+//     smaller body: a touch).
+Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress = nullptr,
+                          int threads = 0);
+
+// The material two bodies share through coaxial press fits (step 2), mm^3; 0 when none.
+double press_fit_volume(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol);
+
+}  // namespace contactcore

@@ -1,0 +1,325 @@
+// Joints per body pair: each contact's constraint wrenches, stacked, give the
+// free twists as their null space; unilateral contacts give one-sided stops
+// and the cone of directions in which one body can leave the other.
+#include "contactcore/joints/joints.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "joints/twist_math.h"
+
+namespace contactcore {
+
+using namespace detail;
+
+namespace {
+
+constexpr double kTwoPi = 2 * M_PI;
+
+const Partition& partition_of(const ContactsResult& r, int body, int id) {
+  return r.partitions[body].partitions[id];
+}
+
+// Outward unit normal of a's material for a revolution contact at angle
+// `theta` about a's axis (measured from a's ref_dir).
+struct RevolutionFrame {
+  Vec3 origin, axis, ref, side;  // side = axis x ref
+  Vec3 radial(double theta) const { return std::cos(theta) * ref + std::sin(theta) * side; }
+  double angle_of(const Vec3& d) const {
+    double phi = std::atan2(d.dot(side), d.dot(ref));
+    return phi < 0 ? phi + kTwoPi : phi;
+  }
+};
+
+RevolutionFrame frame_of(const Partition& p) {
+  RevolutionFrame f;
+  f.origin = vec(p.params.location);
+  f.axis = vec(p.params.axis);
+  f.ref = vec(p.extent.ref_dir);
+  f.ref = (f.ref - f.axis * f.axis.dot(f.ref)).normalized();
+  f.side = f.axis.cross(f.ref);
+  return f;
+}
+
+// The angular intervals both partitions cover, in a's frame.
+std::vector<AngularInterval> common_angles(const Partition& a, const Partition& b) {
+  const RevolutionFrame fa = frame_of(a), fb = frame_of(b);
+  const bool same_sense = fa.axis.dot(fb.axis) > 0;
+  std::vector<AngularInterval> mapped;
+  for (const AngularInterval& in : b.extent.angular) {
+    if (in.span >= kTwoPi - 1e-9) {
+      mapped.push_back({0, kTwoPi});
+      continue;
+    }
+    const double start = fa.angle_of(fb.radial(same_sense ? in.start : in.start + in.span));
+    mapped.push_back({start, in.span});
+  }
+  std::vector<AngularInterval> common;
+  overlap(a.extent.angular, unite(mapped), &common);
+  return common;
+}
+
+// Constraint rows and stop data of one contact.
+struct ContactConstraints {
+  std::vector<Vec6> rows;            // bilateral wrenches (local)
+  std::vector<Vec3> bilateral_forces;  // directions of translation they forbid
+  std::vector<OneSidedStop> stops;
+};
+
+void add_axis_forces(const Frame& frame, const Vec3& p, const Vec3& axis, ContactConstraints& out) {
+  Vec3 u, v;
+  perpendiculars(axis, u, v);
+  out.rows.push_back(frame.force_row(p, u));
+  out.rows.push_back(frame.force_row(p, v));
+}
+
+void add_axis_moments(const Vec3& axis, ContactConstraints& out) {
+  Vec3 u, v;
+  perpendiculars(axis, u, v);
+  out.rows.push_back(Frame::moment_row(u));
+  out.rows.push_back(Frame::moment_row(v));
+}
+
+// Angles at which a unilateral revolution contact's normals are taken: the
+// ends of each common interval (a partial contact's normals are positive
+// combinations of those), or `samples` around a full turn.
+std::vector<double> stop_angles(const std::vector<AngularInterval>& common, double span, int samples,
+                                bool full) {
+  std::vector<double> angles;
+  if (full || common.empty() || span >= kTwoPi - 1e-6) {
+    for (int i = 0; i < samples; ++i) angles.push_back(kTwoPi * i / samples);
+    return angles;
+  }
+  for (const AngularInterval& in : common) {
+    angles.push_back(in.start);
+    angles.push_back(in.start + in.span);
+  }
+  return angles;
+}
+
+ContactConstraints constraints_of(const ContactsResult& result, int index, const Frame& frame,
+                                  const JointOptions& options) {
+  const Contact& c = result.contacts[index];
+  ContactConstraints out;
+  const Vec3 p = vec(c.point), d = vec(c.direction).normalized();
+  switch (c.type) {
+    case ContactType::PLF: {
+      out.rows.push_back(frame.force_row(p, d));
+      add_axis_moments(d, out);
+      out.stops.push_back({index, c.point, c.direction});
+      break;
+    }
+    case ContactType::CLJ:
+    case ContactType::CJU: {
+      const Partition& pa = partition_of(result, c.body_a, c.partition_a);
+      const Partition& pb = partition_of(result, c.body_b, c.partition_b);
+      add_axis_forces(frame, p, d, out);
+      add_axis_moments(d, out);
+      const bool cone = c.type == ContactType::CJU;
+      if (cone) out.rows.push_back(frame.force_row(p, d));  // the seat stops the axial motion
+      if (!cone && !c.partial) {
+        Vec3 u, v;
+        perpendiculars(d, u, v);
+        out.bilateral_forces.push_back(u);
+        out.bilateral_forces.push_back(v);
+        break;
+      }
+      // Unilateral: normals of a's surface over the common span.
+      const RevolutionFrame fa = frame_of(pa);
+      const double sign = pa.side == MaterialSide::Convex ? 1.0 : -1.0;
+      const double alpha = cone ? pa.params.half_angle : 0.0;
+      const double mid = 0.5 * (pa.extent.axial_min + pa.extent.axial_max);
+      const double radius = cone ? std::abs(mid) * std::tan(alpha) : pa.params.radius;
+      for (double theta : stop_angles(common_angles(pa, pb), c.span, options.cone_samples, !c.partial)) {
+        const Vec3 radial = fa.radial(theta);
+        // Cone (axis from apex to opening): outward normal of the material inside is
+        // cos(alpha) radial - sin(alpha) axis.
+        const Vec3 normal = sign * (std::cos(alpha) * radial - std::sin(alpha) * fa.axis);
+        const Vec3 at = fa.origin + fa.axis * mid + radial * radius;
+        out.stops.push_back({index, pnt(at), dir(normal)});
+      }
+      break;
+    }
+    case ContactType::SPF: {
+      for (const Vec3& e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())}) {
+        out.rows.push_back(frame.force_row(p, e));
+        out.bilateral_forces.push_back(e);
+      }
+      break;
+    }
+    case ContactType::LAF:
+    case ContactType::SPT: {  // direction: bore axis, or the groove's tangent at the ball
+      add_axis_forces(frame, p, d, out);
+      Vec3 u, v;
+      perpendiculars(d, u, v);
+      out.bilateral_forces.push_back(u);
+      out.bilateral_forces.push_back(v);
+      break;
+    }
+    case ContactType::TRF: {
+      add_axis_forces(frame, p, d, out);
+      add_axis_moments(d, out);
+      out.rows.push_back(frame.force_row(p, d));
+      Vec3 u, v;
+      perpendiculars(d, u, v);
+      out.bilateral_forces.push_back(u);
+      out.bilateral_forces.push_back(v);
+      out.bilateral_forces.push_back(d);
+      break;
+    }
+  }
+  return out;
+}
+
+// Generators of {d in R^3 : f . d = 0 for bilateral f, n . d >= 0 for stop n}.
+std::vector<gp_Dir> free_direction_cone(const std::vector<Vec3>& bilateral, const std::vector<Vec3>& normals) {
+  constexpr double tol = 1e-7;
+  Eigen::MatrixXd f(bilateral.size(), 3);
+  for (size_t i = 0; i < bilateral.size(); ++i) f.row(i) = bilateral[i].transpose();
+  const Eigen::MatrixXd basis = null_space(f, 1e-6);  // 3 x k
+  const Eigen::Index k = basis.cols();
+  std::vector<Vec3> out;
+  if (k == 0) return {};
+  std::vector<Eigen::VectorXd> m;  // normals within the free subspace
+  for (const Vec3& n : normals) {
+    Eigen::VectorXd mi = basis.transpose() * n;
+    if (mi.norm() > 1e-6) m.push_back(mi.normalized());
+  }
+  Eigen::MatrixXd mm(m.size(), k);
+  for (size_t i = 0; i < m.size(); ++i) mm.row(i) = m[i].transpose();
+  const Eigen::MatrixXd lineality = null_space(mm, 1e-6);  // k x l
+  const Eigen::MatrixXd pointed = m.empty() ? Eigen::MatrixXd(k, 0) : range_space(mm.transpose(), 1e-6);
+  for (Eigen::Index j = 0; j < lineality.cols(); ++j) {
+    out.push_back(basis * lineality.col(j));
+    out.push_back(-(basis * lineality.col(j)));
+  }
+  const Eigen::Index q = pointed.cols();
+  std::vector<Eigen::VectorXd> mq;  // normals in the pointed part's coordinates
+  for (const auto& mi : m) mq.push_back(pointed.transpose() * mi);
+  std::vector<Eigen::VectorXd> candidates;
+  if (q == 1) {
+    candidates.push_back(Eigen::VectorXd::Constant(1, 1.0));
+    candidates.push_back(Eigen::VectorXd::Constant(1, -1.0));
+  } else if (q == 2) {
+    for (const auto& mi : mq) {
+      Eigen::VectorXd perp(2);
+      perp << -mi(1), mi(0);
+      if (perp.norm() < 1e-9) continue;
+      candidates.push_back(perp.normalized());
+      candidates.push_back(-perp.normalized());
+    }
+  } else if (q == 3) {
+    for (size_t i = 0; i < mq.size(); ++i)
+      for (size_t j = i + 1; j < mq.size(); ++j) {
+        const Vec3 c = Vec3(mq[i]).cross(Vec3(mq[j]));
+        if (c.norm() < 1e-9) continue;
+        candidates.push_back(c.normalized());
+        candidates.push_back(-c.normalized());
+      }
+  }
+  for (const auto& y : candidates) {
+    bool feasible = true;
+    for (const auto& mi : mq)
+      if (mi.dot(y) < -tol) feasible = false;
+    if (!feasible) continue;
+    out.push_back(basis * (pointed * y));
+  }
+  // Unit, without repeats.
+  std::vector<gp_Dir> unique;
+  for (Vec3 d : out) {
+    if (d.norm() < 1e-9) continue;
+    d.normalize();
+    const bool seen = std::any_of(unique.begin(), unique.end(),
+                                  [&](const gp_Dir& u) { return vec(u).dot(d) > 1 - 1e-9; });
+    if (!seen) unique.push_back(dir(d));
+  }
+  return unique;
+}
+
+}  // namespace
+
+PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
+                        const std::vector<int>& contact_indices, const JointOptions& options) {
+  PairJoint joint;
+  joint.body_a = body_a;
+  joint.body_b = body_b;
+  joint.contacts = contact_indices;
+
+  // The frame: centre of the contact points, size of their spread and patches.
+  Frame frame;
+  Vec3 sum = Vec3::Zero();
+  for (int i : contact_indices) sum += vec(result.contacts[i].point);
+  if (!contact_indices.empty()) frame.centre = sum / static_cast<double>(contact_indices.size());
+  double length = 0;
+  for (int i : contact_indices) {
+    const Contact& c = result.contacts[i];
+    length = std::max(length, (vec(c.point) - frame.centre).norm() + c.radius + std::sqrt(std::max(0.0, c.area)));
+  }
+  frame.length = length > 1e-9 ? length : 1.0;
+  joint.frame_centre = pnt(frame.centre);
+  joint.frame_length = frame.length;
+
+  std::vector<Vec6> rows;
+  std::vector<Vec3> bilateral, normals;
+  for (int i : contact_indices) {
+    ContactConstraints cc = constraints_of(result, i, frame, options);
+    rows.insert(rows.end(), cc.rows.begin(), cc.rows.end());
+    bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
+    for (const OneSidedStop& s : cc.stops) normals.push_back(vec(s.normal));
+    joint.stops.insert(joint.stops.end(), cc.stops.begin(), cc.stops.end());
+  }
+  Eigen::MatrixXd a(rows.size(), 6);
+  for (size_t i = 0; i < rows.size(); ++i) a.row(i) = rows[i].transpose().normalized();
+  const Eigen::MatrixXd free = null_space(a, options.rank_tolerance);
+  const TwistSpace space = classify_local(free, frame, options.rank_tolerance);
+  joint.type = space.type;
+  joint.dof = space.dof;
+  joint.free_twists = space.basis;
+  joint.rotations = space.rotations;
+  joint.translations = space.translations;
+  joint.pitch = space.pitch;
+  joint.free_directions = free_direction_cone(bilateral, normals);
+  return joint;
+}
+
+std::vector<gp_Dir> body_free_directions(const ContactsResult& contacts, const JointsResult& joints, int body,
+                                         const JointOptions& options) {
+  std::vector<Vec3> bilateral, normals;
+  const Frame frame;  // only the force directions are used
+  for (const PairJoint& joint : joints.joints) {
+    if (joint.body_a != body && joint.body_b != body) continue;
+    // Stops are written for b moving away from a: a moves away along -n.
+    const double sign = joint.body_b == body ? 1.0 : -1.0;
+    for (int i : joint.contacts) {
+      const ContactConstraints cc = constraints_of(contacts, i, frame, options);
+      bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
+      for (const OneSidedStop& stop : cc.stops) normals.push_back(sign * vec(stop.normal));
+    }
+  }
+  return free_direction_cone(bilateral, normals);
+}
+
+JointsResult find_joints(const Assembly& assembly, const ContactsResult& contacts, const JointOptions& options) {
+  JointsResult out;
+  if (contacts.partitions.size() != assembly.bodies.size()) {
+    out.status = Status::failure(StatusCode::InvalidInput,
+                                 "find_joints: the contacts were found on another assembly (" +
+                                     std::to_string(contacts.partitions.size()) + " bodies, not " +
+                                     std::to_string(assembly.bodies.size()) + ")");
+    return out;
+  }
+  std::map<std::pair<int, int>, std::vector<int>> by_pair;
+  for (size_t i = 0; i < contacts.contacts.size(); ++i) {
+    const Contact& c = contacts.contacts[i];
+    by_pair[{std::min(c.body_a, c.body_b), std::max(c.body_a, c.body_b)}].push_back(static_cast<int>(i));
+  }
+  out.joints.reserve(by_pair.size());
+  for (const auto& [pair, indices] : by_pair) {
+    PairJoint joint = joint_of_pair(contacts, pair.first, pair.second, indices, options);
+    out.joints.push_back(std::move(joint));
+  }
+  return out;
+}
+
+}  // namespace contactcore

@@ -1,0 +1,425 @@
+// Tagged tessellation: BRepMesh per body, then one global vertex per B-rep
+// vertex and per edge-polygon node (BRepMesh discretises each edge once for
+// all its faces), so faces meet at shared vertices whatever the CAD
+// tolerances; then conforming refinement to a maximum edge length.
+#include "contactcore/simulation/meshes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <BRepAdaptor_Surface.hxx>
+#include <BRepMesh_IncrementalMesh.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <IMeshTools_Parameters.hxx>
+#include <Poly_PolygonOnTriangulation.hxx>
+#include <Poly_Triangulation.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopLoc_Location.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Vertex.hxx>
+
+namespace contactcore {
+
+namespace {
+
+using Vec3 = std::array<double, 3>;
+using UV = std::array<double, 2>;
+
+Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+// Node `along` (1-based, in the edge's own direction) of B-rep edge `edge`.
+std::uint64_t edge_node_key(int edge, int along) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(edge)) << 32) | static_cast<std::uint32_t>(along);
+}
+
+// A triangle while refining: global vertices and the face-local UV of each corner.
+struct WorkTriangle {
+  std::array<int, 3> v;
+  std::array<UV, 3> uv;
+  int face;  // 1-based
+};
+
+Status face_failure(int face, const std::string& message) {
+  Status status = Status::failure(StatusCode::GeometryError, message);
+  status.face = face;
+  return status;
+}
+
+// Longest-edge bisection (Rivara) in passes: every triangle with an edge
+// longer than `max_edge` gets its longest edge split at a point of the surface
+// (UV midpoint); a triangle with any split edge also splits its longest one,
+// so each triangle is cut from the midpoint of its longest edge and angles stay
+// bounded. A split edge is split in both its triangles (the midpoint is keyed
+// by the edge's two global vertices), so the mesh stays conforming.
+Status refine(std::vector<WorkTriangle>& triangles, std::vector<Vec3>& vertices,
+              const std::vector<BRepAdaptor_Surface>& surfaces, double max_edge, Progress* progress) {
+  if (max_edge <= 0) return Status::success();
+  constexpr std::size_t kMaxTriangles = 20'000'000;
+  const double limit2 = max_edge * max_edge;
+  auto length2 = [&](int a, int b) {
+    const Vec3 d = sub(vertices[a], vertices[b]);
+    return dot(d, d);
+  };
+  // Index k of the longest edge (v[k], v[k+1]); ties broken by the edge key.
+  auto longest_edge = [&](const WorkTriangle& t) {
+    int best = 0;
+    for (int k = 1; k < 3; ++k) {
+      const double lk = length2(t.v[k], t.v[(k + 1) % 3]), lb = length2(t.v[best], t.v[(best + 1) % 3]);
+      if (lk > lb || (lk == lb && edge_key(t.v[k], t.v[(k + 1) % 3]) > edge_key(t.v[best], t.v[(best + 1) % 3])))
+        best = k;
+    }
+    return best;
+  };
+  for (int pass = 0; pass < 200; ++pass) {
+    std::unordered_map<std::uint64_t, int> midpoint;
+    for (const WorkTriangle& t : triangles) {
+      const int k = longest_edge(t);
+      if (length2(t.v[k], t.v[(k + 1) % 3]) > limit2) midpoint.emplace(edge_key(t.v[k], t.v[(k + 1) % 3]), -1);
+    }
+    if (midpoint.empty()) return Status::success();
+    // Closure by a work list: a triangle with a split edge splits its longest one, which may in
+    // turn reach the triangle across it.
+    std::unordered_map<std::uint64_t, std::vector<int>> edge_triangles;
+    edge_triangles.reserve(triangles.size() * 2);
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        edge_triangles[edge_key(triangles[i].v[k], triangles[i].v[(k + 1) % 3])].push_back(static_cast<int>(i));
+    std::vector<int> work;
+    for (std::size_t i = 0; i < triangles.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        if (midpoint.count(edge_key(triangles[i].v[k], triangles[i].v[(k + 1) % 3]))) {
+          work.push_back(static_cast<int>(i));
+          break;
+        }
+    while (!work.empty()) {
+      const WorkTriangle& t = triangles[work.back()];
+      work.pop_back();
+      const int k = longest_edge(t);
+      const std::uint64_t longest = edge_key(t.v[k], t.v[(k + 1) % 3]);
+      if (!midpoint.emplace(longest, -1).second) continue;
+      for (int neighbour : edge_triangles[longest]) work.push_back(neighbour);
+    }
+    if (progress && !progress->report("refine", std::min(1.0, pass / 10.0)))
+      return Status::failure(StatusCode::Cancelled, "cancelled while refining the mesh");
+    if (triangles.size() + 3 * midpoint.size() > kMaxTriangles)
+      return Status::failure(StatusCode::InvalidInput,
+                             "maximum edge length " + std::to_string(max_edge) +
+                                 " mm needs more than 20 million triangles: choose a larger one");
+
+    std::vector<WorkTriangle> next;
+    next.reserve(triangles.size() + 3 * midpoint.size());
+    for (const WorkTriangle& t : triangles) {
+      // Rotated so the longest edge is (v0, v1).
+      const int r = longest_edge(t);
+      const int v[3] = {t.v[r], t.v[(r + 1) % 3], t.v[(r + 2) % 3]};
+      const UV uv[3] = {t.uv[r], t.uv[(r + 1) % 3], t.uv[(r + 2) % 3]};
+      // Midpoint of edge (v[k], v[k+1]) and its UV in this face, or -1.
+      int mid[3] = {-1, -1, -1};
+      UV mid_uv[3]{};
+      for (int k = 0; k < 3; ++k) {
+        auto found = midpoint.find(edge_key(v[k], v[(k + 1) % 3]));
+        if (found == midpoint.end()) continue;
+        mid_uv[k] = {0.5 * (uv[k][0] + uv[(k + 1) % 3][0]), 0.5 * (uv[k][1] + uv[(k + 1) % 3][1])};
+        if (found->second < 0) {
+          const gp_Pnt p = surfaces[t.face - 1].Value(mid_uv[k][0], mid_uv[k][1]);
+          found->second = static_cast<int>(vertices.size());
+          vertices.push_back({p.X(), p.Y(), p.Z()});
+        }
+        mid[k] = found->second;
+      }
+      auto emit = [&](int a, const UV& ua, int b, const UV& ub, int c, const UV& uc) {
+        next.push_back(WorkTriangle{{a, b, c}, {ua, ub, uc}, t.face});
+      };
+      if (mid[0] < 0) {
+        next.push_back(t);
+        continue;
+      }
+      // (v0, m0, v2) and (m0, v1, v2), each split again at its other marked edge.
+      if (mid[2] >= 0) {
+        emit(v[0], uv[0], mid[0], mid_uv[0], mid[2], mid_uv[2]);
+        emit(mid[0], mid_uv[0], v[2], uv[2], mid[2], mid_uv[2]);
+      } else {
+        emit(v[0], uv[0], mid[0], mid_uv[0], v[2], uv[2]);
+      }
+      if (mid[1] >= 0) {
+        emit(mid[0], mid_uv[0], v[1], uv[1], mid[1], mid_uv[1]);
+        emit(mid[0], mid_uv[0], mid[1], mid_uv[1], v[2], uv[2]);
+      } else {
+        emit(mid[0], mid_uv[0], v[1], uv[1], v[2], uv[2]);
+      }
+    }
+    triangles.swap(next);
+  }
+  return Status::failure(StatusCode::GeometryError, "mesh refinement did not converge");
+}
+
+}  // namespace
+
+MeshResult mesh_body(const TopoDS_Shape& shape, const BodyPartitions& partitions, const MeshOptions& options,
+                     Progress* progress) {
+  MeshResult result;
+  if (shape.IsNull()) {
+    result.status = Status::failure(StatusCode::InvalidInput, "empty shape");
+    return result;
+  }
+  if (!(options.deflection > 0) || !(options.angle > 0) || options.max_edge_length < 0) {
+    result.status = Status::failure(StatusCode::InvalidInput,
+                                    "deflection and angle must be positive, the maximum edge length not negative");
+    return result;
+  }
+  TopTools_IndexedMapOfShape faces, edges, topo_vertices;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+  TopExp::MapShapes(shape, TopAbs_VERTEX, topo_vertices);
+
+  std::vector<int> face_partition(faces.Extent() + 1, -1);
+  for (const Partition& partition : partitions.partitions)
+    for (int f : partition.faces)
+      if (f >= 1 && f <= faces.Extent()) face_partition[f] = partition.id;
+  for (int f = 1; f <= faces.Extent(); ++f)
+    if (face_partition[f] < 0) {
+      result.status = face_failure(f, "face has no partition (partitions of another shape?)");
+      return result;
+    }
+
+  try {
+    // A fresh tessellation with exactly these parameters, not one left on the shape.
+    BRepTools::Clean(shape);
+    IMeshTools_Parameters parameters;
+    parameters.Deflection = options.deflection;
+    parameters.Angle = options.angle;
+    parameters.InParallel = false;
+    BRepMesh_IncrementalMesh mesher(shape, parameters);
+    if (progress && !progress->report("mesh", 0.3)) {
+      result.status = Status::failure(StatusCode::Cancelled, "cancelled while meshing");
+      return result;
+    }
+
+    std::vector<Vec3> vertices;
+    std::vector<WorkTriangle> work;
+    std::vector<BRepAdaptor_Surface> surfaces;
+    surfaces.reserve(faces.Extent());
+    // Global vertex of each B-rep vertex, and of each interior node of each edge polygon.
+    std::vector<int> vertex_global(topo_vertices.Extent() + 1, -1);
+    std::unordered_map<std::uint64_t, int> edge_node_global;
+
+    for (int f = 1; f <= faces.Extent(); ++f) {
+      const TopoDS_Face face = TopoDS::Face(faces(f));
+      surfaces.emplace_back(face);
+      TopLoc_Location location;
+      const Handle(Poly_Triangulation) triangulation = BRep_Tool::Triangulation(face, location);
+      if (triangulation.IsNull() || triangulation->NbTriangles() == 0) {
+        result.status = face_failure(f, "OCCT could not tessellate the face");
+        return result;
+      }
+      const gp_Trsf transform = location.Transformation();
+      std::vector<int> node_global(triangulation->NbNodes() + 1, -1);
+      auto new_vertex = [&](int node) {
+        const gp_Pnt p = triangulation->Node(node).Transformed(transform);
+        vertices.push_back({p.X(), p.Y(), p.Z()});
+        return static_cast<int>(vertices.size()) - 1;
+      };
+      // Poles and apexes (vertices of degenerated edges): BRepMesh may put
+      // several nodes there, off the edge's polygon; they are one vertex.
+      std::vector<std::pair<gp_Pnt, int>> poles;  // point, B-rep vertex index
+      for (TopExp_Explorer explorer(face, TopAbs_EDGE); explorer.More(); explorer.Next()) {
+        const TopoDS_Edge edge = TopoDS::Edge(explorer.Current());
+        const Handle(Poly_PolygonOnTriangulation) polygon =
+            BRep_Tool::PolygonOnTriangulation(edge, triangulation, location);
+        if (polygon.IsNull()) {
+          result.status = face_failure(f, "an edge of the face has no discretisation");
+          return result;
+        }
+        const int edge_index = edges.FindIndex(edge);
+        const int count = polygon->NbNodes();
+        TopoDS_Vertex first, last;
+        TopExp::Vertices(TopoDS::Edge(edge.Oriented(TopAbs_FORWARD)), first, last);
+        const bool reversed = polygon->HasParameters() && count > 1 &&
+                              polygon->Parameter(1) > polygon->Parameter(count);
+        const bool degenerated = BRep_Tool::Degenerated(edge);
+        if (degenerated) poles.emplace_back(BRep_Tool::Pnt(first), topo_vertices.FindIndex(first));
+        for (int i = 1; i <= count; ++i) {
+          const int node = polygon->Node(i);
+          const int along = reversed ? count + 1 - i : i;  // position in the edge's own direction
+          int* slot = nullptr;
+          if (degenerated || along == 1)
+            slot = &vertex_global[topo_vertices.FindIndex(first)];
+          else if (along == count)
+            slot = &vertex_global[topo_vertices.FindIndex(last)];
+          else
+            slot = &edge_node_global.emplace(edge_node_key(edge_index, along), -1).first->second;
+          if (*slot < 0) *slot = node_global[node] >= 0 ? node_global[node] : new_vertex(node);
+          if (node_global[node] < 0) node_global[node] = *slot;
+        }
+      }
+      const bool flip = face.Orientation() == TopAbs_REVERSED;
+      const bool has_uv = triangulation->HasUVNodes();
+      for (int t = 1; t <= triangulation->NbTriangles(); ++t) {
+        int n[3];
+        triangulation->Triangle(t).Get(n[0], n[1], n[2]);
+        if (flip) std::swap(n[1], n[2]);
+        WorkTriangle triangle;
+        triangle.face = f;
+        for (int k = 0; k < 3; ++k) {
+          if (node_global[n[k]] < 0) {
+            const gp_Pnt p = triangulation->Node(n[k]).Transformed(transform);
+            for (const auto& [pole, vertex] : poles)
+              if (p.Distance(pole) <= std::max(1e-7, BRep_Tool::Tolerance(TopoDS::Vertex(topo_vertices(vertex))))) {
+                int& slot = vertex_global[vertex];
+                if (slot < 0) slot = new_vertex(n[k]);
+                node_global[n[k]] = slot;
+              }
+          }
+          if (node_global[n[k]] < 0) node_global[n[k]] = new_vertex(n[k]);
+          triangle.v[k] = node_global[n[k]];
+          if (has_uv) {
+            const gp_Pnt2d uv = triangulation->UVNode(n[k]);
+            triangle.uv[k] = {uv.X(), uv.Y()};
+          } else {
+            triangle.uv[k] = {0, 0};
+          }
+        }
+        // Nodes of a degenerated edge (a cone apex, a sphere pole) merge into one vertex.
+        if (triangle.v[0] == triangle.v[1] || triangle.v[1] == triangle.v[2] || triangle.v[0] == triangle.v[2])
+          continue;
+        work.push_back(triangle);
+      }
+      if (!has_uv && options.max_edge_length > 0) {
+        result.status = face_failure(f, "the face's tessellation has no UV nodes to refine");
+        return result;
+      }
+      if (progress && f % 16 == 0 && !progress->report("mesh", 0.3 + 0.4 * f / faces.Extent())) {
+        result.status = Status::failure(StatusCode::Cancelled, "cancelled while meshing");
+        return result;
+      }
+    }
+
+    const Status refined = refine(work, vertices, surfaces, options.max_edge_length, progress);
+    if (!refined.ok()) {
+      result.status = refined;
+      return result;
+    }
+
+    TaggedMesh& mesh = result.mesh;
+    mesh.vertices = std::move(vertices);
+    mesh.partition_count = static_cast<int>(partitions.partitions.size());
+    mesh.triangles.reserve(work.size());
+    mesh.triangle_face.reserve(work.size());
+    mesh.triangle_partition.reserve(work.size());
+    for (const WorkTriangle& t : work) {
+      mesh.triangles.push_back(t.v);
+      mesh.triangle_face.push_back(t.face);
+      mesh.triangle_partition.push_back(face_partition[t.face]);
+    }
+    result.quality = mesh_quality(mesh);
+  } catch (const Standard_Failure& failure) {
+    result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
+  }
+  if (progress) progress->report("mesh", 1.0);
+  return result;
+}
+
+MeshQuality mesh_quality(const TaggedMesh& mesh) {
+  MeshQuality quality;
+  quality.triangles = mesh.triangles.size();
+  std::unordered_map<std::uint64_t, int> uses;
+  uses.reserve(mesh.triangles.size() * 2);
+  std::vector<double> aspects;
+  aspects.reserve(mesh.triangles.size());
+  double min_angle = M_PI;
+  for (const auto& t : mesh.triangles) {
+    std::array<Vec3, 3> p{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+    double longest = 0;
+    for (int k = 0; k < 3; ++k) {
+      ++uses[edge_key(t[k], t[(k + 1) % 3])];
+      const Vec3 e1 = sub(p[(k + 1) % 3], p[k]), e2 = sub(p[(k + 2) % 3], p[k]);
+      const double l1 = norm(e1), l2 = norm(e2);
+      longest = std::max(longest, l1);
+      if (l1 > 0 && l2 > 0) min_angle = std::min(min_angle, std::acos(std::clamp(dot(e1, e2) / (l1 * l2), -1.0, 1.0)));
+      else min_angle = 0;
+    }
+    const double area2 = norm(cross(sub(p[1], p[0]), sub(p[2], p[0])));  // twice the area
+    aspects.push_back(area2 > 0 ? longest * longest * std::sqrt(3.0) / (2 * area2)
+                                : std::numeric_limits<double>::infinity());
+    quality.max_edge_length = std::max(quality.max_edge_length, longest);
+  }
+  for (const auto& [key, count] : uses) {
+    if (count == 1) ++quality.boundary_edges;
+    if (count > 2) ++quality.nonmanifold_edges;
+  }
+  quality.watertight = !mesh.triangles.empty() && quality.boundary_edges == 0 && quality.nonmanifold_edges == 0;
+  quality.min_angle_deg = mesh.triangles.empty() ? 0 : min_angle * 180 / M_PI;
+  if (!aspects.empty()) {
+    std::sort(aspects.begin(), aspects.end());
+    auto percentile = [&](double q) {
+      return aspects[std::min(aspects.size() - 1, static_cast<std::size_t>(q * (aspects.size() - 1) + 0.5))];
+    };
+    quality.aspect_p50 = percentile(0.5);
+    quality.aspect_p90 = percentile(0.9);
+    quality.aspect_p99 = percentile(0.99);
+    quality.aspect_max = aspects.back();
+  }
+  return quality;
+}
+
+Status write_ply(const TaggedMesh& mesh, const std::string& path) {
+  std::ofstream out(path);
+  if (!out) {
+    Status status = Status::failure(StatusCode::ReadError, "cannot write the PLY file");
+    status.file = path;
+    return status;
+  }
+  out << "ply\nformat ascii 1.0\ncomment Contacts tagged mesh: face is FreeCAD's FaceN, partition its id\n"
+      << "element vertex " << mesh.vertices.size() << "\nproperty double x\nproperty double y\nproperty double z\n"
+      << "element face " << mesh.triangles.size()
+      << "\nproperty list uchar int vertex_indices\nproperty int face\nproperty int partition\nend_header\n";
+  out.precision(17);
+  for (const auto& v : mesh.vertices) out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n';
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    out << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << mesh.triangle_face[i] << ' '
+        << mesh.triangle_partition[i] << '\n';
+  }
+  if (!out) {
+    Status status = Status::failure(StatusCode::ReadError, "writing the PLY file failed");
+    status.file = path;
+    return status;
+  }
+  return Status::success();
+}
+
+TaggedMesh mesh_without_partitions(const TaggedMesh& mesh, const std::vector<bool>& enabled) {
+  TaggedMesh out;
+  out.vertices = mesh.vertices;
+  out.partition_count = mesh.partition_count;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const int partition = mesh.triangle_partition[i];
+    if (partition >= 0 && partition < static_cast<int>(enabled.size()) && !enabled[partition]) continue;
+    out.triangles.push_back(mesh.triangles[i]);
+    out.triangle_face.push_back(mesh.triangle_face[i]);
+    out.triangle_partition.push_back(partition);
+  }
+  return out;
+}
+
+}  // namespace contactcore
