@@ -150,11 +150,11 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
   ServoConfig config = options.servo;
   config.centre = c;
   config.lockstep = !realtime;
-  ServoLoop loop(hand, config, start);
+  ServoLoop loop(options.device ? *options.device : static_cast<Device&>(hand), config, start);
   loop.set_joint_finder(&scene.finder());
   loop.set_collision(&scene.collision());
 
-  const double duration = (keys.empty() ? 0.0 : keys.back().t) + options.settle;
+  const double duration = options.device ? options.duration : (keys.empty() ? 0.0 : keys.back().t) + options.settle;
   const auto total = static_cast<std::uint64_t>(duration * config.rate_hz + 0.5);
   // Joints as they engage, and the further bodies the part enters on the same
   // joint (a shaft reaching its second bearing): real-time contacts at the
@@ -203,6 +203,7 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
     }
   } else {
     loop.start();
+    result.memory_locked = loop.memory_locked();
     const auto period = std::chrono::duration<double>(options.record_every > 0 ? options.record_every / config.rate_hz : 0.01);
     while (loop.snapshot().ticks < total) {
       std::this_thread::sleep_for(period);
@@ -219,6 +220,7 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
   result.step_p99_us = loop.step_percentile_us(99);
   result.step_max_us = loop.step_max_us();
   result.overruns = loop.overruns();
+  result.late_wakeups = loop.late_wakeups();
   Vec3 r;
   offset_of(last.proxy, c, result.final_translate, r);
   result.final_rotate_deg = Vec3(deg(r.x()), deg(r.y()), deg(r.z()));
