@@ -69,9 +69,32 @@ def make_scene(assembly, part, progress=None, **options):
     return haptics().TrialScene(assembly, part, progress=progress, **options)
 
 
-def run(scene, script, realtime=False, record_every=10, **options):
-    """The trial's result dict (see `contacts trial --json`) with its 'path'."""
-    return haptics().run_trial(scene, check_script(script), realtime=realtime, record_every=record_every, **options)
+DEVICES = ("sim", "spacemouse", "hid-ff", "replay")
+
+
+def run(scene, script, realtime=False, record_every=10, device="sim", hid_file=None, record_hid=None,
+        duration=None, **options):
+    """The trial's result dict (see `contacts trial --json`) with its 'path'.
+
+    device: 'sim' (the scripted simulated hand), 'spacemouse' or 'hid-ff'
+    (hardware, real time; `record_hid` a file for the raw reports), 'replay'
+    (`hid_file`, a recording). Hardware that is not there raises
+    haptics().DeviceUnavailable, whose `devices` lists the HID devices seen.
+    A device other than 'sim' needs no hand keys: the script gives the start."""
+    if device == "sim" or script is not None and script.get("hand"):
+        script = check_script(script)
+    else:
+        script = {"start": check_script({"start": (script or {}).get("start", {}), "hand": [{"t": 0}]})["start"]}
+    return haptics().run_trial(scene, script, realtime=realtime, record_every=record_every, device=device,
+                               hid_file=hid_file, record_hid=record_hid, duration=duration, **options)
+
+
+def describe_devices_seen(devices):
+    """One line per HID device seen (for "no device" messages), or a line saying there were none."""
+    if not devices:
+        return "no HID devices seen"
+    return "\n".join(f"{d['vendor']:04x}:{d['product_id']:04x} {d['manufacturer']} {d['product']} ({d['path']})"
+                     for d in devices)
 
 
 def write_path(path_samples, target):

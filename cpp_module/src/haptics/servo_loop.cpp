@@ -246,7 +246,7 @@ Pose ServoLoop::limit_and_constrain(const Pose& target, double dt) {
   return candidate;
 }
 
-void ServoLoop::tick(double now) {
+void ServoLoop::tick(double now, bool wall_clock) {
   const double started = steady_seconds();
   const double dt = period_;
   const Vec3 c = config_.centre;
@@ -363,7 +363,7 @@ void ServoLoop::tick(double now) {
   ++step_histogram_[std::min<std::size_t>(static_cast<std::size_t>(step_us / kBinUs), kHistogramBins - 1)];
   if (step_us > period_ * 1e6) {
     ++overruns_;
-    overrun_pending_ = !config_.lockstep;
+    overrun_pending_ = wall_clock && !config_.lockstep;
   }
 
   last_.proxy = proxy_;
@@ -395,7 +395,7 @@ void ServoLoop::tick(double now) {
   snapshots_.write(last_);
 }
 
-void ServoLoop::step_lockstep() { tick(static_cast<double>(ticks_) * period_); }
+void ServoLoop::step_lockstep() { tick(static_cast<double>(ticks_) * period_, false); }
 
 bool ServoLoop::start() {
   if (thread_.joinable()) return false;
@@ -446,7 +446,7 @@ void ServoLoop::run() {
       period_m2_ += delta * (p - period_mean_);
     }
     last_tick_start_ = now;
-    tick(now);
+    tick(now, true);
     advance(deadline, period_ns);
     const timespec after = monotonic_now();
     slept = earlier(after, deadline);

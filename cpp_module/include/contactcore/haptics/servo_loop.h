@@ -109,7 +109,7 @@ class ServoLoop {
   void stop();
   bool running() const { return thread_.joinable(); }
 
-  // Lockstep: one tick at virtual time ticks * period.
+  // Lockstep: one tick at virtual time ticks * period (overruns counted, not acted on).
   void step_lockstep();
 
   // GUI side: lock-free.
@@ -144,7 +144,9 @@ class ServoLoop {
   double wake_latency_mean_us() const { return wake_count_ ? wake_latency_sum_us_ / wake_count_ : 0.0; }
 
  private:
-  void tick(double now);
+  // `wall_clock`: the tick runs on the thread's real clock, where an overrun
+  // trips the watchdog; on a virtual clock (step_lockstep) it is only counted.
+  void tick(double now, bool wall_clock);
   void run();
   void engage(const JointState& joint, double now);
   Pose interpolate(const Pose& a, const Pose& b, double s) const;
