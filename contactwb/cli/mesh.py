@@ -33,9 +33,11 @@ def main(argv):
     if args.envelope is not None and not args.simplify > 0:
         parser.error("--envelope goes with --simplify")
 
-    from contactwb import core, meshes
+    from contactwb import core
+    from contactwb.core import meshes
+    from contactwb.document.files import load_assembly
     try:
-        assembly = meshes.load_assembly(args.file)
+        assembly = load_assembly(args.file)
         document = meshes.write_meshes(assembly, args.out, args.deflection, args.angle, args.max_edge,
                                        args.linear, args.angular, args.simplify, args.envelope or 0.0)
     except core.ContactsError as error:
@@ -66,9 +68,11 @@ def main(argv):
 
 def print_disassembly(path, as_json=False, linear=None, angular=None):
     """`contacts FILE --disassembly [--json]`: the removal sequence; exit code 0, or 2 when the parts interlock."""
-    from contactwb import core, meshes
+    from contactwb import core
+    from contactwb.core import meshes
+    from contactwb.document.files import load_assembly
     try:
-        assembly = meshes.load_assembly(path)
+        assembly = load_assembly(path)
         document = meshes.disassembly_json(assembly, meshes.disassemble(assembly, linear=linear, angular=angular))
     except core.ContactsError as error:
         print(f"contacts: {error}", file=sys.stderr)

@@ -31,10 +31,12 @@ def main(argv):
     parser.add_argument("--capture-angle", type=float, default=2.0, help="engagement capture angle, degrees")
     args = parser.parse_args(argv)
 
-    from contactwb import core, trial
+    from contactwb import core
+    from contactwb.core import trial
+    from contactwb.document.files import load_assembly
     try:
         script = trial.read_script(args.script)
-        assembly = trial.load_assembly(args.file)
+        assembly = load_assembly(args.file)
         scene = trial.make_scene(assembly, args.part, capture_distance=args.capture_distance,
                                  capture_angle_deg=args.capture_angle)
         options = {"stiffness": args.stiffness} if args.stiffness is not None else {}

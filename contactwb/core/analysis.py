@@ -1,7 +1,9 @@
-"""Contact identification, headless: from a STEP file, a FreeCAD document or
-named shapes to typed contacts between named bodies (the paper's list).
+"""Contact identification, headless and without FreeCAD: from a STEP file or
+a contactcore.Assembly to typed contacts between named bodies (the paper's
+list), with the table and JSON forms. Documents and Part shapes:
+contactwb.document.analysis.
 
-    from contactwb import analysis
+    from contactwb import analysis        # (this module and the document one)
     result = analysis.find_contacts_in_step("motor.step")
     print(result.table())
 """
@@ -9,20 +11,12 @@ import os
 from collections import Counter, defaultdict
 from dataclasses import dataclass, field
 from math import degrees
-from typing import Dict, List, Optional, Tuple
+from typing import Dict, List, Tuple
 
 from contactwb import core
+from contactwb.core.kinds import CONTACT_TYPES, TYPE_TITLES
 
-TYPE_TITLES = {
-    "PLF": "Planar fits",
-    "CLJ": "Cylindrical joints",
-    "CJU": "Cylindrical joints, unidirectional (cones)",
-    "SPF": "Spherical fits",
-    "LAF": "Linear annular fits (ball in bore)",
-    "SPT": "Balls in torus grooves",
-    "TRF": "Torus fits",
-}
-TYPE_ORDER = list(TYPE_TITLES)
+TYPE_ORDER = CONTACT_TYPES
 
 
 class _MassTable:
@@ -60,6 +54,17 @@ class BodyInfo:
 
     def __repr__(self):
         return f"BodyInfo(name={self.name!r}, path={self.path!r})"
+
+
+class StoredMass:
+    """Volumes and centres known already (as a document's analysis stored
+    them): BodyInfo's mass table without an assembly."""
+
+    def __init__(self, values):
+        self.values = values
+
+    def get(self, index):
+        return self.values[index]
 
 
 @dataclass
@@ -183,7 +188,7 @@ class Analysis:
         return "\n".join(lines)
 
 
-def _analysis(source, assembly, result, face_name=None):
+def analysis_of_result(source, assembly, result, face_name=None):
     """The Analysis of a core result; converting a huge result (millions of
     pairs) can run out of memory inside pybind11, which then raises
     RuntimeError("Could not allocate ...") or TypeError("Unable to convert
@@ -244,7 +249,7 @@ def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=
     not kept: only what the Analysis reports."""
     result = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress,
                                             threads=threads, max_pairs=max_pairs, check_solids=check_solids)
-    return _analysis(source, assembly, result, face_name)
+    return analysis_of_result(source, assembly, result, face_name)
 
 
 def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None, check_solids="quick"):
@@ -265,24 +270,3 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pa
     except (core.ContactsError, MemoryError) as error:
         raise type(error)(f"{error} in file '{path}'") from error  # same class: callers tell input from options
 
-
-def find_contacts_in_shapes(named_shapes, source="shapes", linear=None, angular=None, progress=None,
-                            max_pairs=None):
-    """Contacts between (name, Part.Shape) pairs placed globally."""
-    assembly = core.assembly_from_shapes(named_shapes)
-    return find_contacts_in_assembly(assembly, source, linear, angular, progress, max_pairs=max_pairs)
-
-
-def find_contacts_in_document(doc, objects=None, linear=None, angular=None, progress=None, max_pairs=None,
-                              check_solids="quick"):
-    """Contacts of a FreeCAD document's visible solids (or of a selection).
-    Returns (Analysis, [DocumentBody]); face names are the objects' FaceN."""
-    from contactwb import bodies as document_bodies
-    messages = []
-    assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
-    result = find_contacts_in_assembly(
-        assembly, doc.Label, linear, angular, progress,
-        face_name=lambda body, index: bodies[body].object_face_name(index), max_pairs=max_pairs,
-        check_solids=check_solids)
-    result.messages.extend(messages)
-    return result, bodies

@@ -1,4 +1,4 @@
-"""Joints and mobility, headless: from contacts to kinematic joints per body
+"""Joints and mobility, headless and without FreeCAD: from contacts to kinematic joints per body
 pair, the assembly's degrees of freedom, its rigid groups and the liaison
 graph (docs/joints.md).
 
@@ -6,6 +6,8 @@ graph (docs/joints.md).
     result, found = joints.joints_in_step("motor.step")
     print(found.table())
     found.write_graph("motor.svg")
+
+Documents and Part shapes: contactwb.document.analysis (joints_in_document).
 """
 import os
 import shutil
@@ -13,7 +15,8 @@ import subprocess
 from dataclasses import dataclass, field
 from typing import List, Optional
 
-from contactwb import analysis, core
+from contactwb import core
+from contactwb.core import analysis
 
 
 def _vec(values):
@@ -164,7 +167,7 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     ground_index = _ground_index(names, ground)
     raw = cc.find_contacts(assembly, linear=linear, angular=angular, progress=progress, max_pairs=max_pairs,
                            clearance_gap=clearance_gap, check_solids=check_solids)
-    result = analysis._analysis(source, assembly, raw, face_name)
+    result = analysis.analysis_of_result(source, assembly, raw, face_name)
     found = cc.find_joints(assembly, raw)
     mobility = cc.assembly_mobility(assembly, raw, found, ground_index)
     records = [JointRecord(
@@ -211,22 +214,3 @@ def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, 
     except core.ContactsError as error:
         raise type(error)(f"{error} in file '{path}'") from error  # same class: usage errors stay usage errors
 
-
-def joints_in_shapes(named_shapes, source="shapes", linear=None, angular=None, ground=None, clearance_gap=0.0):
-    """(analysis.Analysis, Joints) of (name, Part.Shape) pairs placed globally."""
-    return joints_in_assembly(core.assembly_from_shapes(named_shapes), source, linear, angular, ground=ground,
-                              clearance_gap=clearance_gap)
-
-
-def joints_in_document(doc, objects=None, linear=None, angular=None, progress=None, ground=None,
-                       clearance_gap=0.0, max_pairs=None, check_solids="quick"):
-    """(analysis.Analysis, Joints, [DocumentBody]) of a FreeCAD document's visible solids."""
-    from contactwb import bodies as document_bodies
-    messages = []
-    assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
-    result, found = joints_in_assembly(
-        assembly, doc.Label, linear, angular, progress,
-        face_name=lambda body, index: bodies[body].object_face_name(index), ground=ground,
-        clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids)
-    result.messages.extend(messages)
-    return result, found, bodies

@@ -1,8 +1,9 @@
 """Meshes tagged by partition, collision queries and the removal sequence,
-headless (the paper's mixed representation, stage 5).
+headless and without FreeCAD (the paper's mixed representation, stage 5).
+FreeCAD documents as input: contactwb.document.files.load_assembly.
 
-    from contactwb import meshes
-    assembly = meshes.load_assembly("Resources/samples/motor.step")
+    from contactwb.core import meshes
+    assembly = meshes.read_step_assembly("Resources/samples/motor.step")
     for body, result in zip(assembly.bodies, meshes.mesh_assembly(assembly, deflection=0.1)):
         print(body.name, result.quality.watertight)
     print(meshes.disassembly_json(assembly))
@@ -13,16 +14,10 @@ import os
 from contactwb import core
 
 
-def load_assembly(path):
-    """The bodies of a STEP file (read in C++) or of a FreeCAD document's visible solids."""
+def read_step_assembly(path):
+    """The bodies of a STEP file, read in C++."""
     if not os.path.isfile(path):
         raise core.ContactsError(f"no such file: '{path}'")
-    if path.lower().endswith(".fcstd"):
-        from contactwb import bodies as document_bodies
-        from contactwb import freecad_setup
-        doc = freecad_setup.open_document(os.path.abspath(path))
-        assembly, _ = document_bodies.assembly_from_document(doc, None, [])
-        return assembly
     return core.contactcore.read_step(os.path.abspath(path))
 
 

@@ -1,13 +1,14 @@
-"""Haptic trials, headless: load an assembly, build the trial scene for one
-part, check a script, run it with the simulated hand, write the path.
+"""Haptic trials, headless and without FreeCAD: build the trial scene for one
+part of an assembly, check a script, run it with the simulated hand, write
+and read the path. (Loading the assembly from a file:
+contactwb.document.files.load_assembly.)
 
-Used by `contacts trial` (contactwb/cli_trial.py) and the panel
-(contactwb/gui/haptic_panel.py)."""
+Used by `contacts trial` (contactwb/cli/trial.py) and the panel
+(contactwb/gui/panels/haptic_panel.py)."""
 import csv
 import json
 
 from contactwb import core
-from contactwb.meshes import load_assembly  # noqa: F401  (one loader for the file-based tools)
 
 SCRIPT_HELP = ('{"start": {"translate": [x, y, z], "rotate_deg": [rx, ry, rz]}, '
                '"hand": [{"t": s, "translate": [...], "rotate_deg": [...]}, ...]}')

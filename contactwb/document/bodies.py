@@ -9,6 +9,10 @@ GUI can select the faces of a contact."""
 from dataclasses import dataclass, field
 from typing import List, Optional
 
+from contactwb import core
+from contactwb.document.identify import is_workbench_result
+from contactwb.document.shapes import assembly_from_shapes
+
 LEAF_TYPES = ("Part::Feature", "PartDesign::Body")
 
 
@@ -82,7 +86,6 @@ def _product_names(obj, solids):
     object named after the file): the STEP file's product names, matched by
     volume and centre of mass, when the file can be found and every solid
     matches; else None."""
-    from contactwb import core
     for path in _step_candidates(obj):
         try:
             assembly = core.contactcore.read_step(path)
@@ -126,11 +129,7 @@ def _split_solids(name, obj, root, subname, shape, containers):
     return bodies
 
 
-def _is_analysis_object(obj):
-    """The workbench's own results (they link to bodies but hold no solid)."""
-    from contactwb.objects.contact_objects import is_contact, is_contact_analysis
-    from contactwb.objects.simulation_model import is_simulation_model
-    return is_contact_analysis(obj) or is_contact(obj) or is_simulation_model(obj)
+_is_analysis_object = is_workbench_result  # the workbench's own results hold no solid
 
 
 def _roots(doc):
@@ -195,12 +194,11 @@ def _name_after_containers(bodies):
 
 def _make_names_unique(bodies):
     """The core's rule (".2", ".3", ... on repeats), in linear time: one implementation."""
-    from contactwb import core
     for body, name in zip(bodies, core.contactcore.unique_names([b.name for b in bodies])):
         body.name = name
 
 
-def _object_path(subname):
+def object_path(subname):
     """The object part of a selection subname ("Part.Link.Face3" -> "Part.Link.")."""
     if not subname or subname.endswith("."):
         return subname or ""
@@ -218,7 +216,7 @@ def _element_face(subname):
 
 def _body_matches(body, root, subname):
     """Whether a selection (root object, subname) picks or contains this body."""
-    path = _object_path(subname)
+    path = object_path(subname)
     if body.root is root:
         if not (body.subname.startswith(path) or path.startswith(body.subname)):
             return False
@@ -258,8 +256,7 @@ def body_link(body):
 
 def assembly_from_document(doc, objects=None, messages=None):
     """(contactcore.Assembly, [DocumentBody]) for a document or a selection."""
-    from contactwb import core
     bodies = document_bodies(doc, objects, messages)
     if not bodies:
         raise core.ContactsError(f"no visible solid in document '{doc.Label}'")
-    return core.assembly_from_shapes((b.name, b.shape) for b in bodies), bodies
+    return assembly_from_shapes((b.name, b.shape) for b in bodies), bodies

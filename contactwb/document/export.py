@@ -1,35 +1,18 @@
 """Export of a ContactAnalysis group's contacts (headless).
 
-    from contactwb import export
+    from contactwb.document import export
     export.export_contacts(group, "motor_contacts.json")   # or .csv
 
-JSON: the CLI's `--json` document, built by the same function
-(contactwb.analysis.Analysis.to_json): "source", "units", "tolerances",
-"bodies", "contacts" (CONTACT_KEYS; faces are the bodies' "FaceN" names, span in degrees,
-lengths in mm, angular tolerance in radians). CSV: a header, then one row per
-contact (faces separated by spaces, point and direction as x, y, z columns)."""
-import csv
+The group is read back as a contactwb.core.analysis.Analysis (the CLI's
+data), so both write through the same schema (contactwb.core.export)."""
 import json
-import os
 from math import radians
 
-from contactwb.analysis import Analysis, BodyInfo, ContactRecord
-from contactwb.objects.contact_objects import is_contact, is_contact_analysis
-
-CONTACT_KEYS = ["type", "a", "b", "faces_a", "faces_b", "area", "partial", "span", "radius",
-                "half_angle", "point", "direction"]
-CSV_COLUMNS = ["type", "a", "b", "faces_a", "faces_b", "area", "partial", "span", "radius", "half_angle",
-               "point_x", "point_y", "point_z", "direction_x", "direction_y", "direction_z"]
-FORMATS = (".json", ".csv")
-
-
-def analyses(doc):
-    """The ContactAnalysis groups of a document. (Cheap enough for a
-    command's IsActive on large documents: the type is checked first.)"""
-    if doc is None:
-        return []
-    return [obj for obj in doc.Objects
-            if obj.TypeId == "App::DocumentObjectGroupPython" and is_contact_analysis(obj)]
+from contactwb.core.analysis import Analysis, BodyInfo, ContactRecord, StoredMass
+from contactwb.core.export import (CONTACT_KEYS, CSV_COLUMNS, FORMATS, check_format,  # noqa: F401
+                                   write_analysis)
+from contactwb.core.export import contact_records as _records_of_document
+from contactwb.document.identify import analyses, is_contact, is_contact_analysis  # noqa: F401
 
 
 def _face_names(links):
@@ -44,18 +27,8 @@ def live_contacts(group):
     return [c for c in group.Group if is_contact(c) and c.FacesA and c.FacesB]
 
 
-class _StoredMass:
-    """Volumes and centres as the analysis stored them (BodyInfo's mass table)."""
-
-    def __init__(self, values):
-        self.values = values
-
-    def get(self, index):
-        return self.values[index]
-
-
 def as_analysis(group):
-    """The group as a contactwb.analysis.Analysis: the CLI's data, so that
+    """The group as a contactwb.core.analysis.Analysis: the CLI's data, so that
     both export through the same schema (Analysis.to_json)."""
     if not is_contact_analysis(group):
         raise ValueError(f"'{getattr(group, 'Label', group)}' is not a contact analysis")
@@ -70,7 +43,7 @@ def as_analysis(group):
             point=(contact.Point.x, contact.Point.y, contact.Point.z),
             direction=(contact.Direction.x, contact.Direction.y, contact.Direction.z)))
     table = json.loads(getattr(group, "BodyTable", "") or "[]")
-    stored = _StoredMass([(b["volume"], tuple(b["center"])) for b in table])
+    stored = StoredMass([(b["volume"], tuple(b["center"])) for b in table])
     bodies = [BodyInfo(b["name"], b["path"], stored, index) for index, b in enumerate(table)]
     return Analysis(source=group.Document.Label, units="mm",
                     linear_tolerance=group.LinearTolerance.Value,
@@ -85,20 +58,7 @@ def to_json(group):
 
 def contact_records(group):
     """The group's contacts as dicts with CONTACT_KEYS (the CLI's values)."""
-    return [{key: record[key] for key in CONTACT_KEYS} for record in to_json(group)["contacts"]]
-
-
-def _csv_row(record):
-    row = dict(record)
-    row["faces_a"] = " ".join(record["faces_a"])
-    row["faces_b"] = " ".join(record["faces_b"])
-    row["partial"] = "true" if record["partial"] else "false"
-    for key in ("point", "direction"):
-        for axis, value in zip("xyz", row.pop(key)):
-            row[f"{key}_{axis}"] = repr(value)
-    for key in ("area", "span", "radius", "half_angle"):
-        row[key] = repr(record[key])
-    return row
+    return _records_of_document(to_json(group))
 
 
 def export_contacts(group, path):
@@ -106,19 +66,5 @@ def export_contacts(group, path):
     CSV after its extension; returns the number of contacts written.
     Raises ValueError for another extension or a group that is not an
     analysis, OSError when the file cannot be written."""
-    extension = os.path.splitext(path)[1].lower()
-    if extension not in FORMATS:
-        raise ValueError(f"cannot export contacts to '{path}': use a .json or .csv file")
-    if extension == ".json":
-        document = to_json(group)
-        with open(path, "w", encoding="utf-8") as stream:
-            json.dump(document, stream, indent=2)
-            stream.write("\n")
-        return len(document["contacts"])
-    records = contact_records(group)
-    with open(path, "w", encoding="utf-8", newline="") as stream:
-        writer = csv.DictWriter(stream, fieldnames=CSV_COLUMNS)
-        writer.writeheader()
-        for record in records:
-            writer.writerow(_csv_row(record))
-    return len(records)
+    check_format(path)
+    return write_analysis(as_analysis(group), path)

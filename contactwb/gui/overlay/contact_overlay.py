@@ -1,354 +1,32 @@
-"""View providers of the contact objects.
+"""The Coin drawing of a ContactAnalysis group's contacts.
 
-The ContactAnalysis group draws its contacts over the bodies: both sides'
-faces, tessellated as the bodies are, pushed out of their body by the
-tessellation's deflection and pulled towards the viewer by a polygon offset
-so they show on the coincident body faces, coloured by contact type
-(TYPE_COLOURS); partial contacts are lighter and striped, and ball contacts
-(LAF, SPT) get their contact circle (their faces are drawn see-through). The drawing follows the group's
-Visibility, and each side of a contact its body's. Each contact has its own
-switch: hiding a Contact child hides its faces, and a contact is drawn in the
-selection colour while it (or all of its faces) is selected. Double-clicking a
-contact selects its faces on the bodies. The drawing is rebuilt from the
-document when the view provider attaches (also on re-opening a file), when
-contacts are added or deleted and when a body moves.
-
-Saved files name these classes: ViewProviderContactAnalysis and
-ViewProviderContact are permanent names."""
-import math
-import os
-import weakref
-
+Both sides' faces, tessellated as the bodies are, pushed out of their body by
+the tessellation's deflection and pulled towards the viewer by a polygon
+offset so they show on the coincident body faces, coloured by contact type
+(contactwb.gui.overlay.colours); partial contacts are lighter and striped, and
+ball contacts (LAF, SPT) get their contact circle (their faces are drawn
+see-through). Each contact has its own switch: hidden, shown, or drawn in the
+selection colour while it (or all of its faces) is selected; each side shows
+while its body is shown. The view provider
+(contactwb.gui.viewproviders.contact_analysis) owns the overlay and rebuilds
+it; the observer following the selection and the bodies is
+contactwb.gui.overlay.watcher."""
 import FreeCAD
-import FreeCADGui
 import numpy
 from pivy import coin
 
-import contactwb
-from contactwb.objects.contact_objects import is_contact
+from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, TYPE_NAMES
+from contactwb.gui.overlay.coin_nodes import (legend_node, line_material, material, polygon_offset,
+                                              set_stripe_period, stripes)
+from contactwb.gui.overlay.colours import TYPE_COLOURS, legend_colours, selection_colour, type_colour
+from contactwb.gui.overlay.faces import FaceSource, circle_points
+from contactwb.gui.settings import paint_style
 
-# The legend: one colour per contact type (also the tree icons' colour). None
-# is near FreeCAD's selection green or preselection yellow (legend_colours
-# also keeps user-chosen colours away from them).
-TYPE_COLOURS = {
-    "PLF": "#ff8c1a",  # orange
-    "CLJ": "#1f5fff",  # blue
-    "CJU": "#9b30ff",  # purple
-    "SPF": "#d7263d",  # red
-    "LAF": "#00d2e6",  # cyan
-    "SPT": "#ff2fd2",  # magenta
-    "TRF": "#8b5a2b",  # brown
-}
-PREFERENCES = "User parameter:BaseApp/Preferences/Mod/Contacts"
-MIN_COLOUR_DISTANCE = 0.25  # per channel (0..1): what still reads as another colour
-UNKNOWN_COLOUR = "#808080"
-CIRCLE_TYPES = ("LAF", "SPT")  # contact along a circle: area 0
-PARTIAL_LIGHTEN = 0.45         # partial contacts: this far towards white
 CIRCLE_FACE_TRANSPARENCY = 0.6  # the ball and its seat, behind the circle
-CIRCLE_SEGMENTS = 96
 CIRCLE_WIDTH = 4  # pixels
 
 
-def rgb(colour):
-    """(r, g, b) in 0..1 of a "#rrggbb" colour."""
-    return tuple(int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
-
-
-def hex_colour(colour):
-    return "#" + "".join(f"{round(max(0.0, min(1.0, c)) * 255):02x}" for c in colour)
-
-
-def _distance(a, b):
-    return max(abs(x - y) for x, y in zip(a, b))
-
-
-def highlight_colours():
-    """FreeCAD's selection and preselection colours (preferences)."""
-    view = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/View")
-    return [tuple(((view.GetUnsigned(name, default) >> shift) & 0xFF) / 255 for shift in (24, 16, 8))
-            for name, default in (("SelectionColor", 0x1CAD1C00), ("HighlightColor", 0xE1E11400))]
-
-
-def legend_colours():
-    """{type: "#rrggbb"}: the preferences' colours (default TYPE_COLOURS),
-    each moved away from the selection and preselection colours when it is
-    too near one of them (a selected contact must stand out)."""
-    params = FreeCAD.ParamGet(PREFERENCES)
-    avoid = highlight_colours()
-    colours = {}
-    for kind, default in TYPE_COLOURS.items():
-        colour = rgb(params.GetString(f"Colour{kind}", default) or default)
-        for _ in range(4):
-            near = [c for c in avoid if _distance(colour, c) < MIN_COLOUR_DISTANCE]
-            if not near:
-                break
-            # push every channel away from the colour it resembles
-            colour = tuple(x - 0.4 if x >= c else x + 0.4 for x, c in zip(colour, near[0]))
-            colour = tuple(max(0.0, min(1.0, x)) for x in colour)
-        colours[kind] = hex_colour(colour)
-    return colours
-
-
-def paint_style():
-    """"Common area" (default) or "Whole faces" (preferences)."""
-    return FreeCAD.ParamGet(PREFERENCES).GetString("PaintStyle", "Common area") or "Common area"
-
-
-def type_colour(kind, partial=False, colours=None):
-    r, g, b = rgb((colours or legend_colours()).get(kind, UNKNOWN_COLOUR))
-    if partial:
-        r, g, b = (c + (1 - c) * PARTIAL_LIGHTEN for c in (r, g, b))
-    return r, g, b
-
-
-def contact_icon_path(kind):
-    path = contactwb.icon_path(f"Contacts_{kind}")
-    return path if os.path.isfile(path) else contactwb.icon_path("Contacts_FindContacts")
-
-
-def selection_colour():
-    """FreeCAD's selection colour (preferences), as (r, g, b) in 0..1."""
-    packed = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/View").GetUnsigned(
-        "SelectionColor", 0x1CAD1C00)
-    return tuple(((packed >> shift) & 0xFF) / 255 for shift in (24, 16, 8))
-
-
-def _material(colour, transparency=0.0):
-    # Mostly emissive: the type colour reads the same on every side of a
-    # cylinder, while the diffuse part keeps a hint of the shape.
-    material = coin.SoMaterial()
-    material.diffuseColor.setValue(*(0.5 * c for c in colour))
-    material.emissiveColor.setValue(*(0.6 * c for c in colour))
-    material.ambientColor.setValue(0, 0, 0)
-    material.specularColor.setValue(0, 0, 0)
-    material.transparency.setValue(transparency)
-    return material
-
-
-def _line_material(colour):
-    """Opaque flat colour (lines drawn with the BASE_COLOR light model)."""
-    material = coin.SoMaterial()
-    material.diffuseColor.setValue(*colour)
-    material.transparency.setValue(0.0)
-    return material
-
-
-def _polygon_offset(factor, units):
-    offset = coin.SoPolygonOffset()
-    offset.factor.setValue(factor)
-    offset.units.setValue(units)
-    return offset
-
-
-def _stripes():
-    """Nodes striping what follows: a two-texel texture repeated along a
-    fixed world direction (independent of the tessellation); the last one
-    sets the period (_set_stripe_period)."""
-    complexity = coin.SoComplexity()
-    complexity.textureQuality.setValue(0.1)  # nearest texel: sharp stripes
-    texture = coin.SoTexture2()
-    texture.image.setValue(coin.SbVec2s(2, 1), 1, bytes([255, 150]))
-    texture.model.setValue(coin.SoTexture2.MODULATE)
-    texture.wrapS.setValue(coin.SoTexture2.REPEAT)
-    texture.wrapT.setValue(coin.SoTexture2.REPEAT)
-    coordinates = coin.SoTextureCoordinatePlane()
-    coordinates.directionT.setValue(0, 0, 0)
-    _set_stripe_period(coordinates, 1.0)
-    return [complexity, texture, coordinates]
-
-
-def _set_stripe_period(coordinates, period):
-    """One light and one dark stripe every `period` mm along (1, 1, 1)."""
-    step = 1.0 / (period * math.sqrt(3.0))
-    coordinates.directionS.setValue(step, step, step)
-
-
-TYPE_NAMES = {
-    "PLF": "planar fit", "CLJ": "cylindrical joint", "CJU": "cone", "SPF": "spherical fit",
-    "LAF": "ball in bore", "SPT": "ball in groove", "TRF": "torus fit",
-}
-
-
-def _left_out_of_fit_all():
-    """An empty group that FreeCAD's View > Fit all leaves out: its own
-    SoSkipBoundingGroup, which View3DInventorViewer::viewAll switches to
-    EXCLUDE_BBOX while it fits. Held by Python as pivy holds the nodes it
-    makes (one reference, dropped with the Python object)."""
-    kind = coin.SoType.fromName(coin.SbName("SoSkipBoundingGroup"))
-    if kind.isBad():  # pivy without FreeCAD's GUI loaded: no view to fit
-        return coin.SoGroup()
-    group = kind.createInstance()
-    group.ref()
-    group.thisown = True
-    return group
-
-
-def legend_node(entries, name="ContactsLegend"):
-    """A legend drawn over the view's top-left corner: one line of text per
-    (text, (r, g, b)) entry, in its colour. An annotation (named `name`) with
-    its own camera, so it stays put whatever the view's camera does;
-    unpickable. Its text would count at the legend camera's coordinates (near
-    the origin) in the scene's bounding box and pull Fit all off the model:
-    it is wrapped in a group Fit all leaves out, which is returned."""
-    legend = coin.SoAnnotation()
-    legend.setName(name)
-    pick = coin.SoPickStyle()
-    pick.style.setValue(coin.SoPickStyle.UNPICKABLE)
-    camera = coin.SoOrthographicCamera()
-    camera.viewportMapping.setValue(coin.SoCamera.LEAVE_ALONE)  # x, y in -1..1 across the view
-    camera.height.setValue(2.0)
-    camera.position.setValue(0, 0, 5)
-    light = coin.SoLightModel()
-    light.model.setValue(coin.SoLightModel.BASE_COLOR)
-    font = coin.SoFont()
-    font.size.setValue(16)
-    font.name.setValue("sans:bold")
-    for node in (pick, camera, light, font):
-        legend.addChild(node)
-    start = coin.SoTranslation()
-    start.translation.setValue(-0.96, 0.9, 0)
-    legend.addChild(start)
-    for text, colour in entries:
-        base = coin.SoBaseColor()
-        base.rgb.setValue(*colour)
-        label = coin.SoText2()
-        label.string.setValue(text)
-        step = coin.SoTranslation()
-        step.translation.setValue(0, -0.055, 0)
-        for node in (base, label, step):
-            legend.addChild(node)
-    left_out = _left_out_of_fit_all()
-    left_out.addChild(legend)
-    return left_out
-
-
-def _circle_points(centre, axis, radius, segments=CIRCLE_SEGMENTS):
-    axis = FreeCAD.Vector(axis)
-    if axis.Length < 1e-12:
-        return []
-    axis.normalize()
-    helper = FreeCAD.Vector(1, 0, 0) if abs(axis.x) < 0.9 else FreeCAD.Vector(0, 1, 0)
-    u = axis.cross(helper).normalize()
-    v = axis.cross(u)
-    points = []
-    for k in range(segments + 1):
-        angle = 2 * math.pi * k / segments
-        p = centre + u * (radius * math.cos(angle)) + v * (radius * math.sin(angle))
-        points.append((p.x, p.y, p.z))
-    return points
-
-
-class FaceSource:
-    """Placed faces of a contact's XLinkSub links, each tessellated once.
-
-    A face is taken from its object's placed shape (one Part.getShape per
-    object path, sharing the body's geometry) and tessellated asking for the
-    deflection the body's view provider uses, so that OCCT mostly reuses the
-    body's own triangulation. Where the triangulations still differ (a body
-    meshed later, or by other rules), the body's triangles may lie up to one
-    deflection outside ours: the vertices are pushed out of the body's
-    material by that much (along the outward normals of OCCT's triangles),
-    and the polygon offset takes care of the rest."""
-
-    def __init__(self):
-        self._shapes = {}
-        self._meshes = {}
-        self.failures = []
-
-    def _object_shape(self, root, prefix):
-        key = (root.Document.Name, root.Name, prefix)
-        if key not in self._shapes:
-            import Part
-            shape = Part.getShape(root, prefix, transform=True)
-            leaf = root.getSubObject(prefix, retType=1) if prefix else root
-            leaf = leaf.getLinkedObject(True) if leaf is not None else None
-            deviation = getattr(getattr(leaf, "ViewObject", None), "Deviation", 0.5)
-            box = shape.BoundBox if not shape.isNull() else None
-            # ViewProviderPartExt's deflection: box size sum / 300 * Deviation (%).
-            size = (box.XLength + box.YLength + box.ZLength) if box and box.isValid() else 1.0
-            self._shapes[key] = (shape, max(size / 300.0 * deviation, 1e-4))
-        return self._shapes[key]
-
-    def mesh(self, root, subname):
-        """(points (n, 3) array, triangles (m, 3) int array, BoundBox) of the
-        face, or None when it cannot be had."""
-        key = (root.Document.Name, root.Name, subname)
-        if key in self._meshes:
-            return self._meshes[key]
-        mesh = None
-        try:
-            prefix, _, element = subname.rpartition(".")
-            prefix = prefix + "." if prefix else ""
-            shape, deflection = self._object_shape(root, prefix)
-            face = shape.getElement(element)
-            points, triangles = face.tessellate(deflection)
-            if triangles:
-                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
-                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
-                mesh = (_pushed_out(points, triangles, deflection), triangles, face.BoundBox)
-        except Exception as error:  # a deleted or broken body: draw the rest
-            self.failures.append(f"{root.Label}.{subname}: {error}")
-        self._meshes[key] = mesh
-        return mesh
-
-    def _face(self, root, subname):
-        prefix, _, element = subname.rpartition(".")
-        prefix = prefix + "." if prefix else ""
-        shape, deflection = self._object_shape(root, prefix)
-        return shape.getElement(element), deflection
-
-    def common_meshes(self, contact, fuzzy):
-        """[(key, mesh) of side A, (key, mesh) of side B]: the area the two
-        sides' faces share (Boolean common with a fuzzy value, for drawing
-        only), pushed out of each side's body; None when there is none to
-        be had (then the whole faces are drawn)."""
-        try:
-            sides = []
-            for links in (contact.FacesA, contact.FacesB):
-                sides.append([self._face(root, subname) for root, subnames in links for subname in subnames])
-            pieces = []
-            for face_a, deflection in sides[0]:
-                for face_b, _ in sides[1]:
-                    if not face_a.BoundBox.intersect(face_b.BoundBox):
-                        continue
-                    common = face_a.common(face_b, fuzzy)
-                    pieces.extend((piece, deflection) for piece in common.Faces if piece.Area > 0)
-            if not pieces:
-                return None
-            meshes = ([], [])
-            for k, (piece, deflection) in enumerate(pieces):
-                points, triangles = piece.tessellate(deflection)
-                if not triangles:
-                    continue
-                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
-                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
-                # the common face keeps side A's orientation: out of A is into B
-                for side, sign in ((0, 1.0), (1, -1.0)):
-                    meshes[side].append(((contact.Name, side, k),
-                                         (_pushed_out(points, triangles, sign * deflection), triangles,
-                                          piece.BoundBox)))
-            return meshes if meshes[0] else None
-        except Exception as error:  # drawing only: fall back to the whole faces
-            self.failures.append(f"{contact.Label}: common area: {error}")
-            return None
-
-
-def _pushed_out(points, triangles, distance):
-    """Points moved by `distance` along their vertex normals (the area-weighted
-    mean of the normals of their triangles, which OCCT winds outwards)."""
-    corners = points[triangles]
-    normals = numpy.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    vertex_normals = numpy.zeros_like(points)
-    for k in range(3):
-        for axis in range(3):
-            vertex_normals[:, axis] += numpy.bincount(triangles[:, k], weights=normals[:, axis],
-                                                      minlength=len(points))
-    lengths = numpy.linalg.norm(vertex_normals, axis=1)
-    lengths[lengths == 0] = 1.0
-    return points + vertex_normals * (distance / lengths)[:, None]
-
-
-class _TypeLayer:
+class TypeLayer:
     """The faces of one (type, partial) kind: one material and one coordinate
     node shared by the face sets of all contacts of that kind."""
 
@@ -357,13 +35,13 @@ class _TypeLayer:
         self.node = coin.SoSeparator()
         self.node.setName(f"Contacts_{kind}{'_partial' if partial else ''}")
         transparency = CIRCLE_FACE_TRANSPARENCY if kind in CIRCLE_TYPES else 0.0
-        self.node.addChild(_material(type_colour(kind, partial, colours), transparency))
-        self.stripe_nodes = _stripes() if partial else []
+        self.node.addChild(material(type_colour(kind, partial, colours), transparency))
+        self.stripe_nodes = stripes() if partial else []
         for node in self.stripe_nodes:
             self.node.addChild(node)
         self.coordinates = coin.SoCoordinate3()
         self.node.addChild(self.coordinates)
-        self.circle_material = _line_material(type_colour(kind, partial, colours))
+        self.circle_material = line_material(type_colour(kind, partial, colours))
         self.points = []   # point arrays, in coordinate order
         self.count = 0     # points so far
         self.face_rows = {}  # face key -> its triangles' rows of coordIndex (m, 4)
@@ -387,7 +65,7 @@ class _TypeLayer:
             self.coordinates.point.setValues(0, len(points), points)
         if self.stripe_nodes and self.box.isValid():
             # about 30 stripes across the partial contacts
-            _set_stripe_period(self.stripe_nodes[-1], max(self.box.DiagonalLength / 30.0, 1e-3))
+            set_stripe_period(self.stripe_nodes[-1], max(self.box.DiagonalLength / 30.0, 1e-3))
 
 
 def path_visible(root, prefix):
@@ -459,18 +137,18 @@ class ContactOverlay:
         # FreeCAD pushes the bodies' faces back (polygon offset 1, 1, so that
         # their edges show); ours, already out of their body, need a pull of
         # one unit only: more would bring hidden faces through thin walls.
-        for node in (pick, hints, _polygon_offset(0.0, -1.0)):
+        for node in (pick, hints, polygon_offset(0.0, -1.0)):
             self.root.addChild(node)
-        highlight_material = _material(selection_colour())
-        highlight_offset = _polygon_offset(0.0, -3.0)  # over the same face drawn unselected
-        highlight_circle = _line_material(selection_colour())
+        highlight_material = material(selection_colour())
+        highlight_offset = polygon_offset(0.0, -3.0)  # over the same face drawn unselected
+        highlight_circle = line_material(selection_colour())
         source = FaceSource()
         layers = {}
         for contact in contacts:
             kind = contact.ContactType
             key = (kind, bool(contact.Partial))
             if key not in layers:
-                layers[key] = _TypeLayer(*key, colours=self.colours)
+                layers[key] = TypeLayer(*key, colours=self.colours)
             layer = layers[key]
             sides, face_keys = [], set()
             common = None
@@ -536,7 +214,7 @@ class ContactOverlay:
         for key in sorted(layers):
             layers[key].finish()
             self.root.addChild(layers[key].node)
-        kinds = [k for k in TYPE_COLOURS if any(key[0] == k for key in layers)]
+        kinds = [k for k in CONTACT_TYPES if any(key[0] == k for key in layers)]
         counts = {k: sum(1 for c in contacts if c.ContactType == k) for k in kinds}
         self.legend = legend_node([(f"{k} {TYPE_NAMES[k]} ({counts[k]})", type_colour(k, False, self.colours))
                                    for k in kinds])
@@ -558,7 +236,7 @@ class ContactOverlay:
 
     @staticmethod
     def _circle(contact):
-        points = _circle_points(contact.Point, contact.Direction, float(contact.Radius.Value))
+        points = circle_points(contact.Point, contact.Direction, float(contact.Radius.Value))
         if not points:
             return None
         node = coin.SoGroup()  # under a separator with its material
@@ -609,320 +287,3 @@ class ContactOverlay:
         self.highlighted = highlighted
         for name in changed:
             self._update_switch(name)
-
-
-class _ViewProvider:
-    """What both view providers share: nothing to save."""
-
-    def __init__(self, vobj):
-        vobj.Proxy = self
-
-    def attach(self, vobj):
-        self.Object = vobj.Object
-
-    def getIcon(self):
-        return contactwb.icon_path("Contacts_FindContacts")
-
-    # Nothing to save (the drawing is rebuilt from the document). FreeCAD 0.20
-    # under Python 3.11 asks __getstate__ before dumps: both must say so.
-    def __getstate__(self):
-        return None
-
-    def __setstate__(self, state):
-        return None
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        return None
-
-
-class ViewProviderContactAnalysis(_ViewProvider):
-    """Draws the group's contacts (ContactOverlay) under a switch of its own
-    that follows the group's Visibility. (Not as a display mode: a group with
-    display modes shows again any child one hides.)"""
-
-    def attach(self, vobj):
-        super().attach(vobj)
-        self._stale, self._scheduled = False, False
-        self.overlay = ContactOverlay(vobj.Object.Document.Name)
-        # weak: the overlay must not keep a closed document's view provider alive
-        self.overlay.on_body_changed = weakref.WeakMethod(self.schedule_rebuild)
-        self.switch = coin.SoSwitch()
-        self.switch.setName("ContactsSwitch")
-        self.switch.addChild(self.overlay.root)
-        vobj.RootNode.addChild(self.switch)
-        self.onChanged(vobj, "Visibility")
-        _Watcher.register(self.overlay)
-        # Drawn once the document is loaded (on restore the bodies are meshed
-        # by then, and their triangulation is reused); a new analysis is drawn
-        # at once by attach() below.
-        self.schedule_rebuild()
-
-    def onChanged(self, vobj, prop):
-        if prop == "Visibility":
-            self.update_switch()
-
-    def is_stale(self):
-        """Whether the analysis waits for a recompute after its bodies
-        changed: its paint would show contacts that may no longer exist."""
-        obj = getattr(self, "Object", None)
-        try:
-            return bool(getattr(obj, "UpdateOnRecompute", False)) and "Touched" in obj.State
-        except Exception:
-            return False
-
-    def update_switch(self):
-        switch = getattr(self, "switch", None)
-        if switch is None:
-            return
-        shown = self.Object.ViewObject.Visibility and not self.is_stale()
-        switch.whichChild.setValue(coin.SO_SWITCH_ALL if shown else coin.SO_SWITCH_NONE)
-
-    def updateData(self, obj, prop):
-        # Contacts deleted, added or found again (Bodies is set by every run):
-        # redraw. (Group alone is also announced after every attach.)
-        overlay = getattr(self, "overlay", None)
-        if overlay is None:
-            return
-        if prop == "Bodies" or (prop == "Group" and
-                                tuple(c.Name for c in obj.Group if is_contact(c)) != overlay.names):
-            self.schedule_rebuild()
-
-    def schedule_rebuild(self):
-        """Rebuilds once the current operation (loading, a recompute, a move
-        of many bodies) is over."""
-        self._stale = True
-        if not self._scheduled:
-            from PySide2 import QtCore
-            self._scheduled = True
-            QtCore.QTimer.singleShot(0, self._deferred_rebuild)
-
-    def _deferred_rebuild(self):
-        self._scheduled = False
-        if not self._stale:
-            return
-        try:
-            self.Object.ViewObject.Visibility  # raises once the group is deleted
-        except Exception:
-            return
-        self.rebuild()
-
-    def rebuild(self):
-        """Draws the group's contacts now."""
-        self._stale = False
-        contacts = [c for c in self.Object.Group if is_contact(c) and c.FacesA and c.FacesB]
-        self.update_switch()
-        fuzzy = max(10 * self.Object.LinearTolerance.Value, 1e-4)
-        try:
-            self.overlay.build(contacts, fuzzy=fuzzy)
-        except Exception as error:  # a drawing problem must not break the document
-            FreeCAD.Console.PrintError(f"Contacts: cannot draw '{self.Object.Label}': {error}\n")
-            return
-        if self.overlay.failures:
-            FreeCAD.Console.PrintWarning(
-                f"Contacts: {len(self.overlay.failures)} faces of '{self.Object.Label}' not drawn, "
-                f"first: {self.overlay.failures[0]}\n")
-        _Watcher.refresh_highlight(self.Object.Document.Name)
-
-    def claimChildren(self):
-        return self.Object.Group
-
-    def setEdit(self, vobj, mode=0):
-        """Double-click or Edit: the task panel, to find the contacts again."""
-        if mode != 0:
-            return None
-        from contactwb.gui import task_panel
-        task_panel.open_panel(vobj.Object.Document, vobj.Object)
-        return True
-
-    def unsetEdit(self, vobj, mode=0):
-        return None
-
-    def doubleClicked(self, vobj):
-        from contactwb.gui import task_panel
-        task_panel.open_panel(vobj.Object.Document, vobj.Object)
-        return True
-
-    def setupContextMenu(self, vobj, menu):
-        group = vobj.Object
-        _add_action(menu, "Find contacts again...", lambda: _open_panel(group))
-        _add_action(menu, "Contact table", lambda: FreeCADGui.runCommand("Contacts_ShowContactTable"))
-        _add_action(menu, "Export contacts...", lambda: _export(group))
-
-
-class ViewProviderContact(_ViewProvider):
-    """A contact: drawn by its group's overlay; its Visibility switches its
-    part of that drawing."""
-
-    def attach(self, vobj):
-        super().attach(vobj)
-        # An empty display mode: without one the tree greys the contact out
-        # as if it were hidden.
-        vobj.addDisplayMode(coin.SoGroup(), "Overlay")
-
-    def getDisplayModes(self, vobj):
-        return ["Overlay"]
-
-    def getDefaultDisplayMode(self):
-        return "Overlay"
-
-    def setDisplayMode(self, mode):
-        return mode
-
-    def getIcon(self):
-        return contact_icon_path(getattr(getattr(self, "Object", None), "ContactType", ""))
-
-    def doubleClicked(self, vobj):
-        select_contact_faces(vobj.Object)
-        return True
-
-    def setupContextMenu(self, vobj, menu):
-        from contactwb.gui import actions
-        contact = vobj.Object
-        _add_action(menu, "Select faces", lambda: select_contact_faces(contact))
-        _add_action(menu, "Zoom to contact", lambda: actions.zoom_to(contact))
-        _add_action(menu, "Isolate with its parts", lambda: _isolate(contact))
-        _add_action(menu, "Export contacts...", lambda: _export(actions.analysis_of(contact)))
-
-    def onChanged(self, vobj, prop):
-        if prop != "Visibility":
-            return
-        for overlay in _overlays_of(vobj.Object):
-            overlay.set_visible(vobj.Object.Name, vobj.Visibility)
-
-
-def _add_action(menu, text, slot):
-    action = menu.addAction(text)
-    action.triggered.connect(slot)
-    return action
-
-
-def _open_panel(group):
-    from contactwb.gui import task_panel
-    task_panel.open_panel(group.Document, group)
-
-
-def _isolate(contact):
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(contact)
-    FreeCADGui.runCommand("Contacts_IsolateContact")
-
-
-def _export(group):
-    if group is None:
-        return
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(group)
-    FreeCADGui.runCommand("Contacts_ExportContacts")
-
-
-def _overlays_of(contact):
-    """The overlays drawing a Contact (its groups')."""
-    for parent in contact.InList:
-        proxy = getattr(getattr(parent, "ViewObject", None), "Proxy", None)
-        overlay = getattr(proxy, "overlay", None)
-        if overlay is not None:
-            yield overlay
-
-
-class _Watcher:
-    """The session's one selection and document observer: highlights the
-    selected contacts and follows the bodies' Visibility, for every overlay
-    alive (a weak set: closed documents drop out)."""
-
-    overlays = weakref.WeakSet()
-    _installed = None
-
-    @classmethod
-    def register(cls, overlay):
-        cls.overlays.add(overlay)
-        if cls._installed is None:
-            cls._installed = cls()
-            FreeCADGui.Selection.addObserver(cls._installed)
-            FreeCAD.addDocumentObserver(cls._installed)
-
-    @classmethod
-    def refresh_highlight(cls, doc_name):
-        overlays = [o for o in list(cls.overlays) if o.doc_name == doc_name]
-        if not overlays:
-            return
-        objects, faces = set(), set()
-        for selected in FreeCADGui.Selection.getSelectionEx(doc_name, 0):
-            if not selected.SubElementNames:
-                objects.add(selected.ObjectName)
-            for subname in selected.SubElementNames:
-                faces.add((selected.ObjectName, subname))
-        for overlay in overlays:
-            overlay.highlight(objects, faces)
-
-    def _selection_changed(self, doc_name):
-        try:
-            self.refresh_highlight(doc_name)
-        except Exception as error:  # an observer must never break the selection
-            FreeCAD.Console.PrintWarning(f"Contacts: highlight failed: {error}\n")
-
-    def addSelection(self, doc, obj, sub, pnt):
-        self._selection_changed(doc)
-
-    def removeSelection(self, doc, obj, sub):
-        self._selection_changed(doc)
-
-    def setSelection(self, doc):
-        self._selection_changed(doc)
-
-    def clearSelection(self, doc):
-        for name in [doc] if doc else FreeCAD.listDocuments():
-            self._selection_changed(name)
-
-    def slotDeletedObject(self, obj):
-        # a body deleted: its contacts lose their links; redraw without them
-        try:
-            for overlay in list(self.overlays):
-                if overlay.doc_name == obj.Document.Name and obj.Name in overlay.path_names:
-                    method = overlay.on_body_changed
-                    rebuild = method() if method is not None else None
-                    if rebuild is not None:
-                        rebuild()
-        except Exception as error:
-            FreeCAD.Console.PrintWarning(f"Contacts: cannot follow the bodies: {error}\n")
-
-    def slotChangedObject(self, obj, prop):
-        if prop not in ("Visibility", "Placement", "Shape") or not self.overlays:
-            return
-        try:
-            doc_name = obj.Document.Name
-            for overlay in list(self.overlays):
-                if overlay.doc_name != doc_name or obj.Name not in overlay.path_names:
-                    continue
-                if prop == "Visibility":
-                    overlay.update_bodies()
-                else:  # a body moved or changed: redraw its faces
-                    method = overlay.on_body_changed
-                    rebuild = method() if method is not None else None
-                    if rebuild is not None:
-                        rebuild()
-        except Exception as error:
-            FreeCAD.Console.PrintWarning(f"Contacts: cannot follow the bodies: {error}\n")
-
-
-def select_contact_faces(contact):
-    """Selects both sides' faces of a contact in the 3D view."""
-    FreeCADGui.Selection.clearSelection()
-    for links in (contact.FacesA, contact.FacesB):
-        for root, subnames in links:
-            for subname in subnames:
-                FreeCADGui.Selection.addSelection(root.Document.Name, root.Name, subname)
-
-
-def attach(group):
-    """Gives a ContactAnalysis group and its contacts their view providers,
-    and draws the contacts."""
-    provider = group.ViewObject.Proxy
-    if not isinstance(provider, ViewProviderContactAnalysis):
-        provider = ViewProviderContactAnalysis(group.ViewObject)
-    for child in group.Group:
-        if is_contact(child) and not isinstance(child.ViewObject.Proxy, ViewProviderContact):
-            ViewProviderContact(child.ViewObject)
-    provider.rebuild()

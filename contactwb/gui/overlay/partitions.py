@@ -7,6 +7,10 @@ import FreeCADGui
 import numpy
 from pivy import coin
 
+from contactwb.gui.overlay.coin_nodes import legend_node, material, polygon_offset
+from contactwb.gui.overlay.colours import rgb
+from contactwb.gui.overlay.faces import pushed_out
+
 SURFACE_COLOURS = {  # Fig. 3c's idea: one colour per surface type
     "Plane": "#4f81bd",
     "Cylinder": "#f2a33a",
@@ -27,7 +31,6 @@ class PartitionsView:
 
     def __init__(self, doc, bodies):
         from contactwb import core
-        from contactwb.gui import view_providers
         self.doc_name = doc.Name
         self.root = coin.SoSeparator()
         self.root.setName(NODE_NAME)
@@ -36,7 +39,7 @@ class PartitionsView:
         hints = coin.SoShapeHints()
         hints.vertexOrdering.setValue(coin.SoShapeHints.COUNTERCLOCKWISE)
         hints.shapeType.setValue(coin.SoShapeHints.UNKNOWN_SHAPE_TYPE)
-        for node in (pick, hints, view_providers._polygon_offset(0.0, -1.0)):
+        for node in (pick, hints, polygon_offset(0.0, -1.0)):
             self.root.addChild(node)
         self.counts = {kind: 0 for kind in SURFACE_COLOURS}
         self.bodies = [b.name for b in bodies]
@@ -55,14 +58,14 @@ class PartitionsView:
                     if triangles:
                         points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
                         triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
-                        meshes[kind].append((view_providers._pushed_out(points, triangles, deflection),
+                        meshes[kind].append((pushed_out(points, triangles, deflection),
                                              triangles))
         for kind, parts in meshes.items():
             if not parts:
                 continue
             layer = coin.SoSeparator()
             layer.setName(f"Partitions_{kind}")
-            layer.addChild(view_providers._material(view_providers.rgb(SURFACE_COLOURS[kind])))
+            layer.addChild(material(rgb(SURFACE_COLOURS[kind])))
             coordinates = coin.SoCoordinate3()
             offset, rows = 0, []
             all_points = []
@@ -80,8 +83,8 @@ class PartitionsView:
             layer.addChild(coordinates)
             layer.addChild(face_set)
             self.root.addChild(layer)
-        self.legend = view_providers.legend_node(
-            [(f"{kind}: {count} partition{'s' if count > 1 else ''}", view_providers.rgb(SURFACE_COLOURS[kind]))
+        self.legend = legend_node(
+            [(f"{kind}: {count} partition{'s' if count > 1 else ''}", rgb(SURFACE_COLOURS[kind]))
              for kind, count in self.counts.items() if count], "PartitionsLegend")
         self.root.addChild(self.legend)
 
@@ -96,7 +99,7 @@ def is_shown(doc):
 def show(doc, entries):
     """Draws the partitions of the bodies the selection entries pick (every
     visible body when there is none); returns the PartitionsView."""
-    from contactwb import bodies as document_bodies
+    from contactwb.document import bodies as document_bodies
     hide(doc)
     everything = document_bodies.document_bodies(doc)
     chosen = document_bodies.bodies_of_selection(everything, entries) if entries else everything

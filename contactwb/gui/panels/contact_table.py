@@ -7,7 +7,9 @@ import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
 
-from contactwb.objects.contact_objects import CONTACT_TYPES, is_contact, is_joint
+from contactwb.core.kinds import CONTACT_TYPES
+from contactwb.document.identify import is_contact, is_joint
+from contactwb.gui.overlay.colours import legend_colours
 
 COLUMNS = ["#", "Type", "Part A", "Part B", "Area (mm\u00b2)", "Span (\u00b0) / DOF", "Radius (mm)", "Partial",
            "Analysis"]
@@ -94,14 +96,13 @@ class ContactTable(QtWidgets.QWidget):
     # --- filling -------------------------------------------------------
     def fill(self, doc=None):
         """Lists the contacts of `doc` (default: the active document)."""
-        from contactwb import export
-        from contactwb.gui import view_providers
+        from contactwb.document import export
         doc = doc or FreeCAD.ActiveDocument
         self.doc_name = doc.Name if doc else None
         groups = export.analyses(doc) if doc else []
         self.contacts = [c for g in groups for c in export.live_contacts(g)]
         joints = [j for g in groups for j in g.Group if is_joint(j)]
-        colours = view_providers.legend_colours()
+        colours = legend_colours()
         self._syncing = True
         self.table.setSortingEnabled(False)
         self.table.setRowCount(len(self.contacts) + len(joints))

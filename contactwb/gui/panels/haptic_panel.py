@@ -1,4 +1,4 @@
-"""The haptic trial panel (`Contacts_HapticTrial`): grab the selected part
+"""The haptic trial panel (its command: contactwb.gui.commands.haptics): grab the selected part
 with a device (the simulated hand, or a SpaceMouse through hidapi) and insert
 or extract it. The C++ loop runs at 1 kHz on its own thread; this panel reads
 its snapshot at display rate (30 Hz), moves the part in the 3D view, shows the
@@ -9,29 +9,16 @@ import time
 import FreeCAD
 import FreeCADGui
 
-import contactwb
+from contactwb import core
 
 DISPLAY_PERIOD_MS = 33
 active_panel = None  # the open panel (for scripts and tests)
 
 
-def _selected_part():
-    """The one selected object, with the path it was picked by (a part inside an
-    App::Part or through a link): (object, subname) or None."""
-    selection = FreeCADGui.Selection.getSelectionEx("", 0)  # unresolved: top-level object and path
-    if len(selection) != 1:
-        return None
-    entry = selection[0]
-    subnames = [s for s in entry.SubElementNames] or [""]
-    if len(subnames) != 1:
-        return None
-    return entry.Object, subnames[0]
-
-
 def _body_to_move(bodies, picked):
     """The document body the selection picks: `picked` is a document object or
     an (object, subname) pair from the 3D view or the tree."""
-    from contactwb import bodies as document_bodies
+    from contactwb.document import bodies as document_bodies
     if isinstance(picked, tuple):
         chosen = document_bodies.bodies_of_selection(bodies, [(picked[0], [picked[1]])])
         label = picked[0].getSubObject(picked[1], retType=1).Label if picked[1] else picked[0].Label
@@ -39,15 +26,15 @@ def _body_to_move(bodies, picked):
         chosen = [b for b in bodies if b.obj is picked]
         label = picked.Label
     if not chosen:
-        raise contactwb.core.ContactsError(f"'{label}' is not a visible solid of the document")
+        raise core.ContactsError(f"'{label}' is not a visible solid of the document")
     if len(chosen) != 1 or len([b for b in bodies if b.obj is chosen[0].obj]) != 1:
-        raise contactwb.core.ContactsError(f"'{label}': the haptic trial moves parts made of one solid")
+        raise core.ContactsError(f"'{label}': the haptic trial moves parts made of one solid")
     body = chosen[0]
     # Reached through a link to a container, the part is the original every
     # instance shows: moving it would move them all.
     for container in [body.root] + list(body.containers):
         if container.isDerivedFrom("App::Link") and container is not body.obj:
-            raise contactwb.core.ContactsError(
+            raise core.ContactsError(
                 f"'{body.obj.Label}' is inside the linked container '{container.Label}': move the link "
                 f"or open the original")
     return body
@@ -55,8 +42,8 @@ def _body_to_move(bodies, picked):
 
 def _joint_choices(assembly, scene, part):
     """The part's assembled joints the loop can hold it to (from the joints
-    stage, contactwb/joints.py): [{"label", "type", "with", "axis", "pair"}]."""
-    from contactwb import joints
+    stage, contactwb/core/joints.py): [{"label", "type", "with", "axis", "pair"}]."""
+    from contactwb.core import joints
     _, found = joints.joints_in_assembly(assembly)
     choices = []
     for record, pair in zip(found.joints, found.raw[1].joints):
@@ -72,40 +59,6 @@ def _joint_choices(assembly, scene, part):
     return choices
 
 
-class Contacts_HapticTrial:
-    """Opens the haptic trial panel on the selected part."""
-
-    def GetResources(self):
-        return {
-            "Pixmap": contactwb.icon_path("Contacts_HapticTrial"),
-            "MenuText": "Haptic trial",
-            "ToolTip": "Grab the selected part with a 3D mouse or the simulated hand and insert or extract it: "
-                       "the part follows the joints its contacts allow and stops at collisions",
-        }
-
-    def IsActive(self):
-        return FreeCAD.ActiveDocument is not None and FreeCADGui.Control.activeDialog() is False
-
-    def Activated(self):
-        from contactwb import core
-        picked = _selected_part()
-        if picked is None:
-            _show_error("Select one part (a solid) to move.")
-            return
-        try:
-            panel = HapticTrialPanel(FreeCAD.ActiveDocument, picked)
-        except core.ContactsError as error:
-            _show_error(str(error))
-            return
-        FreeCADGui.Control.showDialog(panel)
-
-
-def _show_error(message):
-    from PySide2 import QtWidgets
-    FreeCAD.Console.PrintError(f"Contacts: {message}\n")
-    QtWidgets.QMessageBox.warning(FreeCADGui.getMainWindow(), "Haptic trial", message)
-
-
 class HapticTrialPanel:
     """Task panel: device, enable, part and joint, stiffness and damping,
     readouts, record / replay, reset; OK commits the placement, Cancel resets."""
@@ -118,7 +71,8 @@ class HapticTrialPanel:
         subname) selection path (a part inside an App::Part, or a link)."""
         global active_panel
         import Part
-        from contactwb import bodies as document_bodies, trial
+        from contactwb.core import trial
+        from contactwb.document import bodies as document_bodies
         self.doc = doc
         assembly, bodies = document_bodies.assembly_from_document(doc)
         body = _body_to_move(bodies, picked)
@@ -431,12 +385,3 @@ class HapticTrialPanel:
         from PySide2 import QtWidgets
         return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
 
-
-COMMANDS = {"Contacts_HapticTrial": Contacts_HapticTrial}
-
-
-def register():
-    """Adds the command; returns its name (for its own toolbar and menu)."""
-    for name, command in COMMANDS.items():
-        FreeCADGui.addCommand(name, command())
-    return list(COMMANDS)

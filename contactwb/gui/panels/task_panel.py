@@ -8,11 +8,12 @@ import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtWidgets
 
-from contactwb.objects.contact_objects import CONTACT_TYPES, SCOPES, is_contact, is_contact_analysis
+from contactwb.core.kinds import CONTACT_TYPES, SCOPES, TYPE_NAMES
+from contactwb.document.identify import is_contact, is_contact_analysis
+from contactwb.gui import settings
 
 SCOPE_TEXTS = {"Document": "Whole document", "Selection": "Selected parts only",
                "PartAgainstRest": "Selected part against the rest"}
-PREFERENCES = "User parameter:BaseApp/Preferences/Mod/Contacts"
 
 
 def selection_entries(doc):
@@ -44,7 +45,8 @@ def selected_analysis(doc):
 def model_tolerances(doc, entries=None):
     """(linear mm, angular rad) the core would choose for the document's
     visible solids: its defaults scaled to the model's box."""
-    from contactwb import bodies, core
+    from contactwb import core
+    from contactwb.document import bodies
     box = FreeCAD.BoundBox()
     for body in bodies.document_bodies(doc):
         box.add(body.shape.BoundBox)
@@ -117,7 +119,6 @@ class FindContactsPanel:
         types_box = QtWidgets.QGroupBox("Contact types to look for")
         types_layout = QtWidgets.QGridLayout(types_box)
         self.types = {}
-        from contactwb.gui.view_providers import TYPE_NAMES
         for index, kind in enumerate(CONTACT_TYPES):
             check = QtWidgets.QCheckBox(f"{kind} {TYPE_NAMES[kind]}")
             check.setChecked(True)
@@ -154,7 +155,7 @@ class FindContactsPanel:
             for kind, check in self.types.items():
                 check.setChecked(not group.ContactTypes or kind in group.ContactTypes)
         else:
-            params = FreeCAD.ParamGet(PREFERENCES)
+            params = settings.params()
             if params.GetFloat("LinearTolerance", 0.0) > 0:
                 self.linear.setProperty("rawValue", params.GetFloat("LinearTolerance"))
             if params.GetFloat("AngularTolerance", 0.0) > 0:
@@ -247,7 +248,7 @@ class FindContactsPanel:
                    f"({', '.join(group.Summary) or 'none'})")
         self.status.setText(message)
         FreeCAD.Console.PrintMessage(f"Contacts: {message}\n")
-        from contactwb.gui import contact_table
+        from contactwb.gui.panels import contact_table
         contact_table.refresh()
         return True
 
