@@ -18,10 +18,31 @@ class GuiHooks:
         attach.attach_analysis(group)
 
     def document_restored(self, doc_name):
-        from PySide2 import QtCore
+        attach_when_restored(doc_name)
+
+
+RETRY_MS = 50
+
+
+def attach_when_restored(doc_name):
+    """View providers for the document's Contacts objects that have none, once
+    the GUI document has restored its own: FreeCAD processes events while it
+    opens a document, and an object given a view provider before the GUI
+    restores the saved one would end with the saved one unattached."""
+    from PySide2 import QtCore
+
+    def attach_now():
+        import FreeCAD
         from contactwb.gui.viewproviders import attach
-        # after the GUI document has restored its own view providers
-        QtCore.QTimer.singleShot(0, lambda name=doc_name: attach.attach_view_providers(name))
+        doc = FreeCAD.listDocuments().get(doc_name)
+        if doc is None:
+            return
+        if doc.Restoring:  # still loading (its GUI part too): later
+            QtCore.QTimer.singleShot(RETRY_MS, attach_now)
+            return
+        attach.attach_view_providers(doc_name)
+
+    QtCore.QTimer.singleShot(0, attach_now)
 
 
 def install():

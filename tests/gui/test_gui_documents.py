@@ -72,7 +72,7 @@ def test_headless_version_1_document_gets_view_providers_and_is_migrated(reports
     check_working(reports["make"]["version_1"])
 
 
-def test_headless_2_0_1_document_recomputes_with_view_providers(reports):
+def test_headless_2_0_1_document_gets_view_providers_and_draws(reports):
     # saved headless by the code before the Python layers: the motor's analysis and a collision model
     objects = reports["make"]["version_2_0_1"]
     group = objects["Contacts"]

@@ -19,6 +19,8 @@ from contactwb.gui.overlay.watcher import OverlayWatcher
 from contactwb.gui.panels import task_panel
 from contactwb.gui.viewproviders.base import ViewProvider, add_action
 
+RESTORE_RETRY_MS = 50  # a drawing asked for while the document is opening waits this long, again
+
 
 class ViewProviderContactAnalysis(ViewProvider):
     """Draws the group's contacts (ContactOverlay) under a switch of its own
@@ -87,7 +89,15 @@ class ViewProviderContactAnalysis(ViewProvider):
             return
         try:
             self.Object.ViewObject.Visibility  # raises once the group is deleted
+            restoring = self.Object.Document.Restoring
         except Exception:
+            return
+        if restoring:
+            # FreeCAD processes events while it opens a document: the bodies'
+            # visibility and the group's state are not final yet
+            from PySide2 import QtCore
+            self._scheduled = True
+            QtCore.QTimer.singleShot(RESTORE_RETRY_MS, self._deferred_rebuild)
             return
         self.rebuild()
 
