@@ -1,11 +1,12 @@
 # Contacts workbench: GUI registration. FreeCAD execs this file, so the class
-# is self-contained and imports lazily in Initialize(). Importing contactwb.gui
+# is self-contained and imports lazily in Initialize(). contactwb.gui.hooks
 # (light: no Coin, no Qt) sets the hooks through which objects made or restored
 # before the workbench is activated get their view providers.
 import FreeCADGui
 
 try:
-    import contactwb.gui  # noqa: F401
+    from contactwb.gui import hooks as contacts_gui_hooks
+    contacts_gui_hooks.install()
 except Exception as error:  # a broken install must not stop FreeCAD
     import FreeCAD
     FreeCAD.Console.PrintError(f"Contacts: {error}\n")

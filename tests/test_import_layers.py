@@ -110,6 +110,27 @@ def imports_of(name, path, modules):
     return found
 
 
+def packages_run_by(name, path, modules):
+    """Packages whose __init__ runs for this file's `from package import x`:
+    the cycle check counts them, as Python runs a package's __init__ before
+    any module of it (a package __init__ that imports its own modules would
+    otherwise hide a cycle: gui/__init__ -> hooks -> ... -> `from gui import settings`)."""
+    tree = ast.parse(open(path, encoding="utf-8").read(), filename=path)
+    package = name if _is_package(path) else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                parts = package.split(".")
+                parts = parts[:len(parts) - (node.level - 1)]
+                base = ".".join(parts + ([node.module] if node.module else []))
+            else:
+                base = node.module
+            if base in modules and _is_package(modules[base]):
+                found.add(base)
+    return found
+
+
 def private_attribute_uses(path, modules, imported):
     """[(module, attribute, line)]: `alias._x` where alias names a contactwb module."""
     tree = ast.parse(open(path, encoding="utf-8").read(), filename=path)
@@ -228,6 +249,7 @@ def check(root, shims=SHIMS):
                     problems.append(f"{relative}:{line}: {name} imports {target}: core never imports FreeCAD "
                                     f"or its GUI (FreeCAD adapters go in contactwb/document)")
     layered = {name: [t for t, _, _ in targets if t in modules and t not in shims]
+               + sorted(packages_run_by(name, modules[name], modules) - {name} - set(shims))
                for name, targets in edges.items() if name not in shims}
     for component in cycles(layered, layered):
         problems.append("import cycle: " + " <-> ".join(component))
@@ -280,3 +302,14 @@ def test_checker_catches_violations(tmp_path):
     assert "contactwb.cli.tool imports the compatibility shim contactwb.old" in text
     assert "the shim contactwb.old imports contactwb.gui.view" in text
     assert len(problems) == 9, text
+
+
+def test_cycle_through_a_package_init_is_caught(tmp_path):
+    """A package __init__ importing its own module, which imports from the package, is a cycle."""
+    root = str(tmp_path)
+    _write(root, "contactwb/__init__.py", "")
+    _write(root, "contactwb/gui/__init__.py", "from contactwb.gui import hooks\n")
+    _write(root, "contactwb/gui/hooks.py", "from contactwb.gui import settings\n")
+    _write(root, "contactwb/gui/settings.py", "")
+    problems = check(root, shims={})
+    assert problems == ["import cycle: contactwb.gui <-> contactwb.gui.hooks"], problems

@@ -110,8 +110,8 @@ def main(argv=None):
                              "model); see docs/reliability.md")
     args = parser.parse_args(argv)
     if args.disassembly:
-        from contactwb.cli import mesh as cli_mesh
-        return cli_mesh.print_disassembly(args.file, args.json, args.linear, args.angular)
+        from contactwb.cli.mesh import print_disassembly  # the module, not the package: no cycle through cli/__init__
+        return print_disassembly(args.file, args.json, args.linear, args.angular)
 
     try:
         from contactwb import core
