@@ -86,7 +86,7 @@ def run():
     FreeCADGui.runCommand("Contacts_HapticTrial")
     wait(0.5)
     FreeCADGui.Selection.clearSelection()
-    from contactwb.gui import haptic_panel
+    from contactwb.gui.panels import haptic_panel
     panel = haptic_panel.active_panel
     report["panel_open"] = panel is not None
     if panel is None:
