@@ -58,6 +58,27 @@ def run():
     main.resize(1280, 960)
     FreeCADGui.activateWorkbench("ContactsWorkbench")
     doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
+    from contactwb.gui.panels import haptic_panel
+    axis = next(o for o in doc.Objects if o.Label == "Axis")
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewFront()
+    view.fitAll()
+    # Baseline: the panel's display rate without a contact analysis (same drag, 1.5 s).
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(axis)
+    FreeCADGui.runCommand("Contacts_HapticTrial")
+    wait(0.5)
+    FreeCADGui.Selection.clearSelection()
+    panel = haptic_panel.active_panel
+    frames_before, start = len(panel.frame_times), time.monotonic()
+    for i in range(31):
+        panel.hand_sliders["z"].setValue(int(round(5.0 * i / 30 * haptic_panel.SLIDER_STEPS_PER_UNIT)))
+        wait(0.05)
+    report["baseline_rate_hz"] = (len(panel.frame_times) - frames_before) / (time.monotonic() - start)
+    costs = panel.update_seconds[-(len(panel.frame_times) - frames_before):] or [0.0]
+    report["baseline_update_ms"] = 1000 * sum(costs) / len(costs)
+    panel.reject()
+    wait(0.3)
     from contactwb.make import make_contact_analysis
     group = make_contact_analysis(doc)
     doc.recompute()
@@ -86,7 +107,6 @@ def run():
     FreeCADGui.runCommand("Contacts_HapticTrial")
     wait(0.5)
     FreeCADGui.Selection.clearSelection()
-    from contactwb.gui.panels import haptic_panel
     panel = haptic_panel.active_panel
     report["panel_open"] = panel is not None
     if panel is None:
@@ -110,6 +130,8 @@ def run():
     report["frames"] = len(panel.frame_times) - frames_before
     report["seconds"] = elapsed
     report["update_rate_hz"] = report["frames"] / elapsed
+    costs = panel.update_seconds[-report["frames"]:] or [0.0]
+    report["update_ms"] = 1000 * sum(costs) / len(costs)
     report["panel_rate_hz"] = panel.update_rate_hz(3.0)
     report["redraws_while_moving"] = len(builds) - builds_before
     report["slider_label"] = panel.hand_values["z"].text()
@@ -132,6 +154,7 @@ def run():
     report["redraws_while_replaying"] = len(builds) - builds_before - report["redraws_while_moving"]
     report["replayed_snapshot"] = panel.session.snapshot()["translate"]
     report["replayed_offset"] = offset(axis, original)
+    report["sliders_after_replay"] = list(panel.hand_slider_values()[0]) + list(panel.hand_slider_values()[1])
     report["constraints_seated"] = panel.readouts["constraints"].text()
     report["readouts"] = {k: v.text() for k, v in panel.readouts.items()}
     report["replay_png"] = grab_window_with_view("haptic_hand_replayed.png")

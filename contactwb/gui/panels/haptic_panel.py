@@ -102,6 +102,7 @@ class HapticTrialPanel:
         self.recording = None     # list of samples while recording
         self.last = None
         self.frame_times = []     # monotonic time of each display update (the panel's rate)
+        self.update_seconds = []  # time spent in each update (the panel's own cost per frame)
         self.form = self._build_form()
         # The overlays must not redraw every contact each time the part moves.
         try:
@@ -315,11 +316,13 @@ class HapticTrialPanel:
             return
         if self.script is not None:
             self._drive_script()
+        began = time.monotonic()
         s = self.session.snapshot()
         self.last = s
-        self.frame_times.append(time.monotonic())
+        self.frame_times.append(began)
         if len(self.frame_times) > 2000:
             del self.frame_times[:1000]
+            del self.update_seconds[:1000]
         self._show_placement(s["matrix"])
         self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s["axes"]))
         if s["engaged"]:
@@ -336,6 +339,7 @@ class HapticTrialPanel:
         r["rate"].setText(f"{s['rate_hz']:.0f} Hz")
         r["jitter"].setText(f"{s['jitter_us']:.0f} us")
         r["watchdog"].setText(s["watchdog"] if s["watchdog"] != "none" else "ok")
+        self.update_seconds.append(time.monotonic() - began)
         if self.recording is not None:
             self.recording.append({"t": s["time"], "translate": s["translate"], "rotate_deg": s["rotate_deg"],
                                    "force": s["force"], "engaged": s["engaged"], "penetration": s["penetration"]})
@@ -403,6 +407,7 @@ class HapticTrialPanel:
             key = keys[-1]
             self.script = None
             self.session.set_hand_target(key["translate"], key["rotate_deg"])
+            self.set_hand_sliders(key["translate"] + key["rotate_deg"], drive=False)  # where the hand is now
             return
         after = next(i for i, k in enumerate(keys) if k["t"] > t)
         a, b = keys[max(0, after - 1)], keys[after]
