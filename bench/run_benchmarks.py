@@ -324,6 +324,7 @@ def main():
     parser.add_argument("--grids", type=int, nargs="*", default=GRID_SIZES)
     parser.add_argument("--write", help="also write the report to this Markdown file")
     parser.add_argument("--plot", help="also draw time against parts (bare XDE read, ours) into this PNG")
+    parser.add_argument("--skip-meshes", action="store_true", help="leave out bench/bench_meshes.py")
     args = parser.parse_args()
     build_dir = os.path.abspath(args.build_dir)
     data_dir = os.path.join(build_dir, "bench-data")
@@ -394,6 +395,8 @@ def main():
     if args.write:
         write_section(args.write, "contacts bench", "`make bench` (bench/run_benchmarks.py) prints these tables.\n\n" + text)
     # Meshes, collision and disassembly: their own program and section (bench/bench_meshes.py).
+    if args.skip_meshes:
+        return
     subprocess.run([sys.executable, os.path.join(REPO, "bench", "bench_meshes.py"), "--build-dir", build_dir]
                    + (["--write", args.write] if args.write else []), check=True)
 
