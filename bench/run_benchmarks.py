@@ -357,9 +357,10 @@ def main():
               f"builds. Each run in its own process; best of {args.repeat}.",
               "",
               "*Bare XDE read*: OCCT alone bringing the file into an XDE document (STEPCAFControl_Reader, "
-              "names on, colours/layers/properties off: the floor of any STEP tool). *Ours end to end*: "
-              "read_step (that read, plus the walk of the assembly tree and names) then find_contacts on all "
-              "cores, from the same file. Peaks are each process's maximum resident memory. *Cancel latency*: "
+              "names on, colours/layers/properties off: what a STEP tool built on XDE waits for). *Ours end to "
+              "end*: read_step (the read by products: each product transferred once, its instances placed; "
+              "OCCT's XDE read where it falls back, see *reader* below) then find_contacts on all cores, from "
+              "the same file. Peaks are each process's maximum resident memory. *Cancel latency*: "
               "a second run asked to stop halfway through find_contacts, time from the request to the return.",
               "", "## End to end, against a bare XDE read of the same file", "", end_to_end_table(cases, ours), "",
               "## Growth (N log N gives about 1.1)", "",
