@@ -55,22 +55,23 @@ void bind_bodies(py::module_& m) {
 
   m.def(
       "read_step",
-      [](const std::string& path, py::object progress) {
+      [](const std::string& path, py::object progress, std::size_t max_bodies) {
         std::unique_ptr<PythonProgress> reporter;
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         AssemblyResult result;
         const Status status = guarded([&] {
-          result = read_step(path, reporter.get());
+          result = read_step(path, reporter.get(), max_bodies);
           return result.status;
         });
         if (reporter) reporter->rethrow_if_raised();
         raise_if_failed(status);
         return result.assembly;
       },
-      py::arg("path"), py::arg("progress") = py::none(),
+      py::arg("path"), py::arg("progress") = py::none(), py::arg("max_bodies") = std::size_t{1'000'000},
       "Reads a STEP file through OCCT's XDE reader: product names, instances, units (shapes in mm). "
       "`progress(\"read\", fraction)` returning False cancels (raises contactcore.Cancelled), also "
-      "inside OCCT's transfer.");
+      "inside OCCT's transfer. An assembly expanding to more than `max_bodies` instances is refused "
+      "(InputError) before the transfer.");
 
   m.def("unique_names", &unique_names, py::arg("names"),
         "Names made unique by appending '.2', '.3', ... to repeats, in order (linear time).");
