@@ -11,10 +11,20 @@ axes through the part's centre of mass, x then y then z; the hand's targets
 are piecewise linear in time and held after the last.)"""
 import argparse
 import json
+import os
 import sys
 
+from contactwb import cli_process, output_files
+from contactwb.cli_process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE
 
-def main(argv):
+_finite = cli_process.finite_number
+
+
+def main(argv, own_process=False):
+    return cli_process.run("contacts trial", lambda: _trial(argv), own_process)
+
+
+def _trial(argv):
     parser = argparse.ArgumentParser(prog="contacts trial", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file", help="a STEP (.step/.stp) or FreeCAD (.FCStd) assembly")
@@ -26,15 +36,30 @@ def main(argv):
     parser.add_argument("--record", metavar="PATH", help="save the path (time, placement, force): .csv or .json")
     parser.add_argument("--realtime", action="store_true",
                         help="run the loop on its own thread in real time (default: lockstep, deterministic)")
-    parser.add_argument("--stiffness", type=float, help="virtual coupling stiffness, N/mm (clamped to the device)")
-    parser.add_argument("--capture-distance", type=float, default=0.5, help="engagement capture distance, mm")
-    parser.add_argument("--capture-angle", type=float, default=2.0, help="engagement capture angle, degrees")
+    parser.add_argument("--stiffness", type=_finite(low=0, low_open=True),
+                        help="virtual coupling stiffness, N/mm (clamped to the device)")
+    parser.add_argument("--capture-distance", type=_finite(low=0), default=0.5, help="engagement capture distance, mm")
+    parser.add_argument("--capture-angle", type=_finite(low=0, high=90), default=2.0,
+                        help="engagement capture angle, degrees")
     args = parser.parse_args(argv)
+    file, script_path = os.fsdecode(args.file), os.fsdecode(args.script)
+    if args.record:
+        try:
+            output_files.check_target(args.record)
+        except output_files.UnsafeTarget as error:
+            print(f"contacts trial: --record {error}", file=sys.stderr)
+            return EXIT_USAGE
 
     from contactwb import core, trial
     try:
-        script = trial.read_script(args.script)
-        assembly = trial.load_assembly(args.file)
+        script = trial.read_script(script_path)
+    except core.ContactsError as error:  # the script is an input: unreadable or refused
+        print(f"contacts trial: {error}", file=sys.stderr)
+        return EXIT_INPUT
+    try:
+        from contactwb import cli
+        cli.check_input_file(file, core)
+        assembly = trial.load_assembly(file)
         scene = trial.make_scene(assembly, args.part, capture_distance=args.capture_distance,
                                  capture_angle_deg=args.capture_angle)
         options = {"stiffness": args.stiffness} if args.stiffness is not None else {}
@@ -43,17 +68,26 @@ def main(argv):
         result = trial.run(scene, script, realtime=args.realtime, **options)
     except core.Cancelled:
         print("contacts trial: cancelled", file=sys.stderr)
-        return 130
+        return EXIT_CANCELLED
+    except cli_process.InputRefused as error:
+        print(f"contacts trial: {error}", file=sys.stderr)
+        return EXIT_INPUT
     except core.ContactsError as error:
-        print(f"contacts trial: {error} (file '{args.file}')", file=sys.stderr)
-        return 1
+        print(f"contacts trial: {error} (file '{file}')", file=sys.stderr)
+        if isinstance(error, core.ArgumentError):
+            return EXIT_USAGE
+        return EXIT_INPUT if isinstance(error, core.InputError) else EXIT_FAILED
+    except MemoryError:
+        print(f"contacts trial: out of memory (file '{file}')", file=sys.stderr)
+        return EXIT_FAILED
     path = result.pop("path")
     if args.record:
         try:
-            trial.write_path(path, args.record)
+            with output_files.replaced(args.record) as temporary:
+                trial.write_path(path, temporary)
         except OSError as error:
             print(f"contacts trial: cannot write '{args.record}': {error.strerror}", file=sys.stderr)
-            return 1
+            return EXIT_FAILED
     if args.json:
         out = {k: result[k] for k in ("ticks", "rate_hz", "step_us", "overruns")}
         out["joints_engaged"] = [{"with": j["with"], "type": j["type"]} for j in result["joints_engaged"]]
@@ -64,14 +98,15 @@ def main(argv):
         sys.stdout.write("\n")
     else:
         final = result["final"]
-        print(f"Trial of '{args.part}' in {args.file}: {result['ticks']} ticks at {result['rate_hz']:.0f} Hz, "
+        print(f"Trial of '{cli_process.escape_controls(args.part)}' in {cli_process.escape_controls(file)}: {result['ticks']} ticks at {result['rate_hz']:.0f} Hz, "
               f"step p50 {result['step_us']['p50']:.1f} us, p99 {result['step_us']['p99']:.1f} us, "
               f"{result['overruns']} over 1 ms")
         for j in result["joints_engaged"]:
-            print(f"  engaged {j['type']} ({j['joint']}) with {j['with']} at t = {j['t']:.3f} s")
+            print(f"  engaged {j['type']} ({j['joint']}) with {cli_process.escape_controls(j['with'])} "
+                  f"at t = {j['t']:.3f} s")
         print("  final offset: translate [" + ", ".join(f"{v:.4f}" for v in final["translate"]) + "] mm, rotate ["
               + ", ".join(f"{v:.4f}" for v in final["rotate_deg"]) + "] deg")
         print(f"  max penetration {result['max_penetration_mm']:.4f} mm, max force {result['max_force_n']:.2f} N")
         if args.record:
             print(f"  path ({len(path)} samples) saved to {args.record}")
-    return 0
+    return EXIT_OK
