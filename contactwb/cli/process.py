@@ -25,15 +25,11 @@ import threading
 EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED = 0, 2, 3, 4, 5, 130
 EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
-from contactwb import output_files
+from contactwb.core import output_files
 
 
 class UsageError(Exception):
     """A bad option value found after argparse (exit 2)."""
-
-
-class InputRefused(Exception):
-    """An input the command will not read (exit 3); the message names it."""
 
 
 def _cancel_watcher(name, signals):
@@ -116,9 +112,6 @@ def run(name, body, own_process=True):
     except UsageError as error:
         print(f"{name}: {error}", file=sys.stderr)
         return EXIT_USAGE
-    except InputRefused as error:
-        print(f"{name}: {error}", file=sys.stderr)
-        return EXIT_INPUT
     except OSError as error:
         if error.errno in (errno.ENOSPC, errno.EBADF, errno.EIO, errno.EDQUOT) and error.filename is None:
             _quiet_standard_output()
@@ -148,7 +141,7 @@ def display_name(path):
 def escape_controls(text):
     """Control characters (terminal escapes, CR, LF, ...) shown as \\x.. so a
     name cannot retitle the terminal or fake a line of the output."""
-    from contactwb.analysis import printable
+    from contactwb.core.analysis import printable
     return printable(text)
 
 
