@@ -263,3 +263,24 @@ def test_signal_during_disassembly(delay):
     assert code == 130, stderr
     assert after < 0.5 + SLACK
     assert "Traceback" not in stderr and stdout == ""
+
+
+@pytest.mark.parametrize("placement", [
+    ((1, 0, 0, 0, 1, 0, 0, 0, 1), (math.nan, 0, 0)),
+    ((1, 0, 0, 0, 1, 0, 0, 0, 1), (math.inf, 0, 0)),
+    ((math.nan, 0, 0, 0, 1, 0, 0, 0, 1), (0, 0, 0)),
+    ((2, 0, 0, 0, 2, 0, 0, 0, 2), (0, 0, 0)),       # scaled
+    ((0, 0, 0, 0, 0, 0, 0, 0, 0), (0, 0, 0)),       # all zero
+    ((-1, 0, 0, 0, 1, 0, 0, 0, 1), (0, 0, 0)),      # a mirror
+])
+def test_collision_queries_refuse_placements_that_are_not_rigid_motions(placement):
+    assembly = core.contactcore.read_step(os.path.join(SAMPLES, "cases", "taper_pin.step"))
+    results = meshes.mesh_assembly(assembly, deflection=0.2)
+    pair = core.contactcore.CollisionPair(core.contactcore.build_collision_model(results[0].mesh),
+                                          core.contactcore.build_collision_model(results[1].mesh))
+    for kind in ("intersect", "distance", "penetration"):
+        with pytest.raises(core.ArgumentError, match="placement"):
+            pair.query(None, placement, kind)
+    # A rotation about z by 30 degrees and far away: accepted, apart.
+    c, s = math.cos(math.pi / 6), math.sin(math.pi / 6)
+    assert not pair.query(None, ((c, -s, 0, s, c, 0, 0, 0, 1), (0, 0, 1000)), "intersect").intersecting
