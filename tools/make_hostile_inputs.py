@@ -296,7 +296,7 @@ def main():
                                   ("s", "Gr\\S\\|n", "Gr\u00fcn"),
                                   ("x", "Gr\\X\\FCn", "Gr\u00fcn")):
         case(f"name encoded {tag}", [write(f"name_{tag}.step", renamed_step(two_boxes, "Top", encoded))], 0,
-             f"{decoded}  1", absent="\\X")
+             f"<->  {decoded}", absent="\\X")
     template = bad.one_instance_template(path("one_instance.step"))
     unnamed = re.sub(r"NEXT_ASSEMBLY_USAGE_OCCURRENCE\('(\d+)','Cube_0',", r"NEXT_ASSEMBLY_USAGE_OCCURRENCE('\1','',",
                      template)
