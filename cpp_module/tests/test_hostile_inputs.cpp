@@ -149,9 +149,9 @@ TEST(HostileInputs, ExponentialAssemblyIsRefusedBeforeItIsExpanded) {
   EXPECT_LT(seconds, 30.0);  // a hang only: the time bound is a benchmark's (bench_bad_inputs.py)
   // 2^10 = 1,024 is within a limit of 1,024 and beyond one of 1,023.
   const std::string small = temporary_file("doubling_10.step", doubling_assembly(10));
-  const AssemblyResult refused = read_step(small, nullptr, 1023);
+  const AssemblyResult refused = read_step(small, nullptr, StepReadMode::Products, 1023);
   EXPECT_NE(refused.status.message.find("expands to 1024 instances"), std::string::npos) << refused.status.describe();
-  const AssemblyResult allowed = read_step(small, nullptr, 1024);
+  const AssemblyResult allowed = read_step(small, nullptr, StepReadMode::Products, 1024);
   EXPECT_EQ(allowed.status.message.find("expands to"), std::string::npos) << allowed.status.describe();
   std::filesystem::remove(path);
   std::filesystem::remove(small);
