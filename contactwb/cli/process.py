@@ -25,7 +25,6 @@ import threading
 EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED = 0, 2, 3, 4, 5, 130
 EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
-from contactwb.core import output_files
 
 
 class UsageError(Exception):
@@ -34,7 +33,10 @@ class UsageError(Exception):
 
 def _cancel_watcher(name, signals):
     caught = signal.sigwait(signals)
-    for path in output_files.stop():
+    # Looked up, not imported: this module stays light (stdlib only), so the
+    # handler is in place before the extension loads.
+    output_files = sys.modules.get("contactwb.core.output_files")
+    for path in output_files.stop() if output_files else ():
         with contextlib.suppress(OSError):
             os.unlink(path)
     with contextlib.suppress(OSError):

@@ -15,7 +15,6 @@ import os
 import sys
 
 from contactwb.cli.process import escape_controls, finite_number, run as run_command
-from contactwb.core import output_files
 from contactwb.cli.process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE
 
 _finite = finite_number
@@ -26,6 +25,7 @@ def main(argv, own_process=False):
 
 
 def _trial(argv):
+    from contactwb.core import output_files  # here: the signal handler is in place before the extension loads
     parser = argparse.ArgumentParser(prog="contacts trial", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file", help="a STEP (.step/.stp) or FreeCAD (.FCStd) assembly")
