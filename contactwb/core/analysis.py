@@ -100,6 +100,16 @@ class ContactRecord:
         return f"{self.type} {self.a} <-> {self.b} (area {self.area:.3f} mm2{extra})"
 
 
+def printable(text):
+    """A line of a table with its control characters (terminal escapes, CR,
+    LF, ... from body names) shown as \\x.. escapes: a name cannot retitle the
+    terminal or fake a line of the table."""
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else
+                   (f"\\x{ord(c):02x}" if ord(c) < 0x100 else f"\\u{ord(c):04x}") for c in text)
+
+
 @dataclass
 class Analysis:
     source: str
@@ -185,7 +195,7 @@ class Analysis:
             pairs = ", ".join(f"{s.a} <-> {s.b}" for s in self.skipped)
             lines.append(f"Skipped {len(self.skipped)} candidate pair(s) whose test failed, the rest kept "
                          f"(see the notes): {pairs}")
-        return "\n".join(lines)
+        return "\n".join(printable(line) for line in lines)
 
 
 def analysis_of_result(source, assembly, result, face_name=None):
@@ -253,8 +263,15 @@ def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=
     return analysis_of_result(source, assembly, result, face_name)
 
 
-def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None, check_solids="quick"):
-    """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
+def max_bodies_keyword(max_bodies):
+    """read_step's keyword for a limit given (None: its default)."""
+    return {} if max_bodies is None else {"max_bodies": int(max_bodies)}
+
+
+def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None, check_solids="quick",
+                          max_bodies=None):
+    """Contacts of a STEP file, read in C++ (no FreeCAD needed). An assembly expanding to more than
+    `max_bodies` instances (default one million) is refused before it is expanded."""
     if "\0" in str(path):
         raise core.InputError(f"the path contains a NUL character: {path!r}")
     if os.path.isdir(path):
@@ -262,7 +279,8 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pa
     if not os.path.isfile(path):
         raise core.InputError(f"no such file: '{path}'")
     # As bytes: a file name that is not UTF-8 reaches OCCT unchanged.
-    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)), progress=progress)  # errors name the file
+    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)), progress=progress,
+                                          **max_bodies_keyword(max_bodies))  # errors name the file
     try:
         return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
                                          max_pairs=max_pairs, check_solids=check_solids)

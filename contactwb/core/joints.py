@@ -114,7 +114,7 @@ class Joints:
             lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
             for i in self.interferences:
                 lines.append(f"  {i['a']:<{width}}  <->  {i['b']:<{width}}  {i['volume']:.4g} mm3")
-        return "\n".join(lines)
+        return "\n".join(analysis.printable(line) for line in lines)
 
     def free_directions_of(self, body):
         """Directions in which `body` (a name) can translate out, every part it
@@ -201,11 +201,12 @@ def interferences_of(raw, names):
 
 
 def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, clearance_gap=0.0,
-                   max_pairs=None, check_solids="quick"):
+                   max_pairs=None, check_solids="quick", max_bodies=None):
     """(analysis.Analysis, Joints) of a STEP file, read in C++."""
     if not os.path.isfile(path):
-        raise core.ContactsError(f"no such file: '{path}'")
-    assembly = core.contactcore.read_step(os.path.abspath(path), progress=progress)
+        raise core.InputError(f"no such file: '{path}'")
+    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)), progress=progress,
+                                          **analysis.max_bodies_keyword(max_bodies))  # bytes: non-UTF-8 names work
     try:
         return joints_in_assembly(assembly, os.path.basename(path), linear, angular, progress, ground=ground,
                                   clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids)

@@ -56,14 +56,15 @@ void bind_bodies(py::module_& m) {
 
   m.def(
       "read_step",
-      [](const std::string& path, py::object progress, const std::string& reader) {
+      [](const std::string& path, py::object progress, const std::string& reader, std::size_t max_bodies) {
         if (reader != "products" && reader != "xde")
           throw py::value_error("reader must be 'products' or 'xde', not '" + reader + "'");
         std::unique_ptr<PythonProgress> reporter;
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         AssemblyResult result;
         const Status status = guarded([&] {
-          result = read_step(path, reporter.get(), reader == "xde" ? StepReadMode::Xde : StepReadMode::Products);
+          result = read_step(path, reporter.get(), reader == "xde" ? StepReadMode::Xde : StepReadMode::Products,
+                             max_bodies);
           return result.status;
         });
         if (reporter) reporter->rethrow_if_raised();
@@ -71,12 +72,14 @@ void bind_bodies(py::module_& m) {
         return result.assembly;
       },
       py::arg("path"), py::arg("progress") = py::none(), py::arg("reader") = "products",
+      py::arg("max_bodies") = std::size_t{1'000'000},
       "Reads a STEP file: product names, instances, units (shapes in mm). reader='products' (the default) "
       "transfers each product once and places its instances, falling back to OCCT's XDE reader (said in "
       "Assembly.messages and by a progress stage 'read (XDE fallback)') on a product structure it does not "
       "know; reader='xde' uses the XDE reader alone. Assembly.reader says which read the file. "
       "`progress(\"read\", fraction)` returning False cancels (raises contactcore.Cancelled), also "
-      "inside OCCT's transfer.");
+      "inside OCCT's transfer. An assembly expanding to more than `max_bodies` instances is refused "
+      "(InputError) before the transfer.");
 
   m.def("unique_names", &unique_names, py::arg("names"),
         "Names made unique by appending '.2', '.3', ... to repeats, in order (linear time).");

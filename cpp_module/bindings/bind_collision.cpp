@@ -16,6 +16,7 @@ RigidTransform to_transform(const py::object& placement) {
     throw py::value_error("a placement is ((9 rotation values, row-major), (tx, ty, tz))");
   std::copy(pair.first.begin(), pair.first.end(), t.rotation.begin());
   std::copy(pair.second.begin(), pair.second.end(), t.translation.begin());
+  raise_if_failed(check_rigid_transform(t));  // ArgumentError: NaN, infinite, scaled or mirrored
   return t;
 }
 

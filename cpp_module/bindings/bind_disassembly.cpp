@@ -14,6 +14,7 @@ void bind_disassembly(py::module_& m) {
       .def_readonly("base", &DisassemblyResult::base)
       .def_readonly("complete", &DisassemblyResult::complete)
       .def_readonly("reason", &DisassemblyResult::reason)
+      .def_readonly("messages", &DisassemblyResult::messages)
       .def_readonly("directions", &DisassemblyResult::directions)
       .def_readonly("blocking", &DisassemblyResult::blocking, "blocking[d][i]: parts blocking part i along directions[d]");
 

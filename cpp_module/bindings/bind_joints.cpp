@@ -141,7 +141,7 @@ void bind_joints(py::module_& m) {
       [](const ContactsResult& contacts, double gap) {
         std::vector<Clearance> result;
         raise_if_failed(guarded([&] {
-          result = find_clearances(contacts.partitions, gap, contacts.tolerances);
+          result = find_clearances(contacts.partitions, gap);
           return Status::success();
         }));
         return result;

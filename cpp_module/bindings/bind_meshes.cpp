@@ -1,10 +1,9 @@
 // Stage 5a in Python: tagged meshes of every body of an assembly, their
 // quality, PLY files.
-#include <BRepBndLib.hxx>
-#include <Bnd_Box.hxx>
 
 #include "common.h"
 #include "contactcore/bodies/bodies.h"
+#include "contactcore/contacts/contacts.h"
 #include "contactcore/simulation/meshes.h"
 #include "contactcore/common/occt_guard.h"
 
@@ -28,14 +27,22 @@ py::list triangle_list(const TaggedMesh& mesh) {
 
 void bind_meshes(py::module_& m) {
   py::class_<MeshOptions>(m, "MeshOptions", "Chordal deviation (mm), angular deflection (rad), maximum edge (mm, 0: none)")
-      .def(py::init([](double deflection, double angle, double max_edge_length) {
-             return MeshOptions{deflection, angle, max_edge_length};
+      .def(py::init([](double deflection, double angle, double max_edge_length, double max_triangles) {
+             const MeshOptions options{deflection, angle, max_edge_length, max_triangles};
+             raise_if_failed(check_mesh_options(options));  // NaN, infinite, negative: ArgumentError
+             return options;
            }),
            py::arg("deflection") = MeshOptions{}.deflection, py::arg("angle") = MeshOptions{}.angle,
-           py::arg("max_edge_length") = 0.0)
+           py::arg("max_edge_length") = 0.0, py::arg("max_triangles") = MeshOptions{}.max_triangles)
       .def_readwrite("deflection", &MeshOptions::deflection)
       .def_readwrite("angle", &MeshOptions::angle)
-      .def_readwrite("max_edge_length", &MeshOptions::max_edge_length);
+      .def_readwrite("max_edge_length", &MeshOptions::max_edge_length)
+      .def_readwrite("max_triangles", &MeshOptions::max_triangles);
+
+  m.def("estimated_triangles", [](const Body& body, const MeshOptions& options) {
+          return without_gil([&] { return estimated_triangles(body.shape, options); });
+        }, py::arg("body"), py::arg("options") = MeshOptions{},
+        "A lower bound of the triangles mesh_assembly makes of the body with these options (no meshing).");
 
   py::class_<TaggedMesh>(m, "TaggedMesh", "Triangles sharing vertices, each tagged with its FaceN and partition")
       .def_property_readonly("vertices", &vertex_list, "[(x, y, z)] in mm")
@@ -66,7 +73,15 @@ void bind_meshes(py::module_& m) {
 
   py::class_<MeshResult>(m, "MeshResult", "A body's tagged mesh and its quality")
       .def_readonly("mesh", &MeshResult::mesh)
-      .def_readonly("quality", &MeshResult::quality);
+      .def_readonly("quality", &MeshResult::quality)
+      .def_property_readonly("failed_faces", [](const MeshResult& r) {
+        py::list out;
+        for (const FaceFailure& f : r.failed_faces) out.append(py::make_tuple("Face" + std::to_string(f.face), f.message));
+        return out;
+      }, "[(\"FaceN\", message)]: faces OCCT could not tessellate, left out of the mesh")
+      .def_readonly("invalid_reason", &MeshResult::invalid_reason, "why the body is not a valid solid ('': valid)")
+      .def_property_readonly("invalid_faces", [](const MeshResult& r) { return face_names(r.invalid_faces); },
+                             "the faces of the fault ([]: the whole solid)");
 
   m.def("mesh_quality", &mesh_quality, py::arg("mesh"));
 
@@ -77,16 +92,45 @@ void bind_meshes(py::module_& m) {
         std::vector<MeshResult> results(assembly.bodies.size());
         raise_if_failed(guarded([&] {
           const OcctGuard guard;  // a signal inside OCCT fails the body, named
-          Bnd_Box box;
-          for (const Body& body : assembly.bodies) BRepBndLib::Add(body.shape, box);
-          const Tolerances tolerances = resolve_tolerances(box, linear, angular);
+          std::vector<TopoDS_Shape> shapes;
+          std::vector<std::string> names;
+          for (const Body& body : assembly.bodies) shapes.push_back(body.shape), names.push_back(body.name);
+          if (const Status budget = check_triangle_budget(shapes, names, options); !budget.ok()) return budget;
+          std::vector<BodyPartitions> kept(assembly.bodies.size());
+          double made = 0;
           for (std::size_t i = 0; i < assembly.bodies.size(); ++i) {
+            // Each body's own tolerances, as find_contacts gives it.
+            Tolerances tolerances;
+            Status own = body_tolerances(assembly.bodies[i].shape, linear, angular, tolerances);
+            if (!own.ok()) {
+              own.body = assembly.bodies[i].name;
+              return own;
+            }
             const Status status = partition_and_build(
                 assembly.bodies[i], tolerances, results[i],
                 [&](const TopoDS_Shape& shape, const BodyPartitions& partitions) {
+                  kept[i] = partitions;
                   return mesh_body(shape, partitions, options);
                 });
             if (!status.ok()) return status;
+            // The estimate is not exact: the meshes made so far count too.
+            made += static_cast<double>(results[i].quality.triangles);
+            if (made > options.max_triangles) {
+              Status over = Status::failure(StatusCode::InvalidInput,
+                                            "the meshes made so far hold " + std::to_string(static_cast<long long>(made)) +
+                                                " triangles: more than the limit of " +
+                                                std::to_string(static_cast<long long>(options.max_triangles)) +
+                                                " (CLI --max-triangles); ask for coarser sizes");
+              over.body = assembly.bodies[i].name;
+              return over;
+            }
+          }
+          // Invalid solids are meshed all the same, and named (meshes.json).
+          std::vector<InvalidBody> invalid;
+          if (const Status checked = find_invalid_solids(assembly, kept, invalid); !checked.ok()) return checked;
+          for (const InvalidBody& body : invalid) {
+            results[body.body].invalid_reason = body.reason;
+            results[body.body].invalid_faces = body.faces;
           }
           return Status::success();
         }));
@@ -95,7 +139,8 @@ void bind_meshes(py::module_& m) {
       py::arg("assembly"), py::arg("options") = MeshOptions{}, py::arg("linear") = py::none(),
       py::arg("angular") = py::none(),
       "Partitions (tolerances as find_contacts) and tessellates every body: one MeshResult per body, in order.\n"
-      "Raises ContactsError naming the body and face OCCT could not mesh.");
+      "A face OCCT could not tessellate is left out and named in MeshResult.failed_faces. Raises InputError\n"
+      "before meshing when the estimated triangles exceed options.max_triangles.");
 }
 
 }  // namespace contactcore::bindings

@@ -167,6 +167,7 @@ void bind_partitions(py::module_& m) {
   py::class_<BodyPartitions>(m, "BodyPartitions", "Typed faces and maximal partitions of one body")
       .def_readonly("faces", &BodyPartitions::faces)
       .def_readonly("partitions", &BodyPartitions::partitions)
+      .def_readonly("tolerances", &BodyPartitions::tolerances, "the tolerances this body was partitioned with")
       .def_property_readonly("ok", [](const BodyPartitions& b) { return b.status.ok(); })
       .def_property_readonly("status", [](const BodyPartitions& b) { return b.status.describe(); })
       .def_property_readonly("box", [](const BodyPartitions& b) { return box_tuple(b.box); })

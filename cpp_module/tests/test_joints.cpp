@@ -394,7 +394,7 @@ TEST(Clearances, PinInLargerBore) {
   ASSERT_EQ(r.clearances.size(), 1u);
   EXPECT_EQ(r.clearances[0].kind, SurfaceKind::Cylinder);
   EXPECT_NEAR(r.clearances[0].gap, 0.2, 1e-9);
-  EXPECT_TRUE(find_clearances(r.partitions, 0.1, r.tolerances).empty());
+  EXPECT_TRUE(find_clearances(r.partitions, 0.1).empty());
 }
 
 // Results of another assembly, or a ground out of range: a clear error, no crash.

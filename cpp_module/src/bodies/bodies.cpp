@@ -13,6 +13,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -46,6 +47,8 @@
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TDF_Label.hxx>
 #include <TDF_LabelSequence.hxx>
+#include <StepBasic_Product.hxx>
+#include <StepRepr_NextAssemblyUsageOccurrence.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
 #include <TopExp_Explorer.hxx>
@@ -72,10 +75,20 @@ std::string label_name(const TDF_Label& label) {
   return out;
 }
 
+// The file's own names where OCCT's reader put others (issue 25): an
+// occurrence named '' or '$' gets its id ("2") from OCCT, one named wholly
+// outside ASCII (\X2\ or \X4\ encoded: Cyrillic, emoji) too, and so does
+// a product named so: OCCT's name (the id) -> the file's name in UTF-8 (empty:
+// the occurrence takes its product's name).
+struct StepNames {
+  std::unordered_map<std::string, std::string> occurrence, product;
+};
+
 class StepTreeWalker {
  public:
-  StepTreeWalker(Handle(XCAFDoc_ShapeTool) tool, Assembly& out, Progress* progress)
-      : tool_(std::move(tool)), out_(out), progress_(progress) {}
+  // `names`: the names OCCT put in place of the file's (step_names below).
+  StepTreeWalker(Handle(XCAFDoc_ShapeTool) tool, Assembly& out, Progress* progress, StepNames names = {})
+      : tool_(std::move(tool)), out_(out), progress_(progress), names_(std::move(names)) {}
 
   // `instance_name`: the name of the occurrence placing this shape (STEP's
   // NEXT_ASSEMBLY_USAGE_OCCURRENCE), which tells apart the instances of one
@@ -84,7 +97,12 @@ class StepTreeWalker {
             const std::string& instance_name = {}) {
     // OCCT's transfer reported 0.3 to 0.9: the walk is the rest of the read.
     if (progress_ && !progress_->report("read", 0.9)) return false;
-    std::string name = instance_name.empty() ? label_name(label) : instance_name;
+    std::string name = instance_name;
+    if (name.empty()) {
+      name = label_name(label);
+      const auto named = names_.product.find(name);
+      if (named != names_.product.end()) name = named->second;
+    }
     if (name.empty()) name = "Body";
     const std::string path = parent_path.empty() ? name : parent_path + "/" + name;
     if (XCAFDoc_ShapeTool::IsAssembly(label)) {
@@ -98,6 +116,8 @@ class StepTreeWalker {
         std::string instance = label_name(component);
         // OCCT names an unnamed occurrence after its reference ("=>[0:1:1:3]").
         if (instance.rfind("=>", 0) == 0) instance.clear();
+        const auto named = names_.occurrence.find(instance);
+        if (named != names_.occurrence.end()) instance = named->second;  // empty: the product's name
         if (!walk(referred, placed, path, instance)) return false;
       }
       return true;
@@ -120,7 +140,42 @@ class StepTreeWalker {
   Handle(XCAFDoc_ShapeTool) tool_;
   Assembly& out_;
   Progress* progress_;
+  StepNames names_;
 };
+
+// True when OCCT's reader takes this name for none: UsefullLength counts up
+// to the last ASCII graphic character, so a name wholly outside ASCII (decoded
+// from \X2\ or \X4\ to UTF-8) looks empty to it.
+bool looks_empty_to_occt(const Handle(TCollection_HAsciiString)& text) {
+  return text.IsNull() || text->UsefullLength() == 0;
+}
+
+bool has_graphic_text(const Handle(TCollection_HAsciiString)& text) {
+  if (text.IsNull()) return false;
+  for (const char c : std::string(text->ToCString()))
+    if (static_cast<unsigned char>(c) > 0x20 && c != 0x7f) return true;  // ASCII graphic or a UTF-8 byte
+  return false;
+}
+
+StepNames step_names(const Handle(StepData_StepModel)& model) {
+  StepNames names;
+  if (model.IsNull()) return names;
+  for (Standard_Integer num = 1; num <= model->NbEntities(); ++num) {
+    const Handle(Standard_Transient) entity = model->Value(num);
+    if (const auto usage = Handle(StepRepr_NextAssemblyUsageOccurrence)::DownCast(entity); !usage.IsNull()) {
+      // OCCT names an occurrence by its description, else its name, else its id.
+      if (usage->Id().IsNull() || (usage->HasDescription() && !looks_empty_to_occt(usage->Description()))) continue;
+      if (!looks_empty_to_occt(usage->Name())) continue;
+      names.occurrence[usage->Id()->ToCString()] = has_graphic_text(usage->Name()) ? usage->Name()->ToCString() : "";
+    } else if (const auto product = Handle(StepBasic_Product)::DownCast(entity); !product.IsNull()) {
+      // A product by its name, else its id.
+      if (product->Id().IsNull() || !looks_empty_to_occt(product->Name()) || !has_graphic_text(product->Name()))
+        continue;
+      names.product[product->Id()->ToCString()] = product->Name()->ToCString();
+    }
+  }
+  return names;
+}
 
 void read_units(STEPCAFControl_Reader& reader, Assembly& assembly) {
   TColStd_SequenceOfAsciiString length_units, angle_units, solid_angle_units;
@@ -298,7 +353,7 @@ void keep_reader_notes(const OcctGuard& guard, std::vector<std::string>& message
 
 }  // namespace
 
-AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMode mode) {
+AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMode mode, std::size_t max_bodies) {
   AssemblyResult result;
   const auto fail = [&result, &path](StatusCode code, const std::string& message) {
     result.status = Status::failure(code, message);
@@ -355,6 +410,17 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
       } else if (check.reference_depth > kMaxReferenceDepth) {
         fail(StatusCode::InvalidInput, "entities nested " + std::to_string(check.reference_depth) + " levels deep from " +
                                            check.deepest_entity + " (at most " + std::to_string(kMaxReferenceDepth) + ")");
+      } else if (check.assembly_instances > static_cast<double>(max_bodies)) {
+        char text[200];
+        std::snprintf(text, sizeof text, "the assembly expands to %.6g instances: more than the limit of %zu bodies "
+                                         "(CLI --max-bodies)", check.assembly_instances, max_bodies);
+        fail(StatusCode::InvalidInput, text);
+      } else if (check.largest_expansion > static_cast<double>(max_bodies)) {
+        char text[200];
+        std::snprintf(text, sizeof text, "%s expands to %.6g items through nested sets or mapped items: more than the "
+                                         "limit of %zu (CLI --max-bodies)", check.largest_container.c_str(),
+                      check.largest_expansion, max_bodies);
+        fail(StatusCode::InvalidInput, text);
       } else if (!check.non_finite.empty()) {
         fail(StatusCode::InvalidInput, "coordinates that are not finite numbers (NaN, infinite or unreadable) in " +
                                            describe_non_finite(check));
@@ -440,7 +506,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
           Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
           TDF_LabelSequence roots;
           tool->GetFreeShapes(roots);
-          StepTreeWalker walker(tool, result.assembly, progress);
+          StepTreeWalker walker(tool, result.assembly, progress, step_names(reader.ChangeReader().StepModel()));
           for (Standard_Integer i = 1; i <= roots.Length(); ++i) {
             if (!walker.walk(roots.Value(i), TopLoc_Location(), "")) {
               result.status = Status::failure(StatusCode::Cancelled, "cancelled");

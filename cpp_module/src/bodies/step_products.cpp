@@ -72,7 +72,17 @@ std::string utf8(const TCollection_ExtendedString& text) {
   return out;
 }
 
-bool useful(const Handle(TCollection_HAsciiString)& text) { return !text.IsNull() && text->UsefullLength() > 0; }
+// A name with some text: an ASCII graphic character or a byte of a UTF-8
+// character (issue 25: XDE's UsefullLength counts ASCII only, so a name wholly
+// in Cyrillic or emoji, decoded from \X2\ or \X4\, gave way to the id).
+bool useful(const Handle(TCollection_HAsciiString)& text) {
+  if (text.IsNull()) return false;
+  for (Standard_Integer i = 1; i <= text->Length(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(text->Value(i));
+    if (c > 0x20 && c != 0x7f) return true;
+  }
+  return false;
+}
 
 }  // namespace
 

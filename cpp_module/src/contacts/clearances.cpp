@@ -69,8 +69,7 @@ double plane_gap(const BodyPartitions& body_a, const Partition& a, const BodyPar
 
 }  // namespace
 
-std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap,
-                                       const Tolerances& tol) {
+std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap) {
   std::vector<Clearance> out;
   if (max_gap <= 0) return out;
   std::vector<Bnd_Box> boxes;
@@ -78,6 +77,7 @@ std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partit
   for (const auto& [i, j] : broad_phase(boxes, max_gap).pairs) {
     const int a = std::min(i, j), b = std::max(i, j);
     if (a < 0 || b >= static_cast<int>(partitions.size())) continue;
+    const Tolerances tol = pair_tolerances(partitions[a], partitions[b]);
     for (const Partition& pa : partitions[a].partitions) {
       if (pa.params.kind == SurfaceKind::Cone || pa.params.kind == SurfaceKind::Torus ||
           pa.params.kind == SurfaceKind::Other)

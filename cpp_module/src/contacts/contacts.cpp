@@ -172,6 +172,11 @@ std::size_t overlapping_along(std::vector<Span>& spans, int axis) {
 }  // namespace
 
 BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_t max_pairs, Progress* progress) {
+  return broad_phase(boxes, std::vector<double>(boxes.size(), gap), max_pairs, progress);
+}
+
+BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, const std::vector<double>& gaps, std::size_t max_pairs,
+                       Progress* progress) {
   BroadPhase out;
   std::vector<Span> spans;
   spans.reserve(boxes.size());
@@ -179,6 +184,7 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
     if (boxes[i].IsVoid()) continue;
     double x0, y0, z0, x1, y1, z1;
     boxes[i].Get(x0, y0, z0, x1, y1, z1);  // includes the box's own gap
+    const double gap = gaps[i];  // spans grown by each body's own gap: a superset of the pairs below
     spans.push_back({{x0 - gap, y0 - gap, z0 - gap}, {x1 + gap, y1 + gap, z1 + gap}, static_cast<int>(i)});
   }
   // Sweep along the axis on which the fewest spans overlap: an assembly
@@ -202,7 +208,8 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
     }
     for (std::size_t j = i + 1; j < spans.size() && spans[j].lo[axis] <= spans[i].hi[axis]; ++j) {
       const int a = std::min(spans[i].body, spans[j].body), b = std::max(spans[i].body, spans[j].body);
-      if (!boxes_meet(boxes[a], boxes[b], gap)) continue;  // in index order: boxes' own gaps differ
+      // In index order (boxes' own gaps differ); a pair's gap is the coarser of its two.
+      if (!boxes_meet(boxes[a], boxes[b], std::max(gaps[a], gaps[b]))) continue;
       out.pairs.emplace_back(a, b);
       if (out.pairs.size() > max_pairs) {
         std::ostringstream message;
@@ -261,11 +268,31 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       if (source != static_cast<int>(i) && !boxes[source].IsVoid())
         boxes[i] = boxes[source].Transformed(relative_motion(assembly.bodies[source], assembly.bodies[i]));
     }
+    // A value the caller gives is checked against the whole model (as
+    // before); the defaults are each body's own (body_tolerances: a part far
+    // away or a huge one changes nothing about the others), instances taking
+    // their source's. A body pair is compared with the coarser of its two.
     Bnd_Box model_box;
     for (const Bnd_Box& box : boxes) model_box.Add(box);
-    result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
-    result.status = check_tolerances(model_box, result.tolerances);
+    const Tolerances requested{options.linear.value_or(Tolerances{}.linear),
+                               options.angular.value_or(Tolerances{}.angular)};
+    result.status = check_tolerances(options.linear ? model_box : Bnd_Box(), requested);
     if (!result.status.ok()) return result;
+    std::vector<Tolerances> body_tol(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Status status = body_tolerances(boxes[sources[i]], options.linear, options.angular, body_tol[i]);
+      if (!status.ok()) {
+        result.status = status;
+        result.status.body = assembly.bodies[i].name;
+        return result;
+      }
+    }
+    // Reported: the caller's value, or the coarsest body's.
+    result.tolerances = requested;
+    if (!options.linear && n > 0) {
+      result.tolerances.linear = 0;
+      for (const Tolerances& t : body_tol) result.tolerances.linear = std::max(result.tolerances.linear, t.linear);
+    }
 
     // Each distinct shape partitioned once (partition_shape only reads the
     // shapes, so bodies sharing TShapes through instancing can run
@@ -273,7 +300,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     const auto partition_body = [&](std::size_t i) {
       BodyPartitions& body = result.partitions[i];
       std::string failure;
-      if (!run_guarded([&] { body = partition_shape(assembly.bodies[i].shape, result.tolerances); }, failure, "OCCT: "))
+      if (!run_guarded([&] { body = partition_shape(assembly.bodies[i].shape, body_tol[i]); }, failure, "OCCT: "))
         body.status = Status::failure(StatusCode::GeometryError, failure);
     };
     result.partitions.resize(n);
@@ -316,7 +343,9 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
 
     start = Clock::now();
     for (std::size_t i = 0; i < n; ++i) boxes[i] = result.partitions[i].box;
-    BroadPhase broad = broad_phase(boxes, result.tolerances.linear, options.max_body_pairs, progress);
+    std::vector<double> gaps(n);
+    for (std::size_t i = 0; i < n; ++i) gaps[i] = body_tol[i].linear;
+    BroadPhase broad = broad_phase(boxes, gaps, options.max_body_pairs, progress);
     if (!broad.status.ok()) {
       result.status = broad.status;
       return result;
@@ -337,7 +366,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
         if (!options.reuse_instances) continue;
         const auto [ia, ib] = pairs[k];
         const PairKey key = pair_key(sources[ia], sources[ib], assembly.bodies[ia], assembly.bodies[ib],
-                                     result.tolerances.linear);
+                                     std::max(body_tol[ia].linear, body_tol[ib].linear));
         representative[k] = first.try_emplace(key, k).first->second;
       }
     }
@@ -348,7 +377,8 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     std::vector<std::vector<Candidate>> pair_candidates_of(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "candidates", [&](std::size_t t) {
           const auto [ia, ib] = pairs[tested[t]];
-          pair_candidates(ia, ib, keys, result.partitions, result.tolerances, pair_candidates_of[tested[t]]);
+          pair_candidates(ia, ib, keys, result.partitions, pair_tolerances(result.partitions[ia], result.partitions[ib]),
+                          pair_candidates_of[tested[t]]);
         }, 64))
       return cancelled();
     for (std::size_t k = 0; k < pairs.size(); ++k) result.candidates += pair_candidates_of[representative[k]].size();
@@ -356,11 +386,12 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
 
     // The tests; a pair whose test throws is skipped and recorded, the rest kept.
     start = Clock::now();
-    const PairContext ctx{result.partitions, result.tolerances, options.min_area_ratio};
     std::vector<std::vector<Contact>> pair_contacts(pairs.size());
     std::vector<std::vector<SkippedPair>> pair_skipped(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "contacts", [&](std::size_t t) {
           const std::size_t k = tested[t];
+          const Tolerances pair_tol = pair_tolerances(result.partitions[pairs[k].first], result.partitions[pairs[k].second]);
+          const PairContext ctx{result.partitions, pair_tol, options.min_area_ratio};
           std::vector<Contact>& out = pair_contacts[k];
           const auto test = [&](const Candidate& c) {
             if (options.candidate_hook) options.candidate_hook(c.body_a, c.partition_a, c.body_b, c.partition_b);
@@ -437,7 +468,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, "OCCT: " + occt_failure_text(failure));
   }
-  if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap, result.tolerances);
+  if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap);
   if (progress) progress->report("contacts", 1.0);
   return result;
 }

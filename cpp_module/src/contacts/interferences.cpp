@@ -200,9 +200,9 @@ struct PairOutcome {
 };
 
 PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, int a, int b) {
-  const Tolerances& tol = result.tolerances;
   const BodyPartitions& pa = result.partitions[a];
   const BodyPartitions& pb = result.partitions[b];
+  const Tolerances tol = pair_tolerances(pa, pb);
   PairOutcome out;
   double volume = 0;
   const bool shaft_in_b = press_fits(pa, pb, tol, volume);
@@ -251,12 +251,11 @@ double press_fit_volume(const BodyPartitions& a, const BodyPartitions& b, const 
 
 Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads) {
   const size_t n = assembly.bodies.size();
-  const Tolerances& tol = result.tolerances;
   std::vector<char> dropped(n, 0);  // zero-volume bodies and second copies: no contacts of their own
 
   for (size_t i = 0; i < n; ++i) {
     // A solid thinner than the tolerance holds no material (a zero-height box).
-    if (box_thickness(result.partitions[i].box) <= tol.linear) {
+    if (box_thickness(result.partitions[i].box) <= result.partitions[i].tolerances.linear) {
       dropped[i] = 1;
       result.messages.push_back("body '" + assembly.bodies[i].name +
                                 "' has no volume (thinner than the tolerance): its contacts are not counted");
@@ -272,8 +271,9 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
     if (dropped[a] || dropped[b]) continue;
     const BodyPartitions& pa = result.partitions[a];
     const BodyPartitions& pb = result.partitions[b];
-    if (box_overlap(pa.box, pb.box) <= tol.linear) continue;
-    if (duplicates(pa, pb, tol.linear)) {
+    const double linear = pair_tolerances(pa, pb).linear;
+    if (box_overlap(pa.box, pb.box) <= linear) continue;
+    if (duplicates(pa, pb, linear)) {
       dropped[b] = 1;
       copies.push_back({a, b, -1});
       result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +

@@ -5,7 +5,6 @@
 #include <set>
 #include <thread>
 
-#include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
 
 #include "contactcore/common/occt_guard.h"
@@ -34,14 +33,17 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
   // build naming the body. The servo loop and the queries run no OCCT.
   const OcctGuard guard;
   try {
-    // Partitions with the same tolerances the contact stage uses.
-    Bnd_Box model_box;
-    for (const Body& b : assembly.bodies) BRepBndLib::Add(b.shape, model_box, false);
+    // Partitions with the same tolerances the contact stage uses: each body's own.
     const ContactOptions defaults;
-    const Tolerances tol = resolve_tolerances(model_box, defaults.linear, defaults.angular);
     const std::size_t n = assembly.bodies.size();
     for (std::size_t i = 0; i < n; ++i) {
       std::string failure;
+      Tolerances tol;
+      status = body_tolerances(assembly.bodies[i].shape, defaults.linear, defaults.angular, tol);
+      if (!status.ok()) {
+        status.body = assembly.bodies[i].name;
+        return nullptr;
+      }
       scene->partitions_.emplace_back();
       if (!run_guarded([&] { scene->partitions_.back() = partition_shape(assembly.bodies[i].shape, tol); }, failure,
                        "OCCT: ")) {

@@ -60,9 +60,11 @@ enum class StepReadMode { Products, Xde };
 
 // Reads a STEP file with names, instances and units (shapes converted to mm).
 // Open shells and surface models are skipped with a message. Both modes give
-// the same bodies (names, paths, placements) in the same order.
+// the same bodies (names, paths, placements) in the same order. An assembly
+// that expands to more than `max_bodies` instances (or a set or mapped item to
+// more items) is refused (InvalidInput) before OCCT's transfer expands it.
 AssemblyResult read_step(const std::string& path, Progress* progress = nullptr,
-                         StepReadMode mode = StepReadMode::Products);
+                         StepReadMode mode = StepReadMode::Products, std::size_t max_bodies = 1'000'000);
 
 // Splits a BRep string holding one compound into bodies: each direct child of
 // the compound is one body, named by `names` (same order; missing names get

@@ -47,7 +47,7 @@ struct Contact {
 enum class SolidChecks { Quick, Full };
 
 struct ContactOptions {
-  std::optional<double> linear;   // mm; unset: scaled to the model (default_tolerances)
+  std::optional<double> linear;   // mm; unset: each body's scaled to its own size (body_tolerances)
   std::optional<double> angular;  // radians; unset: the default
   double min_area_ratio = 1e-6;   // common area below ratio * smaller partition area: no contact
   double clearance_gap = 0;       // mm; > 0: also report clearance fits with radii this close
@@ -100,6 +100,8 @@ struct StageTimes {
 
 struct ContactsResult {
   Status status;
+  // The caller's, or the coarsest body's; each body's own are in
+  // partitions[i].tolerances, a pair's are pair_tolerances() of its two.
   Tolerances tolerances;
   std::vector<BodyPartitions> partitions;  // one per body
   // Per body, the body whose shape it instances (itself when none). An
@@ -117,6 +119,12 @@ struct ContactsResult {
   StageTimes times;
 };
 
+// The solid checks of find_contacts (validity.h) on bodies partitioned
+// elsewhere (partitions[i] of assembly.bodies[i], each with its tolerances):
+// the invalid ones, in body order. For the mesh tools, which name them.
+Status find_invalid_solids(const Assembly& assembly, const std::vector<BodyPartitions>& partitions,
+                           std::vector<InvalidBody>& invalid, SolidChecks checks = SolidChecks::Quick);
+
 // Body pairs (i < j, sorted) whose boxes meet within `gap`, by sort and sweep
 // on the axis along which the fewest boxes overlap (so an assembly stacked
 // along any axis does not degrade). Stops once more than `max_pairs` pairs
@@ -128,6 +136,10 @@ struct BroadPhase {
 };
 // Reports "broad phase" progress and stops when asked (Status Cancelled).
 BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap,
+                       std::size_t max_pairs = static_cast<std::size_t>(-1), Progress* progress = nullptr);
+// The same with a gap per box (each body's own linear tolerance): boxes i and
+// j meet within the larger of gaps[i] and gaps[j].
+BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, const std::vector<double>& gaps,
                        std::size_t max_pairs = static_cast<std::size_t>(-1), Progress* progress = nullptr);
 
 // Area of the intersection of two polygon sets (outer loops counter-clockwise,
