@@ -65,7 +65,8 @@ def main(argv):
 
 
 def print_disassembly(path, as_json=False, linear=None, angular=None):
-    """`contacts FILE --disassembly [--json]`: the removal sequence; exit code 0, or 2 when the parts interlock."""
+    """`contacts FILE --disassembly [--json]`: the removal sequence; exit code 0, or 4 (the analysis
+    failed, like the main command's) when the parts interlock."""
     from contactwb import core, meshes
     try:
         assembly = meshes.load_assembly(path)
@@ -78,7 +79,7 @@ def print_disassembly(path, as_json=False, linear=None, angular=None):
         sys.stdout.write("\n")
     else:
         print(meshes.disassembly_table(document))
-    return 0 if document["complete"] else 2
+    return 0 if document["complete"] else 4  # not the usage code 2: the input was fine
 
 
 if __name__ == "__main__":

@@ -158,3 +158,27 @@ def test_committed_line_contact_case_has_its_higher_pairs_and_no_contact(sample)
     types = {(j.a, j.b): (j.type, j.dof) for j in found.joints}
     assert types == {("Plate", "Roller"): ("cylinder_plane", 4), ("Plate", "Ball"): ("sphere_plane", 5)}
     assert found.mobility.dof == 9
+
+
+def test_d03_pin_in_the_arms_slot_is_two_line_contacts(shared_step):
+    # D03 (Assembly4's disc and arm): the disc's pin (Body001) runs in the
+    # straight slot of the arm (Body002), touching both of the slot's flat
+    # walls. By hand: two cylinder_on_plane lines along the pin (15 mm each,
+    # z 10..25) with opposite normals across the slot; the surface contacts
+    # stay 3 PLF + 1 CLJ (tests/test_contacts.py). With the pin's face on the
+    # arm (PLF), the pair turns about the pin and slides along the slot: 2 DOF,
+    # the translation across both normals.
+    result, found = joints.joints_in_step(shared_step("D03_asm4_tuto2_disk_arm.step"))
+    assert len(result.contacts) == 4
+    pairs = result.to_json()["higher_pairs"]
+    assert [(h["type"], h["a"], h["b"]) for h in pairs] == [("cylinder_on_plane", "Body001", "Body002")] * 2
+    for h in pairs:
+        assert h["length"] == pytest.approx(15, abs=1e-6)
+        assert sorted([h["start"][2], h["end"][2]]) == pytest.approx([10, 25], abs=1e-6)
+    n0, n1 = pairs[0]["normal"], pairs[1]["normal"]
+    assert sum(a * b for a, b in zip(n0, n1)) == pytest.approx(-1, abs=1e-9)
+    (j,) = [j for j in found.joints if (j.a, j.b) == ("Body001", "Body002")]
+    assert (j.dof, len(j.rotations), len(j.translations), j.higher_pairs) == (2, 1, 1, [0, 1])
+    assert parallel(j.rotations[0]["direction"], (0, 0, 1))
+    slide = j.translations[0]["direction"]
+    assert abs(sum(a * b for a, b in zip(slide, n0))) < 1e-9 and abs(slide[2]) < 1e-9
