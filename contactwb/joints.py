@@ -38,11 +38,15 @@ class JointRecord:
     body_a: int = 0
     body_b: int = 0
     higher_pairs: List[int] = field(default_factory=list)  # indices into the analysis' higher_pairs
+    annotated_rigid: bool = False  # held rigid by an annotated press fit or bond
 
     def to_json(self):
-        return {"a": self.a, "b": self.b, "type": self.type, "dof": self.dof, "rotations": self.rotations,
-                "translations": self.translations, "free_directions": self.free_directions,
-                "contacts": self.contacts, "higher_pairs": self.higher_pairs}
+        out = {"a": self.a, "b": self.b, "type": self.type, "dof": self.dof, "rotations": self.rotations,
+               "translations": self.translations, "free_directions": self.free_directions,
+               "contacts": self.contacts, "higher_pairs": self.higher_pairs}
+        if self.annotated_rigid:  # only with --annotations
+            out["annotated_rigid"] = True
+        return out
 
 
 @dataclass
@@ -83,7 +87,7 @@ class Joints:
             axes = [f"turns about {_fmt(r['direction'])} through {_fmt(r['point'])}" for r in j.rotations]
             axes += [f"slides along {_fmt(t['direction'])}" for t in j.translations]
             if j.type in ("rigid",):
-                axes = []
+                axes = ["held by annotated fits or bonds"] if j.annotated_rigid else []
             leaves = (f"; leaves along {', '.join(_fmt(d) for d in j.free_directions)}"
                       if j.free_directions and len(j.free_directions) <= 4 else
                       f"; leaves within a cone of {len(j.free_directions)} directions" if j.free_directions else
@@ -188,7 +192,7 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
         translations=[{"direction": _vec(d)} for d in j.translations],
         free_directions=[_vec(d) for d in j.free_directions], contacts=list(j.contacts),
         one_sided=len(j.stops), body_a=j.body_a, body_b=j.body_b,
-        higher_pairs=list(j.higher_pairs)) for j in found.joints]
+        higher_pairs=list(j.higher_pairs), annotated_rigid=j.annotated_rigid) for j in found.joints]
     group_joints = []
     for group, motion in zip(mobility.groups, mobility.group_motions):
         group_joints.append({

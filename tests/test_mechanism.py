@@ -107,6 +107,11 @@ def test_cli_annotations_json_and_errors(sample, tmp_path):
     assert [(c["intent"], c["fit"]) for c in seal] == [("interference", "H8/s7")]
     unmarked = [c for c in document["contacts"] if "intent" not in c]
     assert len(unmarked) == 35 - 17
+    assert sum(1 for j in document["joints"] if j.get("annotated_rigid")) == 14
+    table = run_cli(sample("motor.step"), "--annotations", MOTOR_NOTES)
+    assert table.returncode == 0, table.stderr
+    assert "Axis           <->  Rotor-front    rigid (0): held by annotated fits or bonds" in table.stdout
+    assert "Mobility (ground Body): 1 DOF, of which 0 passive spins; 2 rigid groups" in table.stdout
     # Without the file: today's 26 DOF.
     plain = json.loads(run_cli(sample("motor.step"), "--joints", "--json").stdout)
     assert plain["mobility"]["dof"] == 26
