@@ -12,7 +12,8 @@ import pytest
 
 import FreeCAD
 import Part
-from contactwb import annotations, core, joints
+from contactwb import core, joints
+from contactwb.core import annotations
 
 from conftest import REPO, SAMPLES
 
