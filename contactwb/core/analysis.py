@@ -11,7 +11,7 @@ import os
 from collections import Counter, defaultdict
 from dataclasses import dataclass, field
 from math import degrees
-from typing import Dict, List, Tuple
+from typing import Dict, List, Optional, Tuple
 
 from contactwb import core
 from contactwb.core.kinds import CONTACT_TYPES, TYPE_TITLES
