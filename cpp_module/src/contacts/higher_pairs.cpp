@@ -226,6 +226,13 @@ void cylinder_line(const Side& s, const Side& t, const Tolerances& tol, std::vec
 std::vector<HigherPair> find_higher_pairs(int ia, const BodyPartitions& a, int ib, const BodyPartitions& b,
                                           const Tolerances& tol) {
   std::vector<HigherPair> out;
+  // Every higher pair has a ball or a cylinder on one side: pairs of
+  // plane-only bodies (the common case, a grid of blocks) end here.
+  const auto rounded = [](const BodyPartitions& body) {
+    return std::any_of(body.partitions.begin(), body.partitions.end(),
+                       [](const Partition& p) { return is_ball(p) || is_cylinder(p); });
+  };
+  if (!rounded(a) && !rounded(b)) return out;
   for (const Partition& pa : a.partitions) {
     for (const Partition& pb : b.partitions) {
       if (!boxes_meet(pa.box, pb.box, tol.linear)) continue;
