@@ -96,6 +96,10 @@ def _contacts(argv):
     parser.add_argument("--joints", action="store_true", help="also print joints, mobility and rigid groups")
     parser.add_argument("--graph", metavar="FILE", help="write the liaison graph (.svg, .png or .dot)")
     parser.add_argument("--ground", metavar="NAME", help="body held still (default: the largest by volume)")
+    parser.add_argument("--annotations", metavar="FILE.json",
+                        help="the designer's fits and bonds (docs/joints.md): a JSON list of {\"a\", \"b\", "
+                             "\"type\" (optional), \"intent\": clearance|transition|interference|bonded|ignored, "
+                             "\"fit\" (optional)}; press fits and bonds make their pairs rigid (implies --joints)")
     parser.add_argument("--clearance-gap", type=finite_number(low=0), default=0.0, metavar="MM",
                         help="with --joints: also list clearance fits with a gap below MM")
     parser.add_argument("--disassembly", action="store_true",
@@ -128,6 +132,8 @@ def _contacts(argv):
     progress = _progress_printer(sys.stderr) if args.progress else None
     start = time.perf_counter()
     found = None
+    if args.annotations:
+        args.joints = True
     wants_joints = args.joints or args.graph
     # Paths go to C++ as bytes: a file name that is not UTF-8 still works.
     path = os.fsdecode(args.file)
@@ -143,7 +149,8 @@ def _contacts(argv):
                 if wants_joints:
                     result, found, _ = document_analysis.joints_in_document(
                         doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
-                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs, check_solids=args.check_solids)
+                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs, check_solids=args.check_solids,
+                        annotations=args.annotations)
                 else:
                     result, _ = document_analysis.find_contacts_in_document(
                         doc, linear=args.linear, angular=args.angular, progress=progress,
@@ -152,7 +159,8 @@ def _contacts(argv):
                 result, found = joints_api.joints_in_step(path, args.linear, args.angular, progress,
                                                           ground=args.ground, clearance_gap=args.clearance_gap,
                                                           max_pairs=args.max_pairs, check_solids=args.check_solids,
-                                                          max_bodies=args.max_bodies)
+                                                          max_bodies=args.max_bodies,
+                                                          annotations=args.annotations)
             else:
                 result = analysis.find_contacts_in_step(path, args.linear, args.angular, progress,
                                                         max_pairs=args.max_pairs, check_solids=args.check_solids,

@@ -38,6 +38,10 @@ void bind_contacts(py::module_& m) {
       .def_readonly("partial", &Contact::partial)
       .def_readonly("span", &Contact::span)
       .def_readonly("tolerances", &Contact::tolerances)
+      .def_property_readonly("region_axis", [](const Contact& c) { return to_tuple(c.region_axis); },
+                             "SPF, LAF, SPT: middle of the directions from the centre to the common region")
+      .def_readonly("region_angle", &Contact::region_angle,
+                    "SPF, LAF, SPT: the common region lies within this angle of region_axis (pi: all around)")
       .def("__repr__", [](const Contact& c) {
         std::ostringstream out;
         out << "<Contact " << to_string(c.type) << " bodies " << c.body_a << "-" << c.body_b
@@ -46,6 +50,28 @@ void bind_contacts(py::module_& m) {
         if (c.partial) out << " partial span=" << c.span * 180.0 / M_PI << "deg";
         out << ">";
         return out.str();
+      });
+
+  py::class_<HigherPair>(m, "HigherPair", "A point or line contact (apart from the surface contacts).")
+      .def_property_readonly("type", [](const HigherPair& h) { return std::string(to_string(h.type)); })
+      .def_property_readonly("kind", [](const HigherPair& h) { return std::string(h.is_line() ? "line" : "point"); })
+      .def_readonly("body_a", &HigherPair::body_a)
+      .def_readonly("body_b", &HigherPair::body_b)
+      .def_readonly("partition_a", &HigherPair::partition_a)
+      .def_readonly("partition_b", &HigherPair::partition_b)
+      .def_readonly("faces_a", &HigherPair::faces_a)
+      .def_readonly("faces_b", &HigherPair::faces_b)
+      .def_property_readonly("face_names_a", [](const HigherPair& h) { return face_names(h.faces_a); })
+      .def_property_readonly("face_names_b", [](const HigherPair& h) { return face_names(h.faces_b); })
+      .def_property_readonly("point", [](const HigherPair& h) { return to_tuple(h.point); })
+      .def_property_readonly("normal", [](const HigherPair& h) { return to_tuple(h.normal); },
+                             "out of body a's material")
+      .def_property_readonly("start", [](const HigherPair& h) { return to_tuple(h.start); })
+      .def_property_readonly("end", [](const HigherPair& h) { return to_tuple(h.end); })
+      .def_readonly("length", &HigherPair::length)
+      .def("__repr__", [](const HigherPair& h) {
+        return std::string("<HigherPair ") + to_string(h.type) + " bodies " + std::to_string(h.body_a) + "-" +
+               std::to_string(h.body_b) + ">";
       });
 
   py::class_<StageTimes>(m, "StageTimes", "Seconds spent in each stage.")
@@ -97,6 +123,7 @@ void bind_contacts(py::module_& m) {
       .def_readonly("body_pairs", &ContactsResult::body_pairs)
       .def_readonly("candidates", &ContactsResult::candidates)
       .def_readonly("contacts", &ContactsResult::contacts)
+      .def_readonly("higher_pairs", &ContactsResult::higher_pairs)
       .def_readonly("skipped", &ContactsResult::skipped)
       .def_readonly("messages", &ContactsResult::messages)
       .def_readonly("clearances", &ContactsResult::clearances)

@@ -41,6 +41,7 @@ void bind_joints(py::module_& m) {
 
   py::class_<OneSidedStop>(m, "OneSidedStop", "A unilateral contact: b may move with u . normal >= 0 at point.")
       .def_readonly("contact", &OneSidedStop::contact)
+      .def_readonly("higher_pair", &OneSidedStop::higher_pair)
       .def_property_readonly("point", [](const OneSidedStop& s) { return to_tuple(s.point); })
       .def_property_readonly("normal", [](const OneSidedStop& s) { return to_tuple(s.normal); });
 
@@ -48,6 +49,8 @@ void bind_joints(py::module_& m) {
       .def_readonly("body_a", &PairJoint::body_a)
       .def_readonly("body_b", &PairJoint::body_b)
       .def_readonly("contacts", &PairJoint::contacts)
+      .def_readonly("higher_pairs", &PairJoint::higher_pairs)
+      .def_readonly("annotated_rigid", &PairJoint::annotated_rigid)
       .def_property_readonly("type", [](const PairJoint& j) { return std::string(to_string(j.type)); })
       .def_readonly("dof", &PairJoint::dof)
       .def_readonly("free_twists", &PairJoint::free_twists,
@@ -92,9 +95,29 @@ void bind_joints(py::module_& m) {
 
   m.def(
       "find_joints",
-      [](const Assembly& assembly, const ContactsResult& contacts, double rank_tolerance) {
+      [](const Assembly& assembly, const ContactsResult& contacts, double rank_tolerance,
+         const std::vector<std::string>& contact_intents, const std::vector<std::string>& higher_pair_intents) {
         JointOptions options;
         options.rank_tolerance = rank_tolerance;
+        // The designer's intents, one string per contact ("" unspecified).
+        const auto parse = [](const std::vector<std::string>& texts, std::size_t count, const char* what,
+                              std::vector<ContactIntent>& out) {
+          if (texts.size() > count)
+            raise_if_failed(Status::failure(StatusCode::InvalidArgument,
+                                            std::string("more ") + what + " intents (" + std::to_string(texts.size()) +
+                                                ") than " + what + "s (" + std::to_string(count) + ")"));
+          for (std::size_t i = 0; i < texts.size(); ++i) {
+            ContactIntent intent = ContactIntent::Unspecified;
+            if (!texts[i].empty() && !parse_intent(texts[i], intent))
+              raise_if_failed(Status::failure(StatusCode::InvalidArgument,
+                                              std::string("unknown intent '") + texts[i] + "' for " + what + " " +
+                                                  std::to_string(i) +
+                                                  ": use clearance, transition, interference, bonded or ignored"));
+            out.push_back(intent);
+          }
+        };
+        parse(contact_intents, contacts.contacts.size(), "contact", options.contact_intents);
+        parse(higher_pair_intents, contacts.higher_pairs.size(), "higher pair", options.higher_pair_intents);
         JointsResult result;
         raise_if_failed(guarded([&] {
           result = find_joints(assembly, contacts, options);
@@ -103,7 +126,11 @@ void bind_joints(py::module_& m) {
         return result;
       },
       py::arg("assembly"), py::arg("contacts"), py::arg("rank_tolerance") = JointOptions{}.rank_tolerance,
-      "The joint of every body pair in contact (b relative to a).");
+      py::arg("contact_intents") = std::vector<std::string>{},
+      py::arg("higher_pair_intents") = std::vector<std::string>{},
+      "The joint of every body pair in contact (b relative to a). `contact_intents`: the designer's intent "
+      "per contact (\"clearance\", \"transition\", \"interference\", \"bonded\", \"ignored\" or \"\"): "
+      "interference, transition and bonded make the pair rigid, ignored contacts are left out.");
 
   m.def(
       "body_free_directions",

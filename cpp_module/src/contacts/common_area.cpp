@@ -6,6 +6,8 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepClass_FaceClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom_Surface.hxx>
@@ -227,42 +229,6 @@ double distance_to_line(const gp_Pnt& p, const gp_Pnt& origin, const gp_Dir& axi
   return v.Crossed(gp_Vec(axis)).Magnitude();
 }
 
-// A point on a face (within tolerance of its surface and inside its
-// boundaries)? For samples of circle contacts. The projection gives
-// parameters in the surface's natural period; the face's own range may be
-// shifted by whole turns (u in [pi, 3 pi] is common in exported bearings), so
-// periodic parameters are brought into the face's range before classifying.
-class FaceProbe {
- public:
-  explicit FaceProbe(const FaceInfo& info)
-      : face_(info.face), surface_(BRep_Tool::Surface(info.face)), analysis_(surface_) {
-    BRepTools::UVBounds(face_, u_min_, u_max_, v_min_, v_max_);
-  }
-  bool contains(const gp_Pnt& p, double tol) {
-    const gp_Pnt2d uv = analysis_.ValueOfUV(p, tol);
-    if (analysis_.Gap() > tol) return false;
-    const double u = into_range(uv.X(), u_min_, u_max_, surface_->IsUPeriodic() ? surface_->UPeriod() : 0);
-    const double v = into_range(uv.Y(), v_min_, v_max_, surface_->IsVPeriodic() ? surface_->VPeriod() : 0);
-    BRepClass_FaceClassifier classifier(face_, gp_Pnt2d(u, v), Precision::PConfusion());
-    const TopAbs_State state = classifier.State();
-    return state == TopAbs_IN || state == TopAbs_ON;
-  }
-
-  // The value shifted by whole periods to lie in [low, high] when some shift
-  // does (else the one closest to the middle of the range).
-  static double into_range(double value, double low, double high, double period) {
-    if (period <= 0) return value;
-    const double middle = (low + high) / 2;
-    return value + period * std::round((middle - value) / period);
-  }
-
- private:
-  TopoDS_Face face_;
-  Handle(Geom_Surface) surface_;
-  ShapeAnalysis_Surface analysis_;
-  double u_min_ = 0, u_max_ = 0, v_min_ = 0, v_max_ = 0;
-};
-
 gp_Dir any_perpendicular(const gp_Dir& axis) {
   const gp_Dir trial = std::abs(axis.X()) < 0.9 ? gp_Dir(1, 0, 0) : gp_Dir(0, 1, 0);
   return gp_Dir(gp_Vec(axis).Crossed(gp_Vec(trial)));
@@ -286,6 +252,88 @@ std::vector<AngularInterval> circle_on_faces(const gp_Pnt& centre, const gp_Dir&
     if (on_all) hits.push_back({k * step, step});
   }
   return unite(hits);
+}
+
+// The end of a run of circle samples found on the faces, to the probes'
+// precision: bisection between an angle on all faces and one off them.
+double refine_circle_end(const gp_Pnt& centre, const gp_Dir& x, const gp_Dir& y, double radius,
+                         std::vector<FaceProbe*>& probes, double tol, double inside, double outside) {
+  for (int i = 0; i < 40 && std::abs(outside - inside) > 1e-12; ++i) {
+    const double middle = 0.5 * (inside + outside);
+    const gp_Pnt p = centre.Translated(gp_Vec(x) * (radius * std::cos(middle)) + gp_Vec(y) * (radius * std::sin(middle)));
+    bool on_all = true;
+    for (FaceProbe* probe : probes) on_all = on_all && probe->contains(p, tol);
+    (on_all ? inside : outside) = middle;
+  }
+  return inside;
+}
+
+// The smallest arc covering angular intervals of a circle (the complement
+// of their largest gap): its middle angle and half span; half span pi when
+// they go all around.
+void covering_arc(const std::vector<AngularInterval>& intervals, double& middle, double& half_span) {
+  std::vector<AngularInterval> sorted = unite(intervals);
+  middle = 0, half_span = M_PI;
+  double covered = 0;
+  for (const AngularInterval& i : sorted) covered += i.span;
+  if (sorted.empty() || covered >= kTwoPi - 1e-9) return;
+  std::sort(sorted.begin(), sorted.end(), [](const AngularInterval& l, const AngularInterval& r) { return l.start < r.start; });
+  double best_gap = -1, arc_start = 0;
+  for (size_t k = 0; k < sorted.size(); ++k) {
+    const double end = sorted[k].start + sorted[k].span;
+    const double next = k + 1 < sorted.size() ? sorted[k + 1].start : sorted[0].start + kTwoPi;
+    const double gap = next - end;
+    if (gap > best_gap) best_gap = gap, arc_start = next;
+  }
+  half_span = 0.5 * (kTwoPi - best_gap);
+  middle = arc_start + half_span;
+}
+
+// A cap of the sphere (centre, radius) covering faces lying on it: its axis
+// through the region's centroid, its angle the largest angle from the axis
+// to the faces' boundaries (exactly sampled along circles; other edges get
+// the angle between samples added, so the cap always covers). pi when the
+// region goes all around (the point opposite the axis lies on a face).
+void covering_cap(const std::vector<FaceInfo>& pieces, const gp_Pnt& centre, double radius, double tol,
+                  gp_Dir& axis, double& angle) {
+  angle = M_PI;
+  gp_XYZ moment(0, 0, 0);
+  double area = 0;
+  for (const FaceInfo& piece : pieces) {
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(piece.face, props);
+    moment += (props.CentreOfMass().XYZ() - centre.XYZ()) * props.Mass();
+    area += props.Mass();
+  }
+  if (area <= 0 || moment.Modulus() <= 1e-9 * radius * area) return;
+  axis = gp_Dir(moment);
+  const gp_Pnt opposite = centre.Translated(gp_Vec(axis) * -radius);
+  for (const FaceInfo& piece : pieces) {
+    FaceProbe probe(piece);
+    if (probe.contains(opposite, tol)) return;
+  }
+  constexpr int kSamples = 64;
+  double widest = 0;
+  for (const FaceInfo& piece : pieces) {
+    for (TopExp_Explorer edges(piece.face, TopAbs_EDGE); edges.More(); edges.Next()) {
+      const TopoDS_Edge& edge = TopoDS::Edge(edges.Current());
+      if (BRep_Tool::Degenerated(edge)) continue;
+      const BRepAdaptor_Curve curve(edge);
+      const double t0 = curve.FirstParameter(), t1 = curve.LastParameter();
+      double step_angle = 0;
+      gp_Vec previous;
+      for (int i = 0; i <= kSamples; ++i) {
+        const gp_Vec d(centre, curve.Value(t0 + (t1 - t0) * i / kSamples));
+        if (d.Magnitude() <= 0) continue;
+        widest = std::max(widest, d.Angle(gp_Vec(axis)));
+        if (i > 0) step_angle = std::max(step_angle, d.Angle(previous));
+        previous = d;
+      }
+      // Between samples, a curve other than a circle may reach further.
+      if (curve.GetType() != GeomAbs_Circle) widest += step_angle;
+    }
+  }
+  angle = std::min(M_PI, widest);
 }
 
 // -------------------------------------------------------------- contacts
@@ -504,20 +552,24 @@ void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& 
   c.point = pa.location;
   c.direction = pa.axis;
   c.radius = torus ? pa.minor_radius : pa.radius;
+  std::vector<FaceInfo> pieces;  // the common region (spheres: where the cup holds the ball)
   for (int fa : a.faces) {
     const FaceInfo& face_a = face_of(ctx.parts[ia], fa);
     for (int fb : b.faces) {
       const FaceInfo& face_b = face_of(ctx.parts[ib], fb);
       if (!boxes_meet(face_a.box, face_b.box, ctx.tol.linear)) continue;
       double area = 0;
-      for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) area += piece.area;
+      std::vector<FaceInfo> found = boolean_common(face_a.face, face_b.face, ctx.tol);
+      for (const FaceInfo& piece : found) area += piece.area;
       if (area <= ctx.tol.linear * ctx.tol.linear) continue;
       c.area += area;
       c.faces_a.push_back(fa);
       c.faces_b.push_back(fb);
+      for (FaceInfo& piece : found) pieces.push_back(std::move(piece));
     }
   }
   if (!area_counts(c.area, a, b, ctx)) return;
+  if (!torus) covering_cap(pieces, pa.location, pa.radius, ctx.tol.linear, c.region_axis, c.region_angle);
   c.span = kTwoPi;  // not a revolution-about-an-axis contact: never partial
   c.partition_a = a.id, c.partition_b = b.id;
   record(c, ctx, out);
@@ -553,14 +605,28 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   // The circle lies on the seat within the mismatches allowed above (radius,
   // height, distance to the tube-centre circle or the axis).
   const double probe_tol = 3 * ctx.tol.linear;
+  constexpr int kCircleSamples = 72;
+  const gp_Dir x = any_perpendicular(circle_axis);  // circle_on_faces' frame
+  const gp_Dir y = circle_axis.Crossed(x);
   std::vector<AngularInterval> on_both;
   for (int fs : ball.faces) {
     FaceProbe ball_probe(face_of(ctx.parts[i_ball], fs));
     for (int fc : seat.faces) {
       FaceProbe seat_probe(face_of(ctx.parts[i_seat], fc));
-      const auto hits = circle_on_faces(ps.location, circle_axis, ps.radius, {&ball_probe, &seat_probe},
-                                        probe_tol);
+      std::vector<FaceProbe*> probes{&ball_probe, &seat_probe};
+      auto hits = circle_on_faces(ps.location, circle_axis, ps.radius, probes, probe_tol, kCircleSamples);
       if (hits.empty()) continue;
+      // The runs' ends to the probes' precision (the samples are 5 degrees
+      // apart): the arc's ends bound the ball's one-sided directions.
+      const double half_step = M_PI / kCircleSamples;
+      for (AngularInterval& run : hits) {
+        if (run.span >= kTwoPi - 1e-9) continue;
+        const double start = refine_circle_end(ps.location, x, y, ps.radius, probes, probe_tol,
+                                               run.start + half_step, run.start - half_step);
+        const double end = refine_circle_end(ps.location, x, y, ps.radius, probes, probe_tol,
+                                             run.start + run.span - half_step, run.start + run.span + half_step);
+        run = {start, end - start};
+      }
       on_both.insert(on_both.end(), hits.begin(), hits.end());
       c.faces_a.push_back(fs);
       c.faces_b.push_back(fc);
@@ -570,6 +636,10 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   c.span = 0;
   for (const AngularInterval& i : unite(on_both)) c.span += i.span;
   c.partial = c.span < M_PI - ctx.tol.angular;
+  double middle = 0, half_span = M_PI;
+  covering_arc(on_both, middle, half_span);
+  c.region_angle = half_span;
+  if (half_span < M_PI) c.region_axis = gp_Dir(gp_Vec(x) * std::cos(middle) + gp_Vec(y) * std::sin(middle));
   c.partition_a = ball.id, c.partition_b = seat.id;
   record(c, ctx, out);
 }

@@ -4,6 +4,7 @@
 
 #include "contacts/common_area.h"
 #include "contactcore/bodies/instances.h"
+#include "contacts/higher_pairs.h"
 #include "contacts/interferences.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/parallel.h"
@@ -446,6 +447,25 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       return std::tie(l.body_a, l.body_b, l.partition_a, l.partition_b) <
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
+    // Point and line contacts, apart from the surface contacts: every body
+    // pair (a pair that fails is skipped with a message, like a candidate).
+    {
+      std::vector<std::vector<HigherPair>> higher(pairs.size());
+      std::vector<std::string> higher_failures(pairs.size());
+      if (!parallel_for(pairs.size(), threads, progress, "contacts", [&](std::size_t k) {
+            const auto [ia, ib] = pairs[k];
+            run_guarded([&] { higher[k] = find_higher_pairs(ia, result.partitions[ia], ib, result.partitions[ib],
+                                                            result.tolerances); },
+                        higher_failures[k], "OCCT: ");
+          }, 16))
+        return cancelled();
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        if (!higher_failures[k].empty())
+          result.messages.push_back("skipped the point and line contacts of '" + assembly.bodies[pairs[k].first].name +
+                                    "' and '" + assembly.bodies[pairs[k].second].name + "': " + higher_failures[k]);
+        for (HigherPair& pair : higher[k]) result.higher_pairs.push_back(std::move(pair));
+      }
+    }
     result.times.area = seconds_since(start);
     start = Clock::now();
     const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks);

@@ -314,30 +314,30 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
                               "' could not be computed: " + copy_failures[k]);
   }
 
-  std::vector<std::pair<int, int>> overlapping;  // general overlaps: their contacts are not contacts
   for (const Interference& copy : copies) result.interferences.push_back(copy);
   for (std::size_t k = 0; k < deep.size(); ++k) {
     const PairOutcome& o = outcomes[k];
     if (o.kind == PairOutcome::Failed) result.messages.push_back(o.message);
     if (o.kind != PairOutcome::PressFit && o.kind != PairOutcome::Overlap) continue;
     result.interferences.push_back({deep[k].first, deep[k].second, o.volume});
-    if (o.kind == PairOutcome::Overlap) overlapping.push_back(deep[k]);
   }
   std::sort(result.interferences.begin(), result.interferences.end(),
             [](const Interference& l, const Interference& r) {
               return std::tie(l.body_a, l.body_b) < std::tie(r.body_a, r.body_b);
             });
 
-  // Empty bodies, second copies and bodies overlapping in a general way have
-  // no contacts there. A press-fitted pair keeps its real ones (a shoulder
-  // on its seat: the R08 press's 8 PLF + 7 CLJ).
+  // Empty bodies and second copies have no contacts of their own. A pair
+  // whose material overlaps keeps every contact it has (a press-fitted
+  // tongue on its slot's floor, a shoulder on its seat: the R08 press's 8
+  // PLF + 7 CLJ): faces that touch with opposite normals are real contacts
+  // however much the bodies overlap elsewhere; the interference is reported
+  // beside them.
   result.contacts.erase(std::remove_if(result.contacts.begin(), result.contacts.end(),
-                                       [&](const Contact& c) {
-                                         return dropped[c.body_a] || dropped[c.body_b] ||
-                                                std::binary_search(overlapping.begin(), overlapping.end(),
-                                                                   std::make_pair(c.body_a, c.body_b));
-                                       }),
+                                       [&](const Contact& c) { return dropped[c.body_a] || dropped[c.body_b]; }),
                         result.contacts.end());
+  result.higher_pairs.erase(std::remove_if(result.higher_pairs.begin(), result.higher_pairs.end(),
+                                           [&](const HigherPair& h) { return dropped[h.body_a] || dropped[h.body_b]; }),
+                            result.higher_pairs.end());
   return Status::success();
 }
 
