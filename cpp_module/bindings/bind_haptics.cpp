@@ -4,6 +4,8 @@
 // methods exchange values with it through atomics and a snapshot.
 #include "common.h"
 
+#include <algorithm>
+#include <iterator>
 #include <memory>
 
 #include "contactcore/haptics/hid_pid_device.h"
@@ -25,7 +27,7 @@ py::list vec(const Vec3& v) {
 
 Vec3 vec_from(const py::handle& value, const char* what) {
   auto seq = value.cast<std::vector<double>>();
-  if (seq.size() != 3) throw py::value_error(std::string(what) + ": three numbers expected");
+  if (seq.size() != 3) raise_argument_error(std::string(what) + ": three numbers expected");
   return {seq[0], seq[1], seq[2]};
 }
 
@@ -121,7 +123,7 @@ class HapticSession {
       }
       if (!device_) message_ = "No force-feedback device (" + why + "): using the simulated hand.";
     } else if (device != "sim") {
-      throw py::value_error("unknown device '" + device + "' (sim, spacemouse, hid-ff, replay)");
+      raise_argument_error("unknown device '" + device + "' (sim, spacemouse, hid-ff, replay)");
     }
     if (!device_) {
       auto hand = std::make_unique<SimulatedHand>(HandScript{}, HandParameters{}, c, start_);
@@ -201,7 +203,19 @@ class HapticSession {
   std::string message_;
 };
 
+// The servo loop's keyword options, each checked by name: a misspelt one is
+// an ArgumentError naming it, never silently the default.
 ServoConfig config_from(const py::kwargs& kw) {
+  static const char* const kOptions[] = {"stiffness", "angular_stiffness", "damping", "angular_damping",
+                                         "max_speed", "breakaway_force",   "rate_hz", "realtime_priority"};
+  for (const auto& item : kw) {
+    const std::string key = py::str(item.first);
+    if (std::none_of(std::begin(kOptions), std::end(kOptions), [&](const char* option) { return key == option; })) {
+      std::string known;
+      for (const char* option : kOptions) known += (known.empty() ? "" : ", ") + std::string(option);
+      raise_argument_error("unknown keyword option '" + key + "' (the options: " + known + ")");
+    }
+  }
   ServoConfig c;
   if (kw.contains("stiffness")) c.stiffness = kw["stiffness"].cast<double>();
   if (kw.contains("angular_stiffness")) c.angular_stiffness = kw["angular_stiffness"].cast<double>();
@@ -382,18 +396,14 @@ void bind_haptics(py::module_& root) {
          const py::kwargs& kw) {
         TrialScript s;
         if (script.contains("start")) s.start = key_from(script["start"].cast<py::dict>(), false);
-        if (!script.contains("hand")) throw py::value_error("script: 'hand' (a list of keys) is missing");
+        if (!script.contains("hand")) raise_argument_error("script: 'hand' (a list of keys) is missing");
         for (const py::handle& k : script["hand"].cast<py::list>()) s.hand.push_back(key_from(k.cast<py::dict>(), true));
-        if (s.hand.empty()) throw py::value_error("script: 'hand' is empty");
+        if (s.hand.empty()) raise_argument_error("script: 'hand' is empty");
         TrialOptions options;
         options.servo = config_from(kw);
         options.record_every = record_every;
         options.settle = settle;
-        TrialResult r;
-        {
-          py::gil_scoped_release release;
-          r = run_trial(scene, s, options, realtime);
-        }
+        const TrialResult r = call_guarded([&] { return run_trial(scene, s, options, realtime); });
         py::dict out;
         out["ticks"] = r.ticks;
         out["rate_hz"] = r.rate_hz;
@@ -470,7 +480,7 @@ void bind_haptics(py::module_& root) {
       })
       .def_property_readonly("running", [](const HapticSession& s) { return s.loop_->running(); })
       .def("step", [](HapticSession& s, int ticks) {
-        if (s.loop_->running()) throw py::value_error("the loop is running on its thread");
+        if (s.loop_->running()) raise_argument_error("the loop is running on its thread");
         py::gil_scoped_release release;
         for (int i = 0; i < ticks; ++i) s.loop_->step_lockstep();
       }, py::arg("ticks"), "Lockstep ticks (with the thread stopped).")

@@ -8,6 +8,7 @@
 #include <Message_Messenger.hxx>
 #include <Message_Printer.hxx>
 #include <OSD.hxx>
+#include <Standard_OutOfMemory.hxx>
 
 namespace contactcore {
 
@@ -106,6 +107,25 @@ OcctGuard::~OcctGuard() {
 }
 
 std::vector<std::string> OcctGuard::messages() const { return state_->capture->lines; }
+
+Status status_of_current_exception() {
+  try {
+    throw;
+  } catch (const Standard_OutOfMemory&) {
+    return Status::failure(StatusCode::OutOfMemory, "out of memory");
+  } catch (const Standard_Failure& failure) {
+    // Some OCCT exceptions carry no message: name their type then.
+    const char* text = failure.GetMessageString();
+    return Status::failure(StatusCode::GeometryError, std::string("OCCT ") + failure.DynamicType()->Name() +
+                                                          (text && *text ? std::string(": ") + text : ""));
+  } catch (const std::bad_alloc&) {
+    return Status::failure(StatusCode::OutOfMemory, "out of memory");
+  } catch (const std::exception& error) {
+    return Status::failure(StatusCode::Internal, *error.what() ? error.what() : "C++ exception without a message");
+  } catch (...) {
+    return Status::failure(StatusCode::Internal, "an exception that is not a C++ std::exception");
+  }
+}
 
 std::string occt_failure_text(const Standard_Failure& failure) {
   const char* text = failure.GetMessageString();

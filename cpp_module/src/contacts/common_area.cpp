@@ -1,4 +1,5 @@
 #include "contacts/common_area.h"
+#include "contactcore/common/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -20,8 +21,6 @@
 namespace contactcore {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
 
 // ---------------------------------------------------------------- 2D polygons
 
@@ -358,7 +357,10 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
 // piece typed as a face of its own: exact area (Green on its boundary) and
 // extent. Used where the boundary of a face is not made of iso-lines of the
 // shared parametrisation, and for spheres and tori.
-std::vector<FaceInfo> boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol) {
+// A failed Boolean or piece is a failed Status (the driver skips the pair).
+Status boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol,
+                      std::vector<FaceInfo>& pieces) {
+  pieces.clear();
   TopTools_ListOfShape arguments, tools;
   arguments.Append(a);
   tools.Append(b);
@@ -369,15 +371,14 @@ std::vector<FaceInfo> boolean_common(const TopoDS_Face& a, const TopoDS_Face& b,
   common.SetNonDestructive(Standard_True);
   common.SetRunParallel(Standard_False);
   common.Build();
-  if (!common.IsDone()) throw Standard_Failure("Boolean common of two faces failed");
-  std::vector<FaceInfo> pieces;
+  if (!common.IsDone()) return Status::failure(StatusCode::GeometryError, "OCCT: Boolean common of two faces failed");
   for (TopExp_Explorer faces(common.Shape(), TopAbs_FACE); faces.More(); faces.Next()) {
     FaceInfo piece;
     const Status typed = type_face(TopoDS::Face(faces.Current()), tol, piece);
-    if (!typed.ok()) throw Standard_Failure(typed.message.c_str());
+    if (!typed.ok()) return Status::failure(StatusCode::GeometryError, "OCCT: " + typed.message);
     pieces.push_back(std::move(piece));
   }
-  return pieces;
+  return Status::success();
 }
 
 // Is the face a rectangle in (angle, axial) about the axis: every edge either
@@ -417,19 +418,19 @@ bool is_angle_axial_rectangle(const TopoDS_Face& face, const gp_Pnt& origin, con
 // faces bounded by parallels and meridians meet in the product of their axial
 // ranges and angular spans; any other pair (oblique ends, cross holes,
 // trimmed faces) by the exact common region of the two faces.
-void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out) {
+Status revolution_fit(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
   const bool cone = pa.kind == SurfaceKind::Cone;
   if (cone) {
-    if (pa.axis.Dot(pb.axis) < std::cos(ctx.tol.angular)) return;
-    if (std::abs(pa.half_angle - pb.half_angle) > ctx.tol.angular) return;
-    if (pa.location.Distance(pb.location) > ctx.tol.linear) return;
+    if (pa.axis.Dot(pb.axis) < std::cos(ctx.tol.angular)) return Status::success();
+    if (std::abs(pa.half_angle - pb.half_angle) > ctx.tol.angular) return Status::success();
+    if (pa.location.Distance(pb.location) > ctx.tol.linear) return Status::success();
   } else {
-    if (!parallel(pa.axis, pb.axis, ctx.tol.angular)) return;
-    if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return;
-    if (distance_to_line(pb.location, pa.location, pa.axis) > ctx.tol.linear) return;
+    if (!parallel(pa.axis, pb.axis, ctx.tol.angular)) return Status::success();
+    if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return Status::success();
+    if (distance_to_line(pb.location, pa.location, pa.axis) > ctx.tol.linear) return Status::success();
   }
   Contact c;
   c.type = cone ? ContactType::CJU : ContactType::CLJ;
@@ -466,7 +467,10 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
                              : pa.radius * angle * (z1 - z0));
       } else {
         common.clear();
-        for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) {
+        std::vector<FaceInfo> pieces;
+        const Status found = boolean_common(face_a.face, face_b.face, ctx.tol, pieces);
+        if (!found.ok()) return found;
+        for (const FaceInfo& piece : pieces) {
           area += piece.area;
           const Extent seen = revolution_extent_in(piece, pa.location, pa.axis, ref, ctx.tol.linear);
           common.insert(common.end(), seen.angular.begin(), seen.angular.end());
@@ -479,26 +483,27 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
       c.faces_b.push_back(fb);
     }
   }
-  if (!area_counts(c.area, a, b, ctx)) return;
+  if (!area_counts(c.area, a, b, ctx)) return Status::success();
   c.span = 0;
   for (const AngularInterval& i : unite(common_angles)) c.span += i.span;
-  c.partial = c.span < M_PI - ctx.tol.angular;
+  c.partial = c.span < kPi - ctx.tol.angular;
   c.partition_a = a.id, c.partition_b = b.id;
   record(c, ctx, out);
+  return Status::success();
 }
 
 // Spheres (SPF) and tori (TRF) with the same parameters: the exact common
 // region of each face pair (the same whichever body comes first).
-void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& b,
-                           const PairContext& ctx, std::vector<Contact>& out) {
+Status closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& b,
+                             const PairContext& ctx, std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
   const bool torus = pa.kind == SurfaceKind::Torus;
-  if (pa.location.Distance(pb.location) > ctx.tol.linear) return;
-  if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return;
+  if (pa.location.Distance(pb.location) > ctx.tol.linear) return Status::success();
+  if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return Status::success();
   if (torus && (std::abs(pa.minor_radius - pb.minor_radius) > ctx.tol.linear ||
                 !parallel(pa.axis, pb.axis, ctx.tol.angular)))
-    return;
+    return Status::success();
   Contact c;
   c.type = torus ? ContactType::TRF : ContactType::SPF;
   c.point = pa.location;
@@ -509,18 +514,22 @@ void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& 
     for (int fb : b.faces) {
       const FaceInfo& face_b = face_of(ctx.parts[ib], fb);
       if (!boxes_meet(face_a.box, face_b.box, ctx.tol.linear)) continue;
+      std::vector<FaceInfo> pieces;
+      const Status found = boolean_common(face_a.face, face_b.face, ctx.tol, pieces);
+      if (!found.ok()) return found;
       double area = 0;
-      for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) area += piece.area;
+      for (const FaceInfo& piece : pieces) area += piece.area;
       if (area <= ctx.tol.linear * ctx.tol.linear) continue;
       c.area += area;
       c.faces_a.push_back(fa);
       c.faces_b.push_back(fb);
     }
   }
-  if (!area_counts(c.area, a, b, ctx)) return;
+  if (!area_counts(c.area, a, b, ctx)) return Status::success();
   c.span = kTwoPi;  // not a revolution-about-an-axis contact: never partial
   c.partition_a = a.id, c.partition_b = b.id;
   record(c, ctx, out);
+  return Status::success();
 }
 
 // A ball touching a bore (LAF) or a torus groove (SPT) of its radius: the
@@ -569,15 +578,10 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   if (on_both.empty()) return;
   c.span = 0;
   for (const AngularInterval& i : unite(on_both)) c.span += i.span;
-  c.partial = c.span < M_PI - ctx.tol.angular;
+  c.partial = c.span < kPi - ctx.tol.angular;
   c.partition_a = ball.id, c.partition_b = seat.id;
   record(c, ctx, out);
 }
-bool opposite_sides(const Partition& a, const Partition& b) {
-  return (a.side == MaterialSide::Convex && b.side == MaterialSide::Concave) ||
-         (a.side == MaterialSide::Concave && b.side == MaterialSide::Convex);
-}
-
 void swap_sides(Contact& c) {
   std::swap(c.partition_a, c.partition_b);
   std::swap(c.faces_a, c.faces_b);
@@ -587,8 +591,8 @@ void swap_sides(Contact& c) {
 
 // Dispatches one candidate pair to its test (a from body ia, b from body ib,
 // ia < ib); every test records its first argument as side a.
-void test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out) {
+Status test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out) {
   const SurfaceKind ka = a.params.kind, kb = b.params.kind;
   const auto is_ball = [](const Partition& p) {
     return p.params.kind == SurfaceKind::Sphere && p.side == MaterialSide::Convex;
@@ -599,22 +603,28 @@ void test_candidate(int ia, const Partition& a, int ib, const Partition& b, cons
   };
   const size_t before = out.size();
   bool swapped = false;
+  Status status;
   if (ka == SurfaceKind::Plane && kb == SurfaceKind::Plane) {
     planar_fit(ia, a, ib, b, ctx, out);
   } else if (ka == kb && (ka == SurfaceKind::Cylinder || ka == SurfaceKind::Cone)) {
-    if (opposite_sides(a, b)) revolution_fit(ia, a, ib, b, ctx, out);
+    if (convex_against_concave(a.side, b.side)) status = revolution_fit(ia, a, ib, b, ctx, out);
   } else if (ka == kb && (ka == SurfaceKind::Sphere || ka == SurfaceKind::Torus)) {
-    if (opposite_sides(a, b)) closed_revolution_fit(ia, a, ib, b, ctx, out);
+    if (convex_against_concave(a.side, b.side)) status = closed_revolution_fit(ia, a, ib, b, ctx, out);
   } else if (is_ball(a) && is_seat(b)) {
     ball_fit(ia, a, ib, b, ctx, out);
   } else if (is_ball(b) && is_seat(a)) {
     ball_fit(ib, b, ia, a, ctx, out);
     swapped = true;
   }
+  if (!status.ok()) {
+    out.resize(before);  // nothing half-done from a failed test
+    return status;
+  }
   for (size_t k = before; k < out.size(); ++k) {
     if (swapped) swap_sides(out[k]);
     out[k].body_a = ia, out[k].body_b = ib;
   }
+  return status;
 }
 
 CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {
