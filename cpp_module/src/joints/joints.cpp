@@ -1,6 +1,7 @@
 // Joints per body pair: each contact's constraint wrenches, stacked, give the
 // free twists as their null space; unilateral contacts give one-sided stops
 // and the cone of directions in which one body can leave the other.
+#include "contactcore/common/angles.h"
 #include "contactcore/joints/joints.h"
 
 #include <algorithm>
@@ -14,8 +15,6 @@ namespace contactcore {
 using namespace detail;
 
 namespace {
-
-constexpr double kTwoPi = 2 * M_PI;
 
 const Partition& partition_of(const ContactsResult& r, int body, int id) {
   return r.partitions[body].partitions[id];

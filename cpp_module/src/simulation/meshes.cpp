@@ -28,6 +28,8 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
 
+#include "contactcore/common/angles.h"
+
 namespace contactcore {
 
 namespace {
@@ -346,7 +348,7 @@ MeshQuality mesh_quality(const TaggedMesh& mesh) {
   uses.reserve(mesh.triangles.size() * 2);
   std::vector<double> aspects;
   aspects.reserve(mesh.triangles.size());
-  double min_angle = M_PI;
+  double min_angle = kPi;
   for (const auto& t : mesh.triangles) {
     std::array<Vec3, 3> p{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
     double longest = 0;
@@ -368,7 +370,7 @@ MeshQuality mesh_quality(const TaggedMesh& mesh) {
     if (count > 2) ++quality.nonmanifold_edges;
   }
   quality.watertight = !mesh.triangles.empty() && quality.boundary_edges == 0 && quality.nonmanifold_edges == 0;
-  quality.min_angle_deg = mesh.triangles.empty() ? 0 : min_angle * 180 / M_PI;
+  quality.min_angle_deg = mesh.triangles.empty() ? 0 : min_angle * 180 / kPi;
   if (!aspects.empty()) {
     std::sort(aspects.begin(), aspects.end());
     auto percentile = [&](double q) {
