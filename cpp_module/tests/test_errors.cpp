@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <Standard_DomainError.hxx>
@@ -79,6 +80,10 @@ TEST(Errors, EachExceptionBecomesItsStatusCode) {
   s = status_of_throwing([] { throw std::out_of_range("vector::_M_range_check: __n (which is 7)"); });
   EXPECT_EQ(s.code, StatusCode::Internal);
   EXPECT_EQ(s.message, "vector::_M_range_check: __n (which is 7)");
+  s = status_of_throwing([] { throw std::system_error(std::make_error_code(std::errc::resource_unavailable_try_again)); });
+  EXPECT_EQ(s.code, StatusCode::OutOfMemory);  // no thread could be started: memory, not a bug
+  s = status_of_throwing([] { throw std::system_error(std::make_error_code(std::errc::invalid_argument)); });
+  EXPECT_EQ(s.code, StatusCode::Internal);
   s = status_of_throwing([] { throw 42; });
   EXPECT_EQ(s.code, StatusCode::Internal);
   EXPECT_EQ(s.describe(), "an exception that is not a C++ std::exception");

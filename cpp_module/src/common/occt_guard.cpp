@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <mutex>
+#include <system_error>
 #include <vector>
 
 #include <Message.hxx>
@@ -120,6 +121,11 @@ Status status_of_current_exception() {
                                                           (text && *text ? std::string(": ") + text : ""));
   } catch (const std::bad_alloc&) {
     return Status::failure(StatusCode::OutOfMemory, "out of memory");
+  } catch (const std::system_error& error) {
+    // A thread or a mapping the system could not give: memory, not a bug.
+    if (error.code() == std::errc::not_enough_memory || error.code() == std::errc::resource_unavailable_try_again)
+      return Status::failure(StatusCode::OutOfMemory, std::string("out of memory (") + error.what() + ")");
+    return Status::failure(StatusCode::Internal, error.what());
   } catch (const std::exception& error) {
     return Status::failure(StatusCode::Internal, *error.what() ? error.what() : "C++ exception without a message");
   } catch (...) {
