@@ -136,7 +136,8 @@ def test_bad_trial_script_is_an_argument_error(motor_scene):
 def test_cli_exit_code_of_an_internal_error(monkeypatch, capsys):
     """InternalError (a C++ exception the core did not expect) is the CLI's
     exit 5; a GeometryError stays exit 4."""
-    from contactwb import analysis, cli
+    from contactwb.cli import contacts as cli
+    from contactwb.core import analysis
 
     def fail_with(error):
         def find(*args, **kwargs):
