@@ -59,6 +59,8 @@ void bind_contacts(py::module_& m) {
       .def_readonly("broad_phase", &StageTimes::broad_phase, "seconds finding body pairs with meeting boxes")
       .def_readonly("candidates", &StageTimes::candidates, "seconds finding candidate partition pairs")
       .def_readonly("area", &StageTimes::area, "seconds testing candidates (common areas)")
+      .def_readonly("validity", &StageTimes::validity, "seconds of the solid checks")
+      .def_readonly("interferences", &StageTimes::interferences, "seconds of the interference pass")
       .def("__repr__", [](const StageTimes& t) {
         std::ostringstream out;
         out << "<StageTimes partitions=" << t.partitions << " broad_phase=" << t.broad_phase
