@@ -177,13 +177,16 @@ def _contacts(argv):
         where = "" if os.path.basename(path) in str(error) else f" (file '{path}')"  # a document's body errors
         print(f"contacts: {error}{where}", file=sys.stderr)
         return EXIT_INPUT
-    except core.ContactsError as error:
-        print(f"contacts: {error}", file=sys.stderr)
-        return EXIT_FAILED
     except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
         text = str(error) if "out of memory" in str(error) else "out of memory"
         where = "" if os.path.basename(path) in text else f" (file '{path}')"
         print(f"contacts: {text}{where}", file=sys.stderr)
+        return EXIT_FAILED
+    except core.InternalError as error:  # a bug in the core
+        print(f"contacts: internal error ({error}); please report it", file=sys.stderr)
+        return EXIT_INTERNAL
+    except core.ContactsError as error:
+        print(f"contacts: {error}", file=sys.stderr)
         return EXIT_FAILED
     except (OSError, UnicodeError, ValueError, OverflowError) as error:
         if args.graph and isinstance(error, OSError) and error.filename and \

@@ -4,6 +4,8 @@
 // methods exchange values with it through atomics and a snapshot.
 #include "common.h"
 
+#include <algorithm>
+#include <iterator>
 #include <memory>
 
 #include "contactcore/haptics/device_factory.h"
@@ -27,7 +29,7 @@ py::list vec(const Vec3& v) {
 
 Vec3 vec_from(const py::handle& value, const char* what) {
   auto seq = value.cast<std::vector<double>>();
-  if (seq.size() != 3) throw py::value_error(std::string(what) + ": three numbers expected");
+  if (seq.size() != 3) raise_argument_error(std::string(what) + ": three numbers expected");
   return {seq[0], seq[1], seq[2]};
 }
 
@@ -236,7 +238,19 @@ class HapticSession {
   std::string message_;
 };
 
+// The servo loop's keyword options, each checked by name: a misspelt one is
+// an ArgumentError naming it, never silently the default.
 ServoConfig config_from(const py::kwargs& kw) {
+  static const char* const kOptions[] = {"stiffness", "angular_stiffness", "damping", "angular_damping",
+                                         "max_speed", "breakaway_force",   "rate_hz", "realtime_priority"};
+  for (const auto& item : kw) {
+    const std::string key = py::str(item.first);
+    if (std::none_of(std::begin(kOptions), std::end(kOptions), [&](const char* option) { return key == option; })) {
+      std::string known;
+      for (const char* option : kOptions) known += (known.empty() ? "" : ", ") + std::string(option);
+      raise_argument_error("unknown keyword option '" + key + "' (the options: " + known + ")");
+    }
+  }
   ServoConfig c;
   if (kw.contains("stiffness")) c.stiffness = kw["stiffness"].cast<double>();
   if (kw.contains("angular_stiffness")) c.angular_stiffness = kw["angular_stiffness"].cast<double>();
@@ -476,10 +490,10 @@ void bind_haptics(py::module_& root) {
         TrialScript s;
         if (script.contains("start")) s.start = key_from(script["start"].cast<py::dict>(), false);
         const bool scripted_hand = device == "sim";
-        if (scripted_hand && !script.contains("hand")) throw py::value_error("script: 'hand' (a list of keys) is missing");
+        if (scripted_hand && !script.contains("hand")) raise_argument_error("script: 'hand' (a list of keys) is missing");
         if (script.contains("hand"))
           for (const py::handle& k : script["hand"].cast<py::list>()) s.hand.push_back(key_from(k.cast<py::dict>(), true));
-        if (scripted_hand && s.hand.empty()) throw py::value_error("script: 'hand' is empty");
+        if (scripted_hand && s.hand.empty()) raise_argument_error("script: 'hand' is empty");
         TrialOptions options;
         options.servo = config_from(kw);
         options.record_every = record_every;
@@ -496,7 +510,7 @@ void bind_haptics(py::module_& root) {
           request.start = offset_pose(k.translate, Vec3(rad(k.rotate_deg.x()), rad(k.rotate_deg.y()), rad(k.rotate_deg.z())),
                                       scene.centre());
           if (device == "replay") {
-            if (hid_file.is_none()) throw py::value_error("--device replay needs a recording (hid_file)");
+            if (hid_file.is_none()) raise_argument_error("--device replay needs a recording (hid_file)");
             request.replay = recording_from(hid_file);
           }
           request.record = !record_hid.is_none();
@@ -510,17 +524,13 @@ void bind_haptics(py::module_& root) {
           else if (device == "replay" && !request.replay.reports.empty())
             options.duration = request.replay.reports.back().time + settle;
           else options.duration = (s.hand.empty() ? 10.0 : s.hand.back().t + settle);
-          if (options.duration <= 0) throw py::value_error("duration must be > 0 s");
+          if (options.duration <= 0) raise_argument_error("duration must be > 0 s");
           // Hardware runs on the wall clock; a replay is deterministic in lockstep.
           if (device == "spacemouse" || device == "hid-ff") realtime = true;
         } else if (!record_hid.is_none()) {
-          throw py::value_error("--record-hid records a HID device (spacemouse, hid-ff), not the simulated hand");
+          raise_argument_error("--record-hid records a HID device (spacemouse, hid-ff), not the simulated hand");
         }
-        TrialResult r;
-        {
-          py::gil_scoped_release release;
-          r = run_trial(scene, s, options, realtime);
-        }
+        const TrialResult r = call_guarded([&] { return run_trial(scene, s, options, realtime); });
         if (opened.recorder) {
           opened.device.reset();  // the reader thread stops: the recording is complete
           raise_if_failed(write_hid_recording(opened.recorder->recording(), record_hid.cast<std::string>()));
@@ -616,7 +626,7 @@ void bind_haptics(py::module_& root) {
       })
       .def_property_readonly("running", [](const HapticSession& s) { return s.loop_->running(); })
       .def("step", [](HapticSession& s, int ticks) {
-        if (s.loop_->running()) throw py::value_error("the loop is running on its thread");
+        if (s.loop_->running()) raise_argument_error("the loop is running on its thread");
         py::gil_scoped_release release;
         for (int i = 0; i < ticks; ++i) s.loop_->step_lockstep();
       }, py::arg("ticks"), "Lockstep ticks (with the thread stopped).")

@@ -34,25 +34,25 @@ void bind_meshes(py::module_& m) {
            }),
            py::arg("deflection") = MeshOptions{}.deflection, py::arg("angle") = MeshOptions{}.angle,
            py::arg("max_edge_length") = 0.0, py::arg("max_triangles") = MeshOptions{}.max_triangles)
-      .def_readwrite("deflection", &MeshOptions::deflection)
-      .def_readwrite("angle", &MeshOptions::angle)
-      .def_readwrite("max_edge_length", &MeshOptions::max_edge_length)
-      .def_readwrite("max_triangles", &MeshOptions::max_triangles);
+      .def_readwrite("deflection", &MeshOptions::deflection, "mm: chordal deviation")
+      .def_readwrite("angle", &MeshOptions::angle, "radians: angular deflection")
+      .def_readwrite("max_edge_length", &MeshOptions::max_edge_length, "mm; 0: no bound")
+      .def_readwrite("max_triangles", &MeshOptions::max_triangles, "refused beyond this many triangles (estimated first)");
 
   m.def("estimated_triangles", [](const Body& body, const MeshOptions& options) {
-          return without_gil([&] { return estimated_triangles(body.shape, options); });
+          return call_guarded([&] { return estimated_triangles(body.shape, options); });
         }, py::arg("body"), py::arg("options") = MeshOptions{},
         "A lower bound of the triangles mesh_assembly makes of the body with these options (no meshing).");
 
   py::class_<TaggedMesh>(m, "TaggedMesh", "Triangles sharing vertices, each tagged with its FaceN and partition")
       .def_property_readonly("vertices", &vertex_list, "[(x, y, z)] in mm")
       .def_property_readonly("triangles", &triangle_list, "[(i, j, k)], counter-clockwise seen from outside")
-      .def_readonly("triangle_face", &TaggedMesh::triangle_face)
-      .def_readonly("triangle_partition", &TaggedMesh::triangle_partition)
-      .def_readonly("partition_count", &TaggedMesh::partition_count)
+      .def_readonly("triangle_face", &TaggedMesh::triangle_face, "1-based FaceN of each triangle")
+      .def_readonly("triangle_partition", &TaggedMesh::triangle_partition, "partition id of each triangle")
+      .def_readonly("partition_count", &TaggedMesh::partition_count, "number of partitions of the body")
       .def(
           "write_ply",
-          [](const TaggedMesh& mesh, const std::string& path) { raise_if_failed(write_ply(mesh, path)); },
+          [](const TaggedMesh& mesh, const std::string& path) { raise_if_failed(guarded([&] { return write_ply(mesh, path); })); },
           py::arg("path"), "ASCII PLY: vertex x y z; face vertex_indices, face, partition")
       .def("__repr__", [](const TaggedMesh& mesh) {
         return "<TaggedMesh " + std::to_string(mesh.triangles.size()) + " triangles, " +
@@ -60,20 +60,20 @@ void bind_meshes(py::module_& m) {
       });
 
   py::class_<MeshQuality>(m, "MeshQuality", "Closure and shape of a mesh's triangles")
-      .def_readonly("triangles", &MeshQuality::triangles)
-      .def_readonly("boundary_edges", &MeshQuality::boundary_edges)
-      .def_readonly("nonmanifold_edges", &MeshQuality::nonmanifold_edges)
-      .def_readonly("watertight", &MeshQuality::watertight)
-      .def_readonly("min_angle_deg", &MeshQuality::min_angle_deg)
-      .def_readonly("aspect_p50", &MeshQuality::aspect_p50)
-      .def_readonly("aspect_p90", &MeshQuality::aspect_p90)
-      .def_readonly("aspect_p99", &MeshQuality::aspect_p99)
-      .def_readonly("aspect_max", &MeshQuality::aspect_max)
-      .def_readonly("max_edge_length", &MeshQuality::max_edge_length);
+      .def_readonly("triangles", &MeshQuality::triangles, "number of triangles")
+      .def_readonly("boundary_edges", &MeshQuality::boundary_edges, "edges in one triangle only")
+      .def_readonly("nonmanifold_edges", &MeshQuality::nonmanifold_edges, "edges in three or more triangles")
+      .def_readonly("watertight", &MeshQuality::watertight, "every edge in exactly two triangles")
+      .def_readonly("min_angle_deg", &MeshQuality::min_angle_deg, "degrees: smallest angle of any triangle")
+      .def_readonly("aspect_p50", &MeshQuality::aspect_p50, "median aspect ratio (1: equilateral)")
+      .def_readonly("aspect_p90", &MeshQuality::aspect_p90, "90th percentile aspect ratio")
+      .def_readonly("aspect_p99", &MeshQuality::aspect_p99, "99th percentile aspect ratio")
+      .def_readonly("aspect_max", &MeshQuality::aspect_max, "largest aspect ratio")
+      .def_readonly("max_edge_length", &MeshQuality::max_edge_length, "mm: longest edge");
 
   py::class_<MeshResult>(m, "MeshResult", "A body's tagged mesh and its quality")
-      .def_readonly("mesh", &MeshResult::mesh)
-      .def_readonly("quality", &MeshResult::quality)
+      .def_readonly("mesh", &MeshResult::mesh, "TaggedMesh")
+      .def_readonly("quality", &MeshResult::quality, "MeshQuality")
       .def_property_readonly("failed_faces", [](const MeshResult& r) {
         py::list out;
         for (const FaceFailure& f : r.failed_faces) out.append(py::make_tuple("Face" + std::to_string(f.face), f.message));
@@ -83,7 +83,9 @@ void bind_meshes(py::module_& m) {
       .def_property_readonly("invalid_faces", [](const MeshResult& r) { return face_names(r.invalid_faces); },
                              "the faces of the fault ([]: the whole solid)");
 
-  m.def("mesh_quality", &mesh_quality, py::arg("mesh"));
+  m.def(
+      "mesh_quality", [](const TaggedMesh& mesh) { return call_guarded([&] { return mesh_quality(mesh); }); },
+      py::arg("mesh"), "Closure and triangle shape of a mesh.");
 
   m.def(
       "mesh_assembly",

@@ -11,15 +11,15 @@ namespace contactcore::bindings {
 void bind_simplify(py::module_& m) {
   py::class_<SimulationModels>(m, "SimulationModels",
                                "A body's view model (original B-rep) and collision model (simplified)")
-      .def_readonly("view", &SimulationModels::view)
+      .def_readonly("view", &SimulationModels::view, "MeshResult of the original B-rep")
       .def_readonly("view_deviation", &SimulationModels::view_deviation,
                     "mm: farthest point of the view mesh from the original B-rep")
-      .def_readonly("collision", &SimulationModels::collision)
-      .def_readonly("simplified", &SimulationModels::simplified)
+      .def_readonly("collision", &SimulationModels::collision, "MeshResult of the simplified (or original) shape")
+      .def_readonly("simplified", &SimulationModels::simplified, "small features were removed")
       .def_readonly("collision_hausdorff", &SimulationModels::collision_hausdorff,
                     "mm: two-sided Hausdorff distance to the original when simplified, else the mesh's deviation")
       .def_readonly("removed_faces", &SimulationModels::removed_faces, "1-based FaceN of the original")
-      .def_readonly("features_kept", &SimulationModels::features_kept)
+      .def_readonly("features_kept", &SimulationModels::features_kept, "small features OCCT could not remove")
       .def_readonly("message", &SimulationModels::message, "why the simplification was refused, if it was");
 
   m.def(
@@ -29,14 +29,13 @@ void bind_simplify(py::module_& m) {
          std::optional<std::vector<int>> bodies) {
         if (!std::isfinite(feature_size) || !std::isfinite(envelope) || feature_size < 0 || envelope < 0 ||
             (feature_size > 0 && envelope <= 0))
-          raise_if_failed(Status::failure(StatusCode::InvalidInput,
-                                          "a feature size needs a positive envelope (both in mm)"));
+          raise_argument_error("a feature size needs a positive envelope (both in mm)");
         std::vector<int> chosen;
         if (bodies) {
           chosen = *bodies;
           for (int i : chosen)
             if (i < 0 || i >= static_cast<int>(assembly.bodies.size()))
-              raise_if_failed(Status::failure(StatusCode::InvalidInput, "no body number " + std::to_string(i)));
+              raise_argument_error("no body number " + std::to_string(i));
         } else {
           for (std::size_t i = 0; i < assembly.bodies.size(); ++i) chosen.push_back(static_cast<int>(i));
         }

@@ -1,4 +1,5 @@
 #include "contacts/common_area.h"
+#include "contactcore/common/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,8 +23,6 @@
 namespace contactcore {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
 
 // ---------------------------------------------------------------- 2D polygons
 
@@ -273,7 +272,7 @@ double refine_circle_end(const gp_Pnt& centre, const gp_Dir& x, const gp_Dir& y,
 // they go all around.
 void covering_arc(const std::vector<AngularInterval>& intervals, double& middle, double& half_span) {
   std::vector<AngularInterval> sorted = unite(intervals);
-  middle = 0, half_span = M_PI;
+  middle = 0, half_span = kPi;
   double covered = 0;
   for (const AngularInterval& i : sorted) covered += i.span;
   if (sorted.empty() || covered >= kTwoPi - 1e-9) return;
@@ -296,7 +295,7 @@ void covering_arc(const std::vector<AngularInterval>& intervals, double& middle,
 // region goes all around (the point opposite the axis lies on a face).
 void covering_cap(const std::vector<FaceInfo>& pieces, const gp_Pnt& centre, double radius, double tol,
                   gp_Dir& axis, double& angle) {
-  angle = M_PI;
+  angle = kPi;
   gp_XYZ moment(0, 0, 0);
   double area = 0;
   for (const FaceInfo& piece : pieces) {
@@ -333,7 +332,7 @@ void covering_cap(const std::vector<FaceInfo>& pieces, const gp_Pnt& centre, dou
       if (curve.GetType() != GeomAbs_Circle) widest += step_angle;
     }
   }
-  angle = std::min(M_PI, widest);
+  angle = std::min(kPi, widest);
 }
 
 // -------------------------------------------------------------- contacts
@@ -406,7 +405,10 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
 // piece typed as a face of its own: exact area (Green on its boundary) and
 // extent. Used where the boundary of a face is not made of iso-lines of the
 // shared parametrisation, and for spheres and tori.
-std::vector<FaceInfo> boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol) {
+// A failed Boolean or piece is a failed Status (the driver skips the pair).
+Status boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol,
+                      std::vector<FaceInfo>& pieces) {
+  pieces.clear();
   TopTools_ListOfShape arguments, tools;
   arguments.Append(a);
   tools.Append(b);
@@ -417,15 +419,14 @@ std::vector<FaceInfo> boolean_common(const TopoDS_Face& a, const TopoDS_Face& b,
   common.SetNonDestructive(Standard_True);
   common.SetRunParallel(Standard_False);
   common.Build();
-  if (!common.IsDone()) throw Standard_Failure("Boolean common of two faces failed");
-  std::vector<FaceInfo> pieces;
+  if (!common.IsDone()) return Status::failure(StatusCode::GeometryError, "OCCT: Boolean common of two faces failed");
   for (TopExp_Explorer faces(common.Shape(), TopAbs_FACE); faces.More(); faces.Next()) {
     FaceInfo piece;
     const Status typed = type_face(TopoDS::Face(faces.Current()), tol, piece);
-    if (!typed.ok()) throw Standard_Failure(typed.message.c_str());
+    if (!typed.ok()) return Status::failure(StatusCode::GeometryError, "OCCT: " + typed.message);
     pieces.push_back(std::move(piece));
   }
-  return pieces;
+  return Status::success();
 }
 
 // Is the face a rectangle in (angle, axial) about the axis: every edge either
@@ -465,19 +466,19 @@ bool is_angle_axial_rectangle(const TopoDS_Face& face, const gp_Pnt& origin, con
 // faces bounded by parallels and meridians meet in the product of their axial
 // ranges and angular spans; any other pair (oblique ends, cross holes,
 // trimmed faces) by the exact common region of the two faces.
-void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out) {
+Status revolution_fit(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
   const bool cone = pa.kind == SurfaceKind::Cone;
   if (cone) {
-    if (pa.axis.Dot(pb.axis) < std::cos(ctx.tol.angular)) return;
-    if (std::abs(pa.half_angle - pb.half_angle) > ctx.tol.angular) return;
-    if (pa.location.Distance(pb.location) > ctx.tol.linear) return;
+    if (pa.axis.Dot(pb.axis) < std::cos(ctx.tol.angular)) return Status::success();
+    if (std::abs(pa.half_angle - pb.half_angle) > ctx.tol.angular) return Status::success();
+    if (pa.location.Distance(pb.location) > ctx.tol.linear) return Status::success();
   } else {
-    if (!parallel(pa.axis, pb.axis, ctx.tol.angular)) return;
-    if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return;
-    if (distance_to_line(pb.location, pa.location, pa.axis) > ctx.tol.linear) return;
+    if (!parallel(pa.axis, pb.axis, ctx.tol.angular)) return Status::success();
+    if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return Status::success();
+    if (distance_to_line(pb.location, pa.location, pa.axis) > ctx.tol.linear) return Status::success();
   }
   Contact c;
   c.type = cone ? ContactType::CJU : ContactType::CLJ;
@@ -514,7 +515,10 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
                              : pa.radius * angle * (z1 - z0));
       } else {
         common.clear();
-        for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) {
+        std::vector<FaceInfo> pieces;
+        const Status found = boolean_common(face_a.face, face_b.face, ctx.tol, pieces);
+        if (!found.ok()) return found;
+        for (const FaceInfo& piece : pieces) {
           area += piece.area;
           const Extent seen = revolution_extent_in(piece, pa.location, pa.axis, ref, ctx.tol.linear);
           common.insert(common.end(), seen.angular.begin(), seen.angular.end());
@@ -527,26 +531,27 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
       c.faces_b.push_back(fb);
     }
   }
-  if (!area_counts(c.area, a, b, ctx)) return;
+  if (!area_counts(c.area, a, b, ctx)) return Status::success();
   c.span = 0;
   for (const AngularInterval& i : unite(common_angles)) c.span += i.span;
-  c.partial = c.span < M_PI - ctx.tol.angular;
+  c.partial = c.span < kPi - ctx.tol.angular;
   c.partition_a = a.id, c.partition_b = b.id;
   record(c, ctx, out);
+  return Status::success();
 }
 
 // Spheres (SPF) and tori (TRF) with the same parameters: the exact common
 // region of each face pair (the same whichever body comes first).
-void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& b,
-                           const PairContext& ctx, std::vector<Contact>& out) {
+Status closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& b,
+                             const PairContext& ctx, std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
   const bool torus = pa.kind == SurfaceKind::Torus;
-  if (pa.location.Distance(pb.location) > ctx.tol.linear) return;
-  if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return;
+  if (pa.location.Distance(pb.location) > ctx.tol.linear) return Status::success();
+  if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return Status::success();
   if (torus && (std::abs(pa.minor_radius - pb.minor_radius) > ctx.tol.linear ||
                 !parallel(pa.axis, pb.axis, ctx.tol.angular)))
-    return;
+    return Status::success();
   Contact c;
   c.type = torus ? ContactType::TRF : ContactType::SPF;
   c.point = pa.location;
@@ -558,8 +563,10 @@ void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& 
     for (int fb : b.faces) {
       const FaceInfo& face_b = face_of(ctx.parts[ib], fb);
       if (!boxes_meet(face_a.box, face_b.box, ctx.tol.linear)) continue;
+      std::vector<FaceInfo> found;
+      const Status common = boolean_common(face_a.face, face_b.face, ctx.tol, found);
+      if (!common.ok()) return common;
       double area = 0;
-      std::vector<FaceInfo> found = boolean_common(face_a.face, face_b.face, ctx.tol);
       for (const FaceInfo& piece : found) area += piece.area;
       if (area <= ctx.tol.linear * ctx.tol.linear) continue;
       c.area += area;
@@ -568,11 +575,12 @@ void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& 
       for (FaceInfo& piece : found) pieces.push_back(std::move(piece));
     }
   }
-  if (!area_counts(c.area, a, b, ctx)) return;
+  if (!area_counts(c.area, a, b, ctx)) return Status::success();
   if (!torus) covering_cap(pieces, pa.location, pa.radius, ctx.tol.linear, c.region_axis, c.region_angle);
   c.span = kTwoPi;  // not a revolution-about-an-axis contact: never partial
   c.partition_a = a.id, c.partition_b = b.id;
   record(c, ctx, out);
+  return Status::success();
 }
 
 // A ball touching a bore (LAF) or a torus groove (SPT) of its radius: the
@@ -618,7 +626,7 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
       if (hits.empty()) continue;
       // The runs' ends to the probes' precision (the samples are 5 degrees
       // apart): the arc's ends bound the ball's one-sided directions.
-      const double half_step = M_PI / kCircleSamples;
+      const double half_step = kPi / kCircleSamples;
       for (AngularInterval& run : hits) {
         if (run.span >= kTwoPi - 1e-9) continue;
         const double start = refine_circle_end(ps.location, x, y, ps.radius, probes, probe_tol,
@@ -635,19 +643,14 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   if (on_both.empty()) return;
   c.span = 0;
   for (const AngularInterval& i : unite(on_both)) c.span += i.span;
-  c.partial = c.span < M_PI - ctx.tol.angular;
-  double middle = 0, half_span = M_PI;
+  c.partial = c.span < kPi - ctx.tol.angular;
+  double middle = 0, half_span = kPi;
   covering_arc(on_both, middle, half_span);
   c.region_angle = half_span;
-  if (half_span < M_PI) c.region_axis = gp_Dir(gp_Vec(x) * std::cos(middle) + gp_Vec(y) * std::sin(middle));
+  if (half_span < kPi) c.region_axis = gp_Dir(gp_Vec(x) * std::cos(middle) + gp_Vec(y) * std::sin(middle));
   c.partition_a = ball.id, c.partition_b = seat.id;
   record(c, ctx, out);
 }
-bool opposite_sides(const Partition& a, const Partition& b) {
-  return (a.side == MaterialSide::Convex && b.side == MaterialSide::Concave) ||
-         (a.side == MaterialSide::Concave && b.side == MaterialSide::Convex);
-}
-
 void swap_sides(Contact& c) {
   std::swap(c.partition_a, c.partition_b);
   std::swap(c.faces_a, c.faces_b);
@@ -657,8 +660,8 @@ void swap_sides(Contact& c) {
 
 // Dispatches one candidate pair to its test (a from body ia, b from body ib,
 // ia < ib); every test records its first argument as side a.
-void test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out) {
+Status test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out) {
   const SurfaceKind ka = a.params.kind, kb = b.params.kind;
   const auto is_ball = [](const Partition& p) {
     return p.params.kind == SurfaceKind::Sphere && p.side == MaterialSide::Convex;
@@ -669,22 +672,28 @@ void test_candidate(int ia, const Partition& a, int ib, const Partition& b, cons
   };
   const size_t before = out.size();
   bool swapped = false;
+  Status status;
   if (ka == SurfaceKind::Plane && kb == SurfaceKind::Plane) {
     planar_fit(ia, a, ib, b, ctx, out);
   } else if (ka == kb && (ka == SurfaceKind::Cylinder || ka == SurfaceKind::Cone)) {
-    if (opposite_sides(a, b)) revolution_fit(ia, a, ib, b, ctx, out);
+    if (convex_against_concave(a.side, b.side)) status = revolution_fit(ia, a, ib, b, ctx, out);
   } else if (ka == kb && (ka == SurfaceKind::Sphere || ka == SurfaceKind::Torus)) {
-    if (opposite_sides(a, b)) closed_revolution_fit(ia, a, ib, b, ctx, out);
+    if (convex_against_concave(a.side, b.side)) status = closed_revolution_fit(ia, a, ib, b, ctx, out);
   } else if (is_ball(a) && is_seat(b)) {
     ball_fit(ia, a, ib, b, ctx, out);
   } else if (is_ball(b) && is_seat(a)) {
     ball_fit(ib, b, ia, a, ctx, out);
     swapped = true;
   }
+  if (!status.ok()) {
+    out.resize(before);  // nothing half-done from a failed test
+    return status;
+  }
   for (size_t k = before; k < out.size(); ++k) {
     if (swapped) swap_sides(out[k]);
     out[k].body_a = ia, out[k].body_b = ib;
   }
+  return status;
 }
 
 CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {

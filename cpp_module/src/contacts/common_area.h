@@ -80,8 +80,11 @@ CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Pol
 
 // Tests one candidate pair (a from body ia, b from body ib, ia < ib) and
 // appends the contact it makes, if any, to `out` (side a = body ia).
-// May throw Standard_Failure from OCCT: the caller decides what to skip.
-void test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out);
+// A failed test (OCCT's Boolean common of two faces, or typing a piece of it)
+// is a failed Status and appends nothing: the caller decides what to skip.
+// OCCT may still throw from inside (or raise a signal): the caller runs it
+// under run_guarded.
+Status test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out);
 
 }  // namespace contactcore

@@ -385,7 +385,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     for (std::size_t k = 0; k < pairs.size(); ++k) result.candidates += pair_candidates_of[representative[k]].size();
     result.times.candidates = seconds_since(start);
 
-    // The tests; a pair whose test throws is skipped and recorded, the rest kept.
+    // The tests; a pair whose test fails is skipped and recorded, the rest kept.
     start = Clock::now();
     std::vector<std::vector<Contact>> pair_contacts(pairs.size());
     std::vector<std::vector<SkippedPair>> pair_skipped(pairs.size());
@@ -396,21 +396,32 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
           std::vector<Contact>& out = pair_contacts[k];
           const auto test = [&](const Candidate& c) {
             if (options.candidate_hook) options.candidate_hook(c.body_a, c.partition_a, c.body_b, c.partition_b);
-            test_candidate(c.body_a, result.partitions[c.body_a].partitions[c.partition_a], c.body_b,
-                           result.partitions[c.body_b].partitions[c.partition_b], ctx, out);
+            return test_candidate(c.body_a, result.partitions[c.body_a].partitions[c.partition_a], c.body_b,
+                                  result.partitions[c.body_b].partitions[c.partition_b], ctx, out);
           };
           // One signal guard for the body pair (a setjmp per candidate costs
-          // 0.1-0.2 us, as much as a quick test); when a test fails, the
-          // pair's candidates are tested again one by one to skip only it.
+          // 0.1-0.2 us, as much as a quick test); when a test fails (a failed
+          // Status, an OCCT exception or a signal), the pair's candidates are
+          // tested again one by one to skip only it.
           std::string failure;
-          if (run_guarded([&] { for (const Candidate& c : pair_candidates_of[k]) test(c); }, failure, "OCCT: ")) {
+          bool all_passed = true;
+          if (run_guarded([&] {
+                for (const Candidate& c : pair_candidates_of[k])
+                  if (!test(c).ok()) {
+                    all_passed = false;
+                    return;
+                  }
+              }, failure, "OCCT: ") && all_passed) {
             std::vector<Candidate>().swap(pair_candidates_of[k]);
             return;
           }
           out.clear();
           for (const Candidate& c : pair_candidates_of[k]) {
             const std::size_t before = out.size();
-            if (!run_guarded([&] { test(c); }, failure, "OCCT: ")) {
+            Status tested;
+            const bool returned = run_guarded([&] { tested = test(c); }, failure, "OCCT: ");
+            if (returned && !tested.ok()) failure = tested.message;
+            if (!returned || !tested.ok()) {
               out.resize(before);  // nothing half-done from the failed pair
               const Partition& pa = result.partitions[c.body_a].partitions[c.partition_a];
               const Partition& pb = result.partitions[c.body_b].partitions[c.partition_b];

@@ -21,6 +21,7 @@
 #include <gp_Ax1.hxx>
 
 #include "contacts/boundary_crossing.h"
+#include "contactcore/common/angles.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/parallel.h"
 #include "contactcore/common/out_of_memory.h"
@@ -116,8 +117,8 @@ bool press_fits(const BodyPartitions& a, const BodyPartitions& b, const Toleranc
       const double low = std::max(shaft.extent.axial_min, std::min(b0, b1));
       const double high = std::min(shaft.extent.axial_max, std::max(b0, b1));
       if (high - low <= tol.linear) continue;
-      double span = 2 * M_PI;
-      if (shaft.extent.angular_span() < 2 * M_PI - tol.angular || bore.extent.angular_span() < 2 * M_PI - tol.angular)
+      double span = 2 * kPi;
+      if (shaft.extent.angular_span() < 2 * kPi - tol.angular || bore.extent.angular_span() < 2 * kPi - tol.angular)
         span = overlap(shaft.extent.angular, bore_angles_in(b, bore, shaft, tol.linear));
       if (span <= tol.angular) continue;
       const double rs = shaft.params.radius, rb = bore.params.radius;

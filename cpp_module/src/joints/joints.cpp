@@ -1,6 +1,7 @@
 // Joints per body pair: each contact's constraint wrenches, stacked, give the
 // free twists as their null space; unilateral contacts give one-sided stops
 // and the cone of directions in which one body can leave the other.
+#include "contactcore/common/angles.h"
 #include "contactcore/joints/joints.h"
 
 #include <algorithm>
@@ -36,8 +37,6 @@ bool parse_intent(const std::string& text, ContactIntent& intent) {
 }
 
 namespace {
-
-constexpr double kTwoPi = 2 * M_PI;
 
 const Partition& partition_of(const ContactsResult& r, int body, int id) {
   return r.partitions[body].partitions[id];
@@ -151,7 +150,7 @@ std::vector<double> stop_angles(const std::vector<AngularInterval>& common, doub
 // exactly one (a hemispherical cup, a half-open groove: the probes find the
 // region's edges within the edges' own tolerance, 1e-7 rad beyond them).
 double region_angle_of(const Contact& c) {
-  return std::abs(c.region_angle - M_PI / 2) <= c.tolerances.angular ? M_PI / 2 : c.region_angle;
+  return std::abs(c.region_angle - kPi / 2) <= c.tolerances.angular ? kPi / 2 : c.region_angle;
 }
 
 ContactConstraints constraints_of(const ContactsResult& result, int index, const Frame& frame,
@@ -198,13 +197,13 @@ ContactConstraints constraints_of(const ContactsResult& result, int index, const
       // A full cone's normals make a circular cone about -sign sin(alpha)
       // axis, at pi/2 - alpha from it: its free directions are exact.
       if (cone && !c.partial && c.span >= kTwoPi - 1e-6 && std::abs(std::sin(alpha)) > 1e-12)
-        out.circles.push_back({-sign * (std::sin(alpha) > 0 ? 1.0 : -1.0) * fa.axis, M_PI / 2 - std::abs(alpha)});
+        out.circles.push_back({-sign * (std::sin(alpha) > 0 ? 1.0 : -1.0) * fa.axis, kPi / 2 - std::abs(alpha)});
       break;
     }
     case ContactType::SPF: {
       for (const Vec3& e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())})
         out.rows.push_back(frame.force_row(p, e));
-      if (c.region_angle >= M_PI - 1e-9) {  // held all around
+      if (c.region_angle >= kPi - 1e-9) {  // held all around
         for (const Vec3& e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())})
           out.bilateral_forces.push_back(e);
         break;
@@ -221,7 +220,7 @@ ContactConstraints constraints_of(const ContactsResult& result, int index, const
       add_axis_forces(frame, p, d, out);
       Vec3 u, v;
       perpendiculars(d, u, v);
-      if (c.region_angle >= M_PI - 1e-9) {
+      if (c.region_angle >= kPi - 1e-9) {
         out.bilateral_forces.push_back(u);
         out.bilateral_forces.push_back(v);
         break;
@@ -282,7 +281,7 @@ ContactConstraints constraints_of_higher(const ContactsResult& result, int index
 void add_circle(const CircularStops& circle, int samples, std::vector<Vec3>& bilateral, std::vector<Vec3>& normals) {
   constexpr double kFlat = 1e-7;  // radians
   const Vec3 m = circle.axis.normalized();
-  const double beta = M_PI / 2 - circle.angle;
+  const double beta = kPi / 2 - circle.angle;
   Vec3 u, v;
   perpendiculars(m, u, v);
   if (beta < -kFlat) {

@@ -29,7 +29,6 @@
 namespace contactcore {
 
 using detail::kAngularJoinGap;
-using detail::kTwoPi;
 using detail::wrap_angle;
 
 const char* to_string(SurfaceKind kind) {

@@ -35,6 +35,8 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
 
+#include "contactcore/common/angles.h"
+
 namespace contactcore {
 
 namespace {
@@ -353,7 +355,7 @@ Status check_mesh_options(const MeshOptions& options) {
   const auto fail = [](const std::string& message) { return Status::failure(StatusCode::InvalidArgument, message); };
   if (!std::isfinite(options.deflection) || !(options.deflection > 0))
     return fail("the mesh deflection must be a positive, finite length in mm; got " + std::to_string(options.deflection));
-  if (!std::isfinite(options.angle) || !(options.angle > 0) || options.angle > M_PI)
+  if (!std::isfinite(options.angle) || !(options.angle > 0) || options.angle > kPi)
     return fail("the mesh angle must be positive and at most pi radians; got " + std::to_string(options.angle));
   if (!std::isfinite(options.max_edge_length) || options.max_edge_length < 0)
     return fail("the maximum edge length must be a finite length in mm, 0 for none; got " +
@@ -369,7 +371,7 @@ double estimated_triangles(const TopoDS_Shape& shape, const MeshOptions& options
   // normals turn by at most the angle, on a circle of radius r.
   const auto chord = [&](double r) {
     const double by_deflection = options.deflection >= r ? 2 * r : 2 * std::sqrt(2 * r * options.deflection);
-    return std::min(by_deflection, 2 * r * std::sin(std::min(options.angle, M_PI) / 2));
+    return std::min(by_deflection, 2 * r * std::sin(std::min(options.angle, kPi) / 2));
   };
   double total = 0;
   TopTools_IndexedMapOfShape faces;
@@ -469,7 +471,7 @@ MeshQuality mesh_quality(const TaggedMesh& mesh) {
   uses.reserve(mesh.triangles.size() * 2);
   std::vector<double> aspects;
   aspects.reserve(mesh.triangles.size());
-  double min_angle = M_PI;
+  double min_angle = kPi;
   for (const auto& t : mesh.triangles) {
     std::array<Vec3, 3> p{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
     double longest = 0;
@@ -491,7 +493,7 @@ MeshQuality mesh_quality(const TaggedMesh& mesh) {
     if (count > 2) ++quality.nonmanifold_edges;
   }
   quality.watertight = !mesh.triangles.empty() && quality.boundary_edges == 0 && quality.nonmanifold_edges == 0;
-  quality.min_angle_deg = mesh.triangles.empty() ? 0 : min_angle * 180 / M_PI;
+  quality.min_angle_deg = mesh.triangles.empty() ? 0 : min_angle * 180 / kPi;
   if (!aspects.empty()) {
     std::sort(aspects.begin(), aspects.end());
     auto percentile = [&](double q) {

@@ -15,6 +15,7 @@
 #include <TopoDS_Shape.hxx>
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
+#include <gp_Trsf.hxx>
 
 #include "contactcore/common/errors.h"
 
@@ -30,6 +31,13 @@ const char* to_string(SurfaceKind kind);
 //    (bore, spherical cup, groove).
 enum class MaterialSide { Outward, Convex, Concave };
 const char* to_string(MaterialSide side);
+
+// Two faces of the same revolution surface can only touch with one convex
+// (material inside) and the other concave.
+inline bool convex_against_concave(MaterialSide a, MaterialSide b) {
+  return (a == MaterialSide::Convex && b == MaterialSide::Concave) ||
+         (a == MaterialSide::Concave && b == MaterialSide::Convex);
+}
 
 // Parameters of an analytic surface, in global coordinates (mm, radians).
 struct SurfaceParams {
@@ -181,6 +189,15 @@ Status type_face(const TopoDS_Face& face, const Tolerances& tol, FaceInfo& out);
 // included) of the same kind, parameters and material side into maximal
 // partitions.
 BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol);
+
+// The partitions of `shape`, which is `source_partitions`' shape moved by
+// `motion`: faces are `shape`'s own (FaceN order), surfaces, reference
+// directions and boxes moved; outlines and angular ranges, which are
+// measured in the surfaces' own frames, unchanged (the outlines shared with
+// the source, not copied). Status InvalidInput when the face counts differ
+// (not the same shape).
+BodyPartitions moved_partitions(const BodyPartitions& source_partitions, const gp_Trsf& motion,
+                                const TopoDS_Shape& shape);
 
 // The extent of a revolution face seen from another frame on the same axis
 // line (origin on the axis, axis of either sign, ref_dir perpendicular to it):
