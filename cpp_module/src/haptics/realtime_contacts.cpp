@@ -31,10 +31,6 @@ Eigen::AlignedBox3d transformed(const Eigen::AlignedBox3d& box, const Pose& pose
   return out;
 }
 
-bool opposite_sides(MaterialSide a, MaterialSide b) {
-  return (a == MaterialSide::Convex && b == MaterialSide::Concave) ||
-         (a == MaterialSide::Concave && b == MaterialSide::Convex);
-}
 
 double line_distance(const Vec3& p, const Vec3& origin, const Vec3& axis) {
   const Vec3 r = p - origin;
@@ -175,7 +171,7 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, c
   const double cos_tol = std::cos(tolerances_.angle);
   switch (m.kind) {
     case SurfaceKind::Cylinder: {
-      if (!opposite_sides(m.side, o.side)) return false;
+      if (!contactcore::convex_against_concave(m.side, o.side)) return false;
       // A shaft (convex) in a bore (concave): line to line within the radius
       // tolerance, or a clearance fit up to `clearance` larger.
       const double gap = m.side == MaterialSide::Convex ? o.radius - m.radius : m.radius - o.radius;
@@ -196,7 +192,7 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, c
       return true;
     }
     case SurfaceKind::Cone: {
-      if (!opposite_sides(m.side, o.side) || std::abs(m.half_angle - o.half_angle) > tolerances_.angle) return false;
+      if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(m.half_angle - o.half_angle) > tolerances_.angle) return false;
       const double dot = m.axis.dot(o.axis);
       const double d = (m.location - o.location).norm();
       if (dot < cos_tol || d > tolerances_.distance) return false;
@@ -208,7 +204,7 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, c
       return true;
     }
     case SurfaceKind::Sphere: {
-      if (!opposite_sides(m.side, o.side) || std::abs(m.radius - o.radius) > tolerances_.radius) return false;
+      if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(m.radius - o.radius) > tolerances_.radius) return false;
       const double d = (m.location - o.location).norm();
       if (d > tolerances_.distance) return false;
       c.type = ContactType::SPF;
@@ -373,7 +369,7 @@ bool ContactJointFinder::cone_seat(const Pose& pose, JointState& joint, const Jo
       const auto& others = contacts_.surfaces(near[k]);
       for (int oi = 0; oi < static_cast<int>(others.size()); ++oi) {
         const SurfaceProxy& o = others[oi];
-        if (o.kind != SurfaceKind::Cone || !opposite_sides(m.side, o.side)) continue;
+        if (o.kind != SurfaceKind::Cone || !contactcore::convex_against_concave(m.side, o.side)) continue;
         if (std::abs(m.half_angle - o.half_angle) > tol.angle || axis.dot(o.axis) < cos_tol) continue;
         const double lateral = line_distance(apex, o.location, o.axis);
         const double axial = sign * (apex - o.location).dot(o.axis);
@@ -524,9 +520,9 @@ CollisionGroups collision_groups(const RealtimeContacts& contacts) {
       for (const SurfaceProxy& o : contacts.surfaces(b)) {
         if (o.kind != m.kind) continue;
         if (m.kind == SurfaceKind::Cylinder || m.kind == SurfaceKind::Sphere) {
-          if (!opposite_sides(m.side, o.side) || std::abs(o.radius - m.radius) > rtol) continue;
+          if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(o.radius - m.radius) > rtol) continue;
         } else if (m.kind == SurfaceKind::Cone) {
-          if (!opposite_sides(m.side, o.side) || std::abs(o.half_angle - m.half_angle) > contacts.tolerances().angle ||
+          if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(o.half_angle - m.half_angle) > contacts.tolerances().angle ||
               m.axis.dot(o.axis) < cos_tol || (m.location - o.location).norm() > contacts.tolerances().distance)
             continue;
         } else if (m.kind == SurfaceKind::Plane) {
