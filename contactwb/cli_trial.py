@@ -55,18 +55,24 @@ def main(argv):
             print(f"contacts trial: cannot write '{args.record}': {error.strerror}", file=sys.stderr)
             return 1
     if args.json:
-        out = {k: result[k] for k in ("ticks", "rate_hz", "step_us", "overruns")}
+        out = {k: result[k] for k in ("mode", "ticks", "sim_time_s", "rate_hz", "step_us", "jitter_us",
+                                      "overruns", "realtime_priority", "success", "failure")}
         out["joints_engaged"] = [{"with": j["with"], "type": j["type"]} for j in result["joints_engaged"]]
         out["final"] = result["final"]
-        out["max_penetration_mm"] = result["max_penetration_mm"]
-        out["max_force_n"] = result["max_force_n"]
+        for key in ("max_penetration_mm", "start_penetration_mm", "final_penetration_mm", "max_force_n"):
+            out[key] = result[key]
         json.dump(out, sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
         final = result["final"]
-        print(f"Trial of '{args.part}' in {args.file}: {result['ticks']} ticks at {result['rate_hz']:.0f} Hz, "
-              f"step p50 {result['step_us']['p50']:.1f} us, p99 {result['step_us']['p99']:.1f} us, "
-              f"{result['overruns']} over 1 ms")
+        if result["mode"] == "realtime":
+            print(f"Trial of '{args.part}' in {args.file} (realtime): {result['ticks']} ticks at "
+                  f"{result['rate_hz']:.0f} Hz, step p50 {result['step_us']['p50']:.1f} us, "
+                  f"p99 {result['step_us']['p99']:.1f} us, jitter p99 {result['jitter_us']['p99']:.1f} us, "
+                  f"{result['overruns']} overruns")
+        else:
+            print(f"Trial of '{args.part}' in {args.file} (lockstep): {result['ticks']} ticks, "
+                  f"{result['sim_time_s']:.3f} s simulated")
         for j in result["joints_engaged"]:
             print(f"  engaged {j['type']} ({j['joint']}) with {j['with']} at t = {j['t']:.3f} s")
         print("  final offset: translate [" + ", ".join(f"{v:.4f}" for v in final["translate"]) + "] mm, rotate ["
@@ -74,4 +80,7 @@ def main(argv):
         print(f"  max penetration {result['max_penetration_mm']:.4f} mm, max force {result['max_force_n']:.2f} N")
         if args.record:
             print(f"  path ({len(path)} samples) saved to {args.record}")
+    if not result["success"]:
+        print(f"contacts trial: failed: {result['failure']} (file '{args.file}')", file=sys.stderr)
+        return 2
     return 0
