@@ -1,6 +1,15 @@
 # Contacts workbench: GUI registration. FreeCAD execs this file, so the class
-# is self-contained and imports lazily in Initialize().
+# is self-contained and imports lazily in Initialize(). contactwb.gui.hooks
+# (light: no Coin, no Qt) sets the hooks through which objects made or restored
+# before the workbench is activated get their view providers.
 import FreeCADGui
+
+try:
+    from contactwb.gui import hooks as contacts_gui_hooks
+    contacts_gui_hooks.install()
+except Exception as error:  # a broken install must not stop FreeCAD
+    import FreeCAD
+    FreeCAD.Console.PrintError(f"Contacts: {error}\n")
 
 
 class ContactsWorkbench(FreeCADGui.Workbench):
@@ -15,18 +24,10 @@ class ContactsWorkbench(FreeCADGui.Workbench):
 
     def Initialize(self):
         from contactwb.gui import commands, preferences
-        # One entry per command module: each registers its commands and
-        # returns their names in toolbar order.
-        names = []
-        names += commands.register()
-        from contactwb.gui import simulation_model_view
-        names += simulation_model_view.register()
-        self.appendToolbar("Contacts", names)
-        self.appendMenu("&Contacts", names)
-        from contactwb.gui import haptic_panel
-        haptic = haptic_panel.register()
-        self.appendToolbar("Contacts haptics", haptic)
-        self.appendMenu("&Contacts", haptic)
+        # Every command, by toolbar; the menu lists them all in that order.
+        for toolbar, names in commands.register().items():
+            self.appendToolbar(toolbar, names)
+            self.appendMenu("&Contacts", names)
         FreeCADGui.addPreferencePage(preferences.PreferencesPage, "Contacts")
 
     def ContextMenu(self, recipient):

@@ -1,8 +1,12 @@
 """Contacts workbench: functional contacts between the parts of an assembly,
 the kinematic joints they allow, and haptic insertion/extraction trials.
 
-Headless modules (no GUI import): core, bodies, analysis, cli. GUI code lives
-in contactwb.gui and is imported only when FreeCAD.GuiUp."""
+Layers, imports going one way (docs/architecture.md, "Python layers"):
+core (no FreeCAD) -> document (FreeCAD adapters) -> objects (document object
+proxies and their recompute) -> make (constructors) -> gui; cli beside gui.
+The other modules at this level are compatibility shims for the paths of
+earlier releases (tests/test_import_layers.py lists them), and freecad_tests
+(FreeCAD's own test runner's entry)."""
 import os
 
 __version__ = "0.1.0"

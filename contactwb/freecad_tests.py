@@ -8,7 +8,7 @@ import FreeCAD
 class ContactsWorkbenchTest(unittest.TestCase):
     def test_two_blocks_make_one_planar_fit(self):
         import Part
-        from contactwb import analysis
+        from contactwb.document import analysis
         lower = Part.makeBox(10, 10, 10)
         upper = Part.makeBox(4, 4, 4, FreeCAD.Vector(2, 2, 10))
         result = analysis.find_contacts_in_shapes([("lower", lower), ("upper", upper)])

@@ -7,6 +7,7 @@ import pytest
 import FreeCAD
 import Part
 from contactwb import bodies, core, freecad_setup
+from contactwb.document import shapes as document_shapes
 
 
 # The shared STEP files (../shared/data/README.md), named here so that the
@@ -21,9 +22,9 @@ def test_round_trip_through_cpp_keeps_every_solid(shared_step, name):
     path = shared_step(name)
     solids = Part.read(path).Solids
     assert solids, path
-    assembly = core.assembly_from_shapes((f"s{i}", s) for i, s in enumerate(solids))
+    assembly = document_shapes.assembly_from_shapes((f"s{i}", s) for i, s in enumerate(solids))
     assert len(assembly.bodies) == len(solids)
-    back = core.shape_from_brep(assembly.to_brep()).Solids
+    back = document_shapes.shape_from_brep(assembly.to_brep()).Solids
     assert len(back) == len(solids)
     for original, returned, body in zip(solids, back, assembly.bodies):
         assert returned.Volume == pytest.approx(original.Volume, rel=1e-9)
@@ -36,7 +37,7 @@ def test_round_trip_through_cpp_keeps_every_solid(shared_step, name):
 def test_placement_travels_with_the_shape():
     box = Part.makeBox(1, 2, 3)
     box.Placement = FreeCAD.Placement(FreeCAD.Vector(10, 0, 0), FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), 90))
-    (body,) = core.assembly_from_shapes([("box", box)]).bodies
+    (body,) = document_shapes.assembly_from_shapes([("box", box)]).bodies
     assert body.center == pytest.approx(tuple(box.CenterOfMass), abs=1e-9)
 
 

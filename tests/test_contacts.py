@@ -11,6 +11,7 @@ import pytest
 import FreeCAD
 import Part
 from contactwb import analysis, core, freecad_setup
+from contactwb.document import shapes as document_shapes
 
 from conftest import REPO
 
@@ -195,7 +196,7 @@ def test_faces_that_failed_typing_are_reported():
     evaluate) is named in the analysis messages, with the face."""
     from types import SimpleNamespace
     shapes = [("a", Part.makeBox(1, 1, 1)), ("b", Part.makeBox(1, 1, 1, FreeCAD.Vector(1, 0, 0)))]
-    assembly = core.assembly_from_shapes(shapes)
+    assembly = document_shapes.assembly_from_shapes(shapes)
     real = core.contactcore.find_contacts(assembly)
     failed = SimpleNamespace(status="surface cannot be evaluated (Face3)")
     fake = SimpleNamespace(contacts=real.contacts, times=real.times, tolerances=real.tolerances,

@@ -190,3 +190,71 @@ def test_recovery_recognises_only_contacts_objects():
     finally:
         FreeCAD.closeDocument(doc.Name)
 
+
+
+# Issue 23: the modules moved into layers (contactwb/core, document, objects, make, gui, cli); saved
+# files name the proxies' modules, which stay importable. Files of earlier releases open, recompute
+# and find their contacts again.
+V2_0_1_FIXTURE = os.path.join(REPO, "tests", "data", "contacts_v2_0_1.FCStd")
+
+
+def _recomputed(doc, names):
+    """Recomputes the named objects as a body change would (touched, then the document)."""
+    for name in names:
+        doc.getObject(name).touch()
+    doc.recompute()
+    return [o.Name for o in doc.Objects if "Invalid" in o.State or "Touched" in o.State]
+
+
+def test_version_1_document_opens_recomputes_and_finds_its_contacts():
+    doc = FreeCAD.openDocument(V1_FIXTURE)
+    try:
+        for name, kind in PROXIES.items():
+            assert proxy_name(doc.getObject(name)) == f"contactwb.objects.contact_objects.{kind}"
+        assert _recomputed(doc, ["Contacts"]) == []
+        group = doc.Contacts
+        assert sorted(o.Label for o in group.Group) == LABELS
+        assert (group.ContactCount, group.JointCount) == (2, 2)
+        assert group.Summary == ["CLJ: 1", "PLF: 1"]
+        assert sorted(o.JointType for o in group.Group if contact_objects.is_joint(o)) == ["cylindrical", "planar"]
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_fixture_2_0_1_names_the_proxies_before_the_layers():
+    with zipfile.ZipFile(V2_0_1_FIXTURE) as archive:
+        xml = archive.read("Document.xml").decode()
+    assert 'module="contactwb.objects.contact_objects" class="ContactAnalysis"' in xml
+    assert 'module="contactwb.objects.simulation_model" class="SimulationModel"' in xml
+
+
+def test_2_0_1_document_opens_recomputes_and_finds_its_contacts():
+    """The motor with its contact analysis (contacts and joints) and the Seal's collision model, saved
+    headless by the code before the layers (main at 650c151)."""
+    doc = FreeCAD.openDocument(V2_0_1_FIXTURE)
+    try:
+        group = doc.getObject("Contacts")
+        model = next(o for o in doc.Objects if o.TypeId == "App::FeaturePython"
+                     and getattr(o, "ProxyType", "") == "SimulationModel")
+        assert proxy_name(group) == "contactwb.objects.contact_objects.ContactAnalysis"
+        assert proxy_name(model) == "contactwb.objects.simulation_model.SimulationModel"
+        saved = {"labels": sorted(o.Label for o in group.Group), "summary": list(group.Summary),
+                 "pairs": list(group.PairSummary), "mobility": list(group.Mobility),
+                 "counts": (group.ContactCount, group.JointCount), "bodies": group.BodyCount}
+        saved_model = (model.Triangles, model.Partitions, list(model.SwitchedOff), model.Watertight)
+        assert saved["counts"] == (35, 29) and saved["summary"] == ["CLJ: 21", "PLF: 14"]
+        assert _recomputed(doc, [group.Name, model.Name]) == []
+        assert {"labels": sorted(o.Label for o in group.Group), "summary": list(group.Summary),
+                "pairs": list(group.PairSummary), "mobility": list(group.Mobility),
+                "counts": (group.ContactCount, group.JointCount), "bodies": group.BodyCount} == saved
+        assert (model.Triangles, model.Partitions, list(model.SwitchedOff), model.Watertight) == saved_model
+        # still live: the seal moved away loses its contacts, and its model follows it
+        seal = doc.getObject(model.Body[0].Name)
+        before = len([o for o in group.Group if contact_objects.is_contact(o)])
+        seal.Placement.Base = FreeCAD.Vector(500, 0, 0)
+        doc.recompute()
+        after = [o for o in group.Group if contact_objects.is_contact(o)]
+        assert len(after) < before and all("Seal" not in (c.BodyA, c.BodyB) for c in after)
+        assert min(p.x for p in model.MeshPoints) > 400
+    finally:
+        FreeCAD.closeDocument(doc.Name)

@@ -9,6 +9,7 @@ from collections import Counter
 import pytest
 
 from contactwb import cli, core, meshes
+from contactwb.document import shapes as document_shapes
 
 from conftest import SAMPLES
 
@@ -182,7 +183,7 @@ def test_collision_query_from_python_matches_hand_values():
     # In place the cone faces coincide: the meshes cross. Lifted, the gap is FreeCAD's exact B-rep
     # distance (distToShape), within the two meshes' chordal deviations.
     assert pair.query(None, identity, "intersect").intersecting
-    shapes = [core.shape_from_brep(body.brep) for body in assembly.bodies]
+    shapes = [document_shapes.shape_from_brep(body.brep) for body in assembly.bodies]
     import FreeCAD
     for lift in (3.0, 40.0, 500.0):
         moved = shapes[1].copy()

@@ -1,9 +1,11 @@
 """What the commands, the contact table and the context menus do to the view:
 select a contact's faces, zoom to it, isolate it with its two parts, ghost the
-geometry that touches nothing, show everything again."""
+geometry that touches nothing, show everything again; run a command on an
+object (the context menus)."""
 import FreeCADGui
 
-from contactwb.objects.contact_objects import is_contact, is_contact_analysis
+from contactwb.document import bodies
+from contactwb.document.identify import analyses, is_contact, is_contact_analysis
 
 GHOST_TRANSPARENCY = 85
 
@@ -27,9 +29,8 @@ def contact_bodies(contact):
 
 def select_contact(contact, faces=False):
     """Selects the contact in the tree (faces=False) or its faces in the view."""
-    from contactwb.gui import view_providers
     if faces:
-        view_providers.select_contact_faces(contact)
+        select_contact_faces(contact)
     else:
         FreeCADGui.Selection.clearSelection()
         FreeCADGui.Selection.addSelection(contact)
@@ -74,7 +75,6 @@ def zoom_to(contact, margin=4.0):
 
 def _body_objects(doc):
     """Every leaf object shown as a body, with the containers above it."""
-    from contactwb import bodies
     return bodies.document_bodies(doc)
 
 
@@ -109,13 +109,12 @@ def _set_body_visibility(body, shown):
 
 def show_all(doc):
     """The bodies isolate() hid and every contact shown again, ghosting undone."""
-    from contactwb import export
     for body in _isolated.pop(doc.Name, []):
         try:
             _set_body_visibility(body, True)
         except Exception:  # deleted since
             pass
-    for group in export.analyses(doc):
+    for group in analyses(doc):
         for contact in group.Group:
             if is_contact(contact):
                 contact.ViewObject.Visibility = True
@@ -150,3 +149,28 @@ def set_ghosted(doc, ghosted):
 
 def is_ghosted(doc):
     return bool(_ghosted.get(doc.Name))
+
+
+def select_contact_faces(contact):
+    """Selects both sides' faces of a contact in the 3D view."""
+    FreeCADGui.Selection.clearSelection()
+    for links in (contact.FacesA, contact.FacesB):
+        for root, subnames in links:
+            for subname in subnames:
+                FreeCADGui.Selection.addSelection(root.Document.Name, root.Name, subname)
+
+
+def run_isolate(contact):
+    """Contacts_IsolateContact on `contact` (a context menu's entry)."""
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(contact)
+    FreeCADGui.runCommand("Contacts_IsolateContact")
+
+
+def export_analysis(group):
+    """Contacts_ExportContacts on `group` (a context menu's entry; None: nothing)."""
+    if group is None:
+        return
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    FreeCADGui.runCommand("Contacts_ExportContacts")

@@ -1,12 +1,12 @@
 """The workbench's page in FreeCAD's Preferences: default tolerances, the
 contact colours and the paint style (stored under
 User parameter:BaseApp/Preferences/Mod/Contacts)."""
-import FreeCAD
 from PySide2 import QtGui, QtWidgets
 
-from contactwb.gui import view_providers
-
-PAINT_STYLES = ["Common area", "Whole faces"]
+from contactwb.core.kinds import TYPE_NAMES
+from contactwb.gui import settings
+from contactwb.gui.overlay.colours import TYPE_COLOURS
+from contactwb.gui.settings import PAINT_STYLES, PREFERENCES  # noqa: F401  (this module's names before)
 
 
 class PreferencesPage:
@@ -33,11 +33,11 @@ class PreferencesPage:
         layout.addRow("Default angular tolerance:", self.angular)
         layout.addRow("Paint contacts as:", self.paint)
         self.colours = {}
-        for kind in view_providers.TYPE_COLOURS:
+        for kind in TYPE_COLOURS:
             button = QtWidgets.QPushButton()
             button.clicked.connect(lambda checked=False, k=kind: self._pick(k))
             self.colours[kind] = button
-            layout.addRow(f"{kind} ({view_providers.TYPE_NAMES[kind]}):", button)
+            layout.addRow(f"{kind} ({TYPE_NAMES[kind]}):", button)
         note = QtWidgets.QLabel("Colours too near the selection or preselection colour are moved away "
                                 "from it when drawn.")
         note.setWordWrap(True)
@@ -54,16 +54,16 @@ class PreferencesPage:
             self._set_colour(kind, chosen.name())
 
     def loadSettings(self):
-        params = FreeCAD.ParamGet(view_providers.PREFERENCES)
+        params = settings.params()
         self.linear.setValue(params.GetFloat("LinearTolerance", 0.0))
         self.angular.setValue(params.GetFloat("AngularTolerance", 0.0))
-        self.paint.setCurrentIndex(max(0, PAINT_STYLES.index(view_providers.paint_style())
-                                       if view_providers.paint_style() in PAINT_STYLES else 0))
-        for kind, default in view_providers.TYPE_COLOURS.items():
-            self._set_colour(kind, params.GetString(f"Colour{kind}", default) or default)
+        style = settings.paint_style()
+        self.paint.setCurrentIndex(PAINT_STYLES.index(style) if style in PAINT_STYLES else 0)
+        for kind, default in TYPE_COLOURS.items():
+            self._set_colour(kind, settings.colour_setting(kind, default))
 
     def saveSettings(self):
-        params = FreeCAD.ParamGet(view_providers.PREFERENCES)
+        params = settings.params()
         params.SetFloat("LinearTolerance", self.linear.value())
         params.SetFloat("AngularTolerance", self.angular.value())
         params.SetString("PaintStyle", self.paint.currentText())

@@ -1,85 +1,31 @@
-"""Proxies of the contact analysis (a group) and of each contact (a child).
+"""Proxies of the contact analysis (a group), of each contact and each joint
+(its children), and their recompute.
 
-Saved files refer to `contactwb.objects.contact_objects.ContactAnalysis` and
-`...Contact`: these names are permanent.
+Saved files refer to `contactwb.objects.contact_objects.ContactAnalysis`,
+`...Contact` and `...Joint`: these names are permanent.
 
 An analysis is live: it links every body it analysed (hidden `Bodies`), so it
 is recomputed after they move or change shape, and `execute` finds the
-contacts again, updating its Contact children in place. A document observer
-marks it touched as soon as one of its bodies moves, changes or is deleted,
-so the tree shows it out of date before the recompute."""
+contacts again (update_contact_analysis), updating its Contact and Joint
+children in place. A document observer (contactwb.objects.body_watcher) marks
+it touched as soon as one of its bodies moves, changes or is deleted, so the
+tree shows it out of date before the recompute. New children get their view
+providers through contactwb.objects.gui_hooks (set by the GUI)."""
+import json
+from math import degrees, radians
 
-SCOPES = ["Document", "Selection", "PartAgainstRest"]
-CONTACT_TYPES = ["PLF", "CLJ", "CJU", "SPF", "LAF", "SPT", "TRF"]
+import FreeCAD
 
-# Version of the objects' properties, saved in each object's ProxyVersion.
-# A property, not the proxy's dumps() state: FreeCAD 0.20 opening a file
-# without the workbench drops the proxy, and saving writes it as null; plain
-# properties survive (contactwb.objects.recovery gives the proxy back).
-#   1: files saved before ProxyVersion existed (0.1.0);
-#   2: ProxyType, ProxyVersion; the analysis counts its contacts and joints.
-PROXY_VERSION = 2
-
-
-def is_contact_analysis(obj):
-    """Whether a document object is a ContactAnalysis group (also once re-opened)."""
-    return getattr(getattr(obj, "Proxy", None), "Type", None) == "ContactAnalysis"
-
-
-def is_contact(obj):
-    """Whether a document object is one Contact of an analysis."""
-    return getattr(getattr(obj, "Proxy", None), "Type", None) == "Contact"
-
-
-def _add(obj, kind, name, group, doc, mode=None):
-    """Adds a property unless the object has it (files saved by older versions)."""
-    if name not in obj.PropertiesList:
-        obj.addProperty(kind, name, group, doc)
-    if mode is not None:
-        obj.setEditorMode(name, mode)
-
-
-def _versioned(obj, proxy_type):
-    """Adds the type and version records; returns the version the object was
-    saved with (1: before they existed)."""
-    saved = obj.ProxyVersion if "ProxyVersion" in obj.PropertiesList else 1
-    _add(obj, "App::PropertyString", "ProxyType", "Version",
-         "Kind of Contacts object (lets the workbench give a lost proxy back)", 2)
-    _add(obj, "App::PropertyInteger", "ProxyVersion", "Version",
-         "Version of the Contacts object's properties", 2)
-    obj.ProxyType = proxy_type
-    if saved > PROXY_VERSION:
-        import FreeCAD
-        FreeCAD.Console.PrintWarning(
-            f"Contacts: '{obj.Label}' was saved by a newer Contacts (object version {saved}, "
-            f"this one knows {PROXY_VERSION}); its newer properties are kept as they are\n")
-    else:
-        obj.ProxyVersion = PROXY_VERSION
-    return saved
-
-
-class _VersionedProxy:
-    """What every Contacts proxy does on creation and restore: keep its type,
-    add or migrate its version records, then its own properties (added only
-    where missing, so older files gain the new ones)."""
-    TYPE = None  # each proxy sets TYPE and add_properties(obj)
-
-    def __init__(self, obj):
-        obj.Proxy = self
-        self.Type = self.TYPE
-        _versioned(obj, self.TYPE)
-        self.add_properties(obj)
-
-    def onDocumentRestored(self, obj):
-        obj.Proxy = self
-        _versioned(obj, self.TYPE)
-        self.add_properties(obj)
-
-    def dumps(self):
-        return None
-
-    def loads(self, state):
-        self.Type = self.TYPE
+from contactwb import core
+from contactwb.core import analysis as contact_analysis
+from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, SCOPES  # noqa: F401  (SCOPES: this module's API)
+from contactwb.document import bodies as document_bodies
+from contactwb.document.identify import is_contact, is_contact_analysis, is_joint  # noqa: F401
+from contactwb.document.shapes import assembly_from_shapes
+from contactwb.objects import gui_hooks
+from contactwb.objects.base import PROXY_VERSION, VersionedProxy, add_property, versioned  # noqa: F401
+from contactwb.objects.body_watcher import (pending_removal, remove_after_recompute,  # noqa: F401
+                                            watch_document)
 
 
 # Inputs the user sets (task panel or property editor), results shown read-only.
@@ -93,45 +39,45 @@ def _analysis_properties(obj):
         obj.removeProperty("Sources")
         obj.addProperty("App::PropertyXLinkSubList", "Sources", "Contacts", "")
         obj.Sources = [(o, [""]) for o in old]
-    _add(obj, "App::PropertyXLinkSubList", "Sources", "Contacts",
+    add_property(obj, "App::PropertyXLinkSubList", "Sources", "Contacts",
          "Parts analysed, with their path in the document (Scope Selection or PartAgainstRest)")
-    _add(obj, "App::PropertyEnumeration", "Scope", "Contacts",
+    add_property(obj, "App::PropertyEnumeration", "Scope", "Contacts",
          "Document: every visible solid; Selection: the Sources only; "
          "PartAgainstRest: the Sources against every other visible solid")
     if not obj.Scope:
         obj.Scope = SCOPES
         obj.Scope = "Selection" if obj.Sources else "Document"
-    _add(obj, "App::PropertyLength", "LinearToleranceSetting", "Contacts",
+    add_property(obj, "App::PropertyLength", "LinearToleranceSetting", "Contacts",
          "Linear tolerance to use (0: scaled to the model)")
-    _add(obj, "App::PropertyAngle", "AngularToleranceSetting", "Contacts",
+    add_property(obj, "App::PropertyAngle", "AngularToleranceSetting", "Contacts",
          "Angular tolerance to use (0: the default)")
-    _add(obj, "App::PropertyStringList", "ContactTypes", "Contacts",
+    add_property(obj, "App::PropertyStringList", "ContactTypes", "Contacts",
          "Contact types to look for (empty: all)")
-    _add(obj, "App::PropertyLength", "ClearanceGap", "Contacts",
+    add_property(obj, "App::PropertyLength", "ClearanceGap", "Contacts",
          "Also report clearance fits whose radii differ by less than this (0: none)")
-    _add(obj, "App::PropertyBool", "UpdateOnRecompute", "Contacts",
+    add_property(obj, "App::PropertyBool", "UpdateOnRecompute", "Contacts",
          "Find the contacts again when the bodies move or change (off: a snapshot that "
          "follows the moved faces)")
-    _add(obj, "App::PropertyLength", "LinearTolerance", "Contacts", "Linear tolerance used", 1)
-    _add(obj, "App::PropertyAngle", "AngularTolerance", "Contacts", "Angular tolerance used", 1)
-    _add(obj, "App::PropertyInteger", "BodyCount", "Contacts", "Bodies analysed", 1)
-    _add(obj, "App::PropertyStringList", "Summary", "Contacts", "Counts by contact type", 1)
-    _add(obj, "App::PropertyStringList", "PairSummary", "Contacts", "Counts by body pair", 1)
-    _add(obj, "App::PropertyStringList", "Messages", "Contacts", "What was skipped and why", 1)
-    _add(obj, "App::PropertyStringList", "Clearances", "Contacts", "Clearance fits found", 1)
+    add_property(obj, "App::PropertyLength", "LinearTolerance", "Contacts", "Linear tolerance used", 1)
+    add_property(obj, "App::PropertyAngle", "AngularTolerance", "Contacts", "Angular tolerance used", 1)
+    add_property(obj, "App::PropertyInteger", "BodyCount", "Contacts", "Bodies analysed", 1)
+    add_property(obj, "App::PropertyStringList", "Summary", "Contacts", "Counts by contact type", 1)
+    add_property(obj, "App::PropertyStringList", "PairSummary", "Contacts", "Counts by body pair", 1)
+    add_property(obj, "App::PropertyStringList", "Messages", "Contacts", "What was skipped and why", 1)
+    add_property(obj, "App::PropertyStringList", "Clearances", "Contacts", "Clearance fits found", 1)
     # Hidden: what the analysis depends on, and the CLI's body table (export)
-    _add(obj, "App::PropertyXLinkSubList", "Bodies", "Contacts", "Bodies analysed (their paths)", 2)
-    _add(obj, "App::PropertyString", "BodyTable", "Contacts", "Bodies as JSON (name, path, volume, center)", 2)
-    _add(obj, "App::PropertyInteger", "NumberBase", "Contacts", "Contact numbers start after this", 2)
+    add_property(obj, "App::PropertyXLinkSubList", "Bodies", "Contacts", "Bodies analysed (their paths)", 2)
+    add_property(obj, "App::PropertyString", "BodyTable", "Contacts", "Bodies as JSON (name, path, volume, center)", 2)
+    add_property(obj, "App::PropertyInteger", "NumberBase", "Contacts", "Contact numbers start after this", 2)
     # Joints (stage 4): derived from the contacts when DeriveJoints is on
-    _add(obj, "App::PropertyBool", "DeriveJoints", "Joints",
+    add_property(obj, "App::PropertyBool", "DeriveJoints", "Joints",
          "Also derive the joints each body pair's contacts allow, and the assembly's mobility")
-    _add(obj, "App::PropertyString", "Ground", "Joints", "Body held still (empty: the largest by volume)")
-    _add(obj, "App::PropertyStringList", "Mobility", "Joints", "Degrees of freedom and rigid groups", 1)
-    _add(obj, "App::PropertyString", "LiaisonGraph", "Joints", "The liaison graph (Graphviz DOT)", 2)
+    add_property(obj, "App::PropertyString", "Ground", "Joints", "Body held still (empty: the largest by volume)")
+    add_property(obj, "App::PropertyStringList", "Mobility", "Joints", "Degrees of freedom and rigid groups", 1)
+    add_property(obj, "App::PropertyString", "LiaisonGraph", "Joints", "The liaison graph (Graphviz DOT)", 2)
     # version 2
-    _add(obj, "App::PropertyInteger", "ContactCount", "Contacts", "Contacts found (shown in the group)", 1)
-    _add(obj, "App::PropertyInteger", "JointCount", "Joints", "Joints derived", 1)
+    add_property(obj, "App::PropertyInteger", "ContactCount", "Contacts", "Contacts found (shown in the group)", 1)
+    add_property(obj, "App::PropertyInteger", "JointCount", "Joints", "Joints derived", 1)
 
 
 def count_children(obj):
@@ -143,7 +89,7 @@ def count_children(obj):
 def migrate_analysis(obj):
     """Brings a ContactAnalysis saved by an older version up to date: adds the
     properties it lacks with the values its saved contents give."""
-    saved = _versioned(obj, "ContactAnalysis")
+    saved = versioned(obj, "ContactAnalysis")
     fresh = "UpdateOnRecompute" not in obj.PropertiesList
     _analysis_properties(obj)
     if fresh:  # 0.1 files: analyses were always live
@@ -160,7 +106,7 @@ class ContactAnalysis:
     def __init__(self, obj):
         obj.Proxy = self
         self.Type = "ContactAnalysis"
-        _versioned(obj, self.Type)
+        versioned(obj, self.Type)
         _analysis_properties(obj)
         obj.UpdateOnRecompute = True
         watch_document(obj.Document)
@@ -173,7 +119,6 @@ class ContactAnalysis:
     def execute(self, obj):
         if not obj.UpdateOnRecompute:
             return
-        from contactwb.make.make_contact_analysis import update_contact_analysis
         update_contact_analysis(obj)
 
     def dumps(self):
@@ -184,137 +129,269 @@ class ContactAnalysis:
 
 
 def _contact_properties(obj):
-    _add(obj, "App::PropertyString", "ContactType", "Contact", "PLF, CLJ, CJU, SPF, LAF, SPT or TRF")
-    _add(obj, "App::PropertyInteger", "Number", "Contact", "Number of the contact in its label")
-    _add(obj, "App::PropertyString", "BodyA", "Contact", "First body")
-    _add(obj, "App::PropertyString", "BodyB", "Contact", "Second body")
-    _add(obj, "App::PropertyXLinkSubList", "FacesA", "Contact", "Faces of the first body in contact")
-    _add(obj, "App::PropertyXLinkSubList", "FacesB", "Contact", "Faces of the second body in contact")
-    _add(obj, "App::PropertyArea", "Area", "Contact", "Common area (0 for circle contacts)")
-    _add(obj, "App::PropertyBool", "Partial", "Contact", "Revolution contact spanning under 180 degrees")
-    _add(obj, "App::PropertyAngle", "Span", "Contact", "Common angular span")
-    _add(obj, "App::PropertyLength", "Radius", "Contact", "Radius (cylinder, sphere, ball)")
-    _add(obj, "App::PropertyAngle", "HalfAngle", "Contact", "Half-angle of the cone (CJU)")
-    _add(obj, "App::PropertyVector", "Point", "Contact", "A point of the contact (axis point, centre)")
-    _add(obj, "App::PropertyVector", "Direction", "Contact", "Normal of the first body, or axis")
+    add_property(obj, "App::PropertyString", "ContactType", "Contact",
+                 ", ".join(CONTACT_TYPES[:-1]) + " or " + CONTACT_TYPES[-1])
+    add_property(obj, "App::PropertyInteger", "Number", "Contact", "Number of the contact in its label")
+    add_property(obj, "App::PropertyString", "BodyA", "Contact", "First body")
+    add_property(obj, "App::PropertyString", "BodyB", "Contact", "Second body")
+    add_property(obj, "App::PropertyXLinkSubList", "FacesA", "Contact", "Faces of the first body in contact")
+    add_property(obj, "App::PropertyXLinkSubList", "FacesB", "Contact", "Faces of the second body in contact")
+    add_property(obj, "App::PropertyArea", "Area", "Contact", "Common area (0 for circle contacts)")
+    add_property(obj, "App::PropertyBool", "Partial", "Contact", "Revolution contact spanning under 180 degrees")
+    add_property(obj, "App::PropertyAngle", "Span", "Contact", "Common angular span")
+    add_property(obj, "App::PropertyLength", "Radius", "Contact", "Radius (cylinder, sphere, ball)")
+    add_property(obj, "App::PropertyAngle", "HalfAngle", "Contact", "Half-angle of the cone (CJU)")
+    add_property(obj, "App::PropertyVector", "Point", "Contact", "A point of the contact (axis point, centre)")
+    add_property(obj, "App::PropertyVector", "Direction", "Contact", "Normal of the first body, or axis")
     for name in obj.PropertiesList:
         if obj.getGroupOfProperty(name) == "Contact":
             obj.setEditorMode(name, 1)
 
 
-class Contact(_VersionedProxy):
+class Contact(VersionedProxy):
     """One functional contact: its type, the two bodies and their faces."""
     TYPE = "Contact"  # version 2 added only the version records
     add_properties = staticmethod(_contact_properties)
 
 
-class _BodyWatcher:
-    """Marks an analysis touched when a body it depends on moves, changes
-    shape or is deleted (FreeCAD itself only recomputes it, silently)."""
-
-    WATCHED = ("Placement", "Shape", "LinkPlacement", "LinkedObject", "Group")
-
-    def __init__(self):
-        self.documents = set()
-        self.pending = {}  # document name -> contacts to remove once its recompute is over
-
-    @staticmethod
-    def _analyses(doc):
-        return [o for o in doc.Objects
-                if o.TypeId == "App::DocumentObjectGroupPython" and is_contact_analysis(o)]
-
-    def _touch_dependents(self, obj, deleted=False):
-        doc = obj.Document
-        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj):
-            return
-        for group in self._analyses(doc):
-            if not getattr(group, "UpdateOnRecompute", False):
-                continue
-            if group.Name == obj.Name or "Touched" in group.State:
-                continue
-            if obj in group.OutListRecursive:
-                group.touch()
-
-    def slotChangedObject(self, obj, prop):
-        if prop not in self.WATCHED:
-            return
-        try:
-            self._touch_dependents(obj)
-        except Exception:  # an observer must never break an edit
-            pass
-
-    def slotCreatedObject(self, obj):
-        # a new part (or one brought back by an undo): the document-wide
-        # analyses may have missed its contacts
-        try:
-            doc = obj.Document
-            if doc.Recomputing or doc.Name not in self.documents:
-                return
-            if not (hasattr(obj, "Shape") or obj.isDerivedFrom("App::Link") or obj.isDerivedFrom("App::Part")):
-                return
-            for group in self._analyses(doc):
-                if group.UpdateOnRecompute and group.Scope != "Selection":
-                    group.touch()
-        except Exception:
-            pass
-
-    def slotRecomputedDocument(self, doc):
-        names = self.pending.pop(doc.Name, [])
-        for name in names:
-            if doc.getObject(name) is not None:
-                doc.removeObject(name)
-
-    def slotDeletedObject(self, obj):
-        try:
-            self._touch_dependents(obj, deleted=True)
-        except Exception:
-            pass
-
-
-_watcher = None
-
-
-def watch_document(doc):
-    """Installs (once) the observer marking this document's analyses touched."""
-    global _watcher
-    import FreeCAD
-    if _watcher is None:
-        _watcher = _BodyWatcher()
-        FreeCAD.addDocumentObserver(_watcher)
-    _watcher.documents.add(doc.Name)
-
-
-def pending_removal(doc, names):
-    """Contacts to remove once the document's recompute is over."""
-    watch_document(doc)
-    _watcher.pending.setdefault(doc.Name, []).extend(names)
-
-
-def is_joint(obj):
-    """Whether a document object is one Joint of an analysis."""
-    return getattr(getattr(obj, "Proxy", None), "Type", None) == "Joint"
-
-
 def _joint_properties(obj):
-    _add(obj, "App::PropertyString", "JointType", "Joint",
+    add_property(obj, "App::PropertyString", "JointType", "Joint",
          "ISO 3952 name: rigid, revolute, prismatic, helical, cylindrical, spherical, planar, ...")
-    _add(obj, "App::PropertyInteger", "DOF", "Joint", "Degrees of freedom of body B relative to body A")
-    _add(obj, "App::PropertyString", "BodyA", "Joint", "First body")
-    _add(obj, "App::PropertyString", "BodyB", "Joint", "Second body (moving relative to the first)")
-    _add(obj, "App::PropertyVectorList", "AxisPoints", "Joint", "A point of each rotation axis (mm)")
-    _add(obj, "App::PropertyVectorList", "AxisDirections", "Joint", "Direction of each rotation axis")
-    _add(obj, "App::PropertyVectorList", "Translations", "Joint", "Directions of free translation")
-    _add(obj, "App::PropertyVectorList", "FreeDirections", "Joint",
+    add_property(obj, "App::PropertyInteger", "DOF", "Joint", "Degrees of freedom of body B relative to body A")
+    add_property(obj, "App::PropertyString", "BodyA", "Joint", "First body")
+    add_property(obj, "App::PropertyString", "BodyB", "Joint", "Second body (moving relative to the first)")
+    add_property(obj, "App::PropertyVectorList", "AxisPoints", "Joint", "A point of each rotation axis (mm)")
+    add_property(obj, "App::PropertyVectorList", "AxisDirections", "Joint", "Direction of each rotation axis")
+    add_property(obj, "App::PropertyVectorList", "Translations", "Joint", "Directions of free translation")
+    add_property(obj, "App::PropertyVectorList", "FreeDirections", "Joint",
          "Generators of the cone of directions in which B can leave A")
-    _add(obj, "App::PropertyVector", "Centre", "Joint", "Centre of the pair's contacts (where glyphs are drawn)")
-    _add(obj, "App::PropertyLength", "GlyphLength", "Joint", "Length of the axis glyphs")
-    _add(obj, "App::PropertyLinkListHidden", "Contacts", "Joint", "The contacts making this joint")
+    add_property(obj, "App::PropertyVector", "Centre", "Joint", "Centre of the pair's contacts (where glyphs are drawn)")
+    add_property(obj, "App::PropertyLength", "GlyphLength", "Joint", "Length of the axis glyphs")
+    add_property(obj, "App::PropertyLinkListHidden", "Contacts", "Joint", "The contacts making this joint")
     for name in obj.PropertiesList:
         if obj.getGroupOfProperty(name) == "Joint":
             obj.setEditorMode(name, 1)
 
 
-class Joint(_VersionedProxy):
+class Joint(VersionedProxy):
     """The kinematic joint two bodies' contacts allow (contactcore.find_joints)."""
     TYPE = "Joint"  # version 2 added only the version records
     add_properties = staticmethod(_joint_properties)
+
+
+# --- the recompute ------------------------------------------------------
+
+EN_DASH = "\u2013"
+
+
+def _face_links(body, face_names):
+    """XLinkSub entries selecting the faces on the body's path."""
+    return [(body.root, [body.subname + name for name in face_names])]
+
+
+def contact_label(kind, number, a, b):
+    """"PLF 3: Axis – Rotor-front": unique through its number (FreeCAD would
+    otherwise rename a duplicate by changing its trailing digits, which can
+    name another part)."""
+    return f"{kind} {number}: {a} {EN_DASH} {b}"
+
+
+def contact_label2(record):
+    """The tree's description column: area, span or radius."""
+    if record.type in CIRCLE_TYPES:
+        return f"circle r {record.radius:.4g} mm"
+    text = f"{record.area:.4g} mm\u00b2"
+    if record.partial:
+        text += f", span {record.span:.0f}\u00b0"
+    return text
+
+
+def _choose_bodies(doc, group, messages):
+    """(bodies to analyse, indices of the focus bodies or None)."""
+    everything = document_bodies.document_bodies(doc, None, messages)
+    scope = group.Scope
+    if scope == "Document":
+        return everything, None
+    picked = document_bodies.bodies_of_selection(everything, list(group.Sources))
+    if not picked:
+        if not group.Sources:
+            raise core.ContactsError(f"scope {scope} of '{group.Label}' needs parts (Sources is empty)")
+        names = ", ".join(f"{o.Label}{'.' + s if s else ''}" for o, subs in group.Sources for s in subs)
+        raise core.ContactsError(f"no visible solid in the parts of '{group.Label}': {names}")
+    if scope == "Selection":
+        return picked, None
+    return everything, {id(b) for b in picked}
+
+
+def _find(bodies, source, linear, angular, progress):
+    """(analysis.Analysis, contactcore.Assembly, contactcore.ContactsResult)."""
+    assembly = assembly_from_shapes((b.name, b.shape) for b in bodies)
+    face_name = lambda body, index: bodies[body].object_face_name(index)  # noqa: E731
+    raw = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress)
+    return contact_analysis.analysis_of_result(source, assembly, raw, face_name), assembly, raw
+
+
+def _clearance_lines(raw, gap, names):
+    """Clearance fits (radii within `gap` mm: a fit with play, not a contact)."""
+    if gap <= 0:
+        return []
+    return [f"{names[c.body_a]} {EN_DASH} {names[c.body_b]}: {c.kind}, gap {c.gap:.4g} mm"
+            for c in core.contactcore.find_clearances(raw, gap)]
+
+
+def _numbers_in_use(doc, group):
+    used = set()
+    for other in doc.Objects:
+        if other is not group and is_contact_analysis(other):
+            used.update(c.Number for c in other.Group if is_contact(c))
+    return used
+
+
+def update_contact_analysis(group, progress=None):
+    """Finds the contacts of `group` again from its inputs (Scope, Sources,
+    tolerance settings, ContactTypes, ClearanceGap) and updates the group in
+    place: its Contact children are reused, added or removed. Raises
+    contactwb.core.ContactsError on bad input and contactwb.core.Cancelled
+    when `progress` cancels (the group is left as it was then)."""
+    doc = group.Document
+    messages = []
+    bodies, focus = _choose_bodies(doc, group, messages)
+    if not bodies:
+        raise core.ContactsError(f"no visible solid in document '{doc.Label}'")
+    linear = group.LinearToleranceSetting.Value or None
+    angular = radians(group.AngularToleranceSetting.Value) or None
+    result, assembly, raw = _find(bodies, doc.Label, linear, angular, progress)
+    result.messages.extend(messages)
+    wanted = set(group.ContactTypes) or set(CONTACT_TYPES)
+    kept = [index for index, r in enumerate(result.contacts) if r.type in wanted and
+            (focus is None or id(bodies[r.body_a]) in focus or id(bodies[r.body_b]) in focus)]
+    records = [result.contacts[index] for index in kept]
+
+    group.Bodies = [document_bodies.body_link(b) for b in bodies]
+    group.BodyTable = json.dumps([{"name": b.name, "path": b.path, "volume": b.volume,
+                                   "center": list(b.center)} for b in result.bodies])
+    group.LinearTolerance = result.linear_tolerance
+    group.AngularTolerance = degrees(result.angular_tolerance)
+    group.BodyCount = len(result.bodies)
+    shown = contact_analysis.Analysis(result.source, result.units, result.linear_tolerance,
+                                      result.angular_tolerance, result.bodies, records)
+    group.Summary = [f"{kind}: {count}" for kind, count in sorted(shown.counts().items())]
+    group.PairSummary = [f"{a} {EN_DASH} {b}: " + ", ".join(f"{n} {k}" for k, n in sorted(types.items()))
+                         for (a, b), types in shown.by_pair().items()]
+    group.Messages = result.messages
+    group.Clearances = _clearance_lines(raw, group.ClearanceGap.Value, [b.name for b in result.bodies])
+    _update_children(doc, group, records, bodies)
+    if group.DeriveJoints:
+        _update_joints(doc, group, assembly, raw, result, kept, bodies)
+    else:
+        remove_after_recompute(doc, [o for o in group.Group if is_joint(o)])
+        group.Group = [o for o in group.Group if not is_joint(o)]
+        group.Mobility, group.LiaisonGraph = [], ""
+    count_children(group)
+    return group
+
+
+def _update_joints(doc, group, assembly, raw, result, kept, bodies):
+    """Joint children from contactcore.find_joints (reused in place like the
+    contacts), the mobility lines and the liaison graph's DOT."""
+    cc = core.contactcore
+    names = [b.name for b in result.bodies]
+    found = cc.find_joints(assembly, raw)
+    ground = names.index(group.Ground) if group.Ground in names else \
+        max(range(len(names)), key=lambda i: result.bodies[i].volume)
+    mobility = cc.assembly_mobility(assembly, raw, found, ground)
+    group.LiaisonGraph = cc.liaison_graph_dot(assembly, found, mobility)
+    lines = [f"Ground: {names[mobility.ground]}" if mobility.ground >= 0 else "Ground: none",
+             f"Degrees of freedom: {mobility.dof} ({mobility.passive} passive spins)"]
+    for number, (members, motion) in enumerate(zip(mobility.groups, mobility.group_motions), start=1):
+        lines.append(f"Rigid group {number}: {', '.join(names[i] for i in members)} "
+                     f"({motion.type}, {motion.dof} DOF)")
+    group.Mobility = lines
+    contacts = [c for c in group.Group if is_contact(c)]
+    position = {raw_index: k for k, raw_index in enumerate(kept)}
+    old = [o for o in group.Group if is_joint(o)]
+    joints = []
+    for pair in found.joints:
+        mine = [contacts[position[i]] for i in pair.contacts if i in position]
+        if not mine:  # a pair outside the scope shown
+            continue
+        index = len(joints)
+        if index < len(old):
+            obj = old[index]
+        else:
+            obj = doc.addObject("App::FeaturePython", "Joint")
+            Joint(obj)
+            gui_hooks.new_object(obj)
+        obj.Label = obj.Name
+        a, b = names[pair.body_a], names[pair.body_b]
+        obj.JointType, obj.DOF, obj.BodyA, obj.BodyB = pair.type, pair.dof, a, b
+        obj.AxisPoints = [FreeCAD.Vector(*point) for point, _ in pair.rotations]
+        obj.AxisDirections = [FreeCAD.Vector(*direction) for _, direction in pair.rotations]
+        obj.Translations = [FreeCAD.Vector(*d) for d in pair.translations]
+        obj.FreeDirections = [FreeCAD.Vector(*d) for d in pair.free_directions]
+        centre = FreeCAD.Vector()
+        for contact in mine:
+            centre += contact.Point
+        obj.Centre = centre * (1.0 / len(mine))
+        obj.GlyphLength = 0.6 * min(bodies[pair.body_a].shape.BoundBox.DiagonalLength,
+                                    bodies[pair.body_b].shape.BoundBox.DiagonalLength)
+        obj.Contacts = mine
+        obj.Label = f"J{group.NumberBase + index + 1} {pair.type}: {a} {EN_DASH} {b}"
+        obj.Label2 = f"{pair.dof} DOF"
+        joints.append(obj)
+    remove_after_recompute(doc, old[len(joints):])
+    group.Group = contacts + joints
+    for obj in joints:
+        obj.purgeTouched()
+
+
+def _update_children(doc, group, records, bodies):
+    old = [c for c in group.Group if is_contact(c)]
+    others = [c for c in group.Group if not is_contact(c)]  # joints: updated after
+    # Contacts no analysis holds any more (an undo can bring them back):
+    # they would keep labels the live contacts need.
+    orphans = [o for o in doc.Objects if is_contact(o) and o not in old
+               and not any(is_contact_analysis(p) for p in o.InList)]
+    remove_after_recompute(doc, orphans)
+    used = _numbers_in_use(doc, group)
+    base = group.NumberBase
+    if any(base + k in used for k in range(1, len(records) + 1)):
+        base = max(used)
+    mine = set(old) | set(orphans)
+    taken = {o.Label for o in doc.Objects if o not in mine}
+    labels = lambda b: [contact_label(r.type, b + k + 1, r.a, r.b) for k, r in enumerate(records)]  # noqa: E731
+    if taken.intersection(labels(base)):
+        # another object holds one of the labels: number after every contact
+        base = max([base] + list(used) + [o.Number for o in doc.Objects if is_contact(o)])
+    group.NumberBase = base
+    children = []
+    for index, record in enumerate(records):
+        if index < len(old):
+            obj = old[index]
+        else:
+            obj = doc.addObject("App::FeaturePython", record.type)
+            Contact(obj)
+            gui_hooks.new_object(obj)
+        children.append(obj)
+    for obj in children + orphans:
+        obj.Label = obj.Name  # frees the labels for the contacts that will take them
+    remove_after_recompute(doc, old[len(records):])
+    for index, (obj, record) in enumerate(zip(children, records)):
+        number = base + index + 1
+        obj.ContactType = record.type
+        obj.Number = number
+        obj.BodyA, obj.BodyB = record.a, record.b
+        obj.FacesA = _face_links(bodies[record.body_a], record.faces_a)
+        obj.FacesB = _face_links(bodies[record.body_b], record.faces_b)
+        obj.Area = record.area
+        obj.Partial = record.partial
+        obj.Span = record.span
+        obj.Radius = record.radius
+        obj.HalfAngle = record.half_angle
+        obj.Point = FreeCAD.Vector(*record.point)
+        obj.Direction = FreeCAD.Vector(*record.direction)
+        obj.Label = contact_label(record.type, number, record.a, record.b)
+        obj.Label2 = contact_label2(record)
+    group.Group = children + others
+    for obj in children:
+        obj.purgeTouched()  # results, not edits: no second execute of the group

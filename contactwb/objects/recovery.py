@@ -7,14 +7,15 @@ null, so the file no longer names `contactwb.objects.contact_objects`. The
 objects are recognised here by their ProxyType property (version 2) or, for
 older files, by the properties only their kind has, and get a fresh proxy,
 migrated like any restored object. Documents made headless (no view provider
-saved) get their view providers the same way when opened in the GUI.
+saved) get their view providers the same way when opened in the GUI (through
+contactwb.objects.gui_hooks: contactwb/gui/viewproviders/attach.py).
 
 The workbench's Init.py installs the observer (watch_restores); FreeCAD 0.20's
 Python observers have no "restore finished" slot, but a document opened is
 activated once it is fully restored."""
 import FreeCAD
 
-from contactwb.objects import contact_objects, simulation_model
+from contactwb.objects import contact_objects, gui_hooks, simulation_model
 
 PROXY_CLASSES = {
     "ContactAnalysis": contact_objects.ContactAnalysis,
@@ -69,49 +70,9 @@ def restore_proxies(doc):
         FreeCAD.Console.PrintMessage(
             f"Contacts: {len(restored)} objects of '{doc.Label}' saved without the workbench "
             f"are Contacts objects again\n")
-    if FreeCAD.GuiUp:
-        from PySide2 import QtCore
-        # after the GUI document has restored its own view providers
-        QtCore.QTimer.singleShot(0, lambda name=doc.Name: attach_view_providers(name))
+    # view providers too, once the GUI document has restored its own (the GUI's hook)
+    gui_hooks.document_restored(doc.Name)
     return restored
-
-
-def _give_view_provider(obj, provider_class):
-    vobj = obj.ViewObject
-    if isinstance(vobj.Proxy, provider_class):
-        return False
-    provider = provider_class(vobj)
-    if getattr(provider, "Object", None) is None:
-        # FreeCAD 0.20 calls attach() only for a view provider made with its object
-        provider.attach(vobj)
-        if hasattr(provider, "getDisplayModes"):  # the modes attach() added, then the first shown
-            vobj.DisplayMode = provider.getDisplayModes(vobj)
-            vobj.DisplayMode = provider.getDefaultDisplayMode()
-    return True
-
-
-def attach_view_providers(doc_name):
-    """View providers for the Contacts objects of a document that has none
-    (made headless, or saved without the workbench)."""
-    doc = FreeCAD.listDocuments().get(doc_name)
-    if doc is None:
-        return
-    from contactwb.gui import joint_view, simulation_model_view, view_providers
-    for obj in doc.Objects:
-        if getattr(obj, "ViewObject", None) is None or getattr(obj, "Proxy", None) is None:
-            continue
-        if contact_objects.is_contact_analysis(obj):
-            given = _give_view_provider(obj, view_providers.ViewProviderContactAnalysis)
-            for child in obj.Group:
-                if contact_objects.is_contact(child):
-                    given |= _give_view_provider(child, view_providers.ViewProviderContact)
-            if given:
-                obj.ViewObject.Proxy.rebuild()
-        elif contact_objects.is_joint(obj) and _give_view_provider(obj, joint_view.ViewProviderJoint):
-            obj.ViewObject.Proxy.redraw()
-        elif simulation_model.is_simulation_model(obj) and \
-                _give_view_provider(obj, simulation_model_view.ViewProviderSimulationModel):
-            obj.ViewObject.Proxy.rebuild()
 
 
 class _RestoreWatcher:

@@ -6,7 +6,10 @@ workbench and brought back. $CONTACTS_DOC_STEP says which part:
   contacts and joints (tests/contacts_document.py, as tests/test_documents.py
   does headless), saves to $CONTACTS_DOC_SAVED,
   closes and reopens it; then opens the version 1 fixture made headless
-  ($CONTACTS_DOC_V1: no view providers saved, old properties).
+  ($CONTACTS_DOC_V1: no view providers saved, old properties), and the
+  motor saved headless by the code before the Python layers
+  ($CONTACTS_DOC_V2_0_1). (Not recomputed here: a document saved headless
+  opens in the GUI with its parts hidden; tests/test_documents.py recomputes it.)
 - "without" (no workbench installed): opens $CONTACTS_DOC_SAVED, saves it as
   $CONTACTS_DOC_WITHOUT.
 - "back": opens $CONTACTS_DOC_WITHOUT with the workbench installed again.
@@ -104,6 +107,10 @@ def make():
     doc = FreeCAD.openDocument(os.environ["CONTACTS_DOC_V1"])
     settle()
     report["version_1"] = describe(doc)
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(os.environ["CONTACTS_DOC_V2_0_1"])
+    settle()
+    report["version_2_0_1"] = describe(doc)
     FreeCAD.closeDocument(doc.Name)
 
 

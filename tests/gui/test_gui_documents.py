@@ -8,6 +8,7 @@ import pytest
 from freecad_session import OUT_DIR, REPO, run_session  # tests/gui is on sys.path
 
 V1_FIXTURE = os.path.join(REPO, "tests", "data", "contacts_v1.FCStd")
+V2_0_1_FIXTURE = os.path.join(REPO, "tests", "data", "contacts_v2_0_1.FCStd")
 PROXIES = {"Contacts": "ContactAnalysis", "CLJ": "Contact", "PLF": "Contact", "Joint": "Joint", "Joint001": "Joint"}
 VIEW_PROVIDERS = {"ContactAnalysis": "ViewProviderContactAnalysis", "Contact": "ViewProviderContact",
                   "Joint": "ViewProviderJoint"}
@@ -20,7 +21,7 @@ WITHOUT = os.path.join(OUT_DIR, "documents_saved_without_workbench.FCStd")
 def session(tmp_path_factory, step, install=True):
     report = run_session(tmp_path_factory, "document_gui_session.py", f"documents_{step}.json",
                          {"CONTACTS_DOC_STEP": step, "CONTACTS_DOC_SAVED": SAVED, "CONTACTS_DOC_WITHOUT": WITHOUT,
-                          "CONTACTS_DOC_V1": V1_FIXTURE}, install=install)
+                          "CONTACTS_DOC_V1": V1_FIXTURE, "CONTACTS_DOC_V2_0_1": V2_0_1_FIXTURE}, install=install)
     assert not report["errors"], "\n".join(report["errors"])
     return report
 
@@ -69,6 +70,22 @@ def test_saved_document_reopens_with_its_view_providers(reports):
 def test_headless_version_1_document_gets_view_providers_and_is_migrated(reports):
     # made headless by the code before proxy versions: no view provider saved
     check_working(reports["make"]["version_1"])
+
+
+def test_headless_2_0_1_document_gets_view_providers_and_draws(reports):
+    # saved headless by the code before the Python layers: the motor's analysis and a collision model
+    objects = reports["make"]["version_2_0_1"]
+    group = objects["Contacts"]
+    assert (group["proxy"], group["view_provider"]) == ("ContactAnalysis", "ViewProviderContactAnalysis")
+    assert (group["ContactCount"], group["JointCount"]) == (35, 29)
+    assert group["contacts_drawn"] == 35 and group["triangles"] > 0
+    kinds = {}
+    for name, entry in objects.items():
+        assert "Invalid" not in entry["state"] and "Touched" not in entry["state"], name
+        if entry["proxy"] in ("Contact", "Joint", "SimulationModel"):
+            assert entry["view_provider"] == f"ViewProvider{entry['proxy']}", name
+            kinds[entry["proxy"]] = kinds.get(entry["proxy"], 0) + 1
+    assert kinds == {"Contact": 35, "Joint": 29, "SimulationModel": 1}
 
 
 def test_no_errors_in_the_report_view_with_the_workbench(reports):

@@ -1,10 +1,14 @@
-"""Workbench commands (one class each, FreeCAD Assembly style)."""
+"""The workbench's analysis commands (one class each, FreeCAD Assembly style):
+find contacts, the contact table, isolate, show all, ghost, partitions,
+joints, export, the sample."""
 import math
 
 import FreeCAD
 import FreeCADGui
 
 import contactwb
+from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_joint
+from contactwb.gui.dialogs import show_error
 
 
 class Contacts_FindContacts:
@@ -24,13 +28,12 @@ class Contacts_FindContacts:
         return FreeCAD.ActiveDocument is not None and not FreeCADGui.Control.activeDialog()
 
     def Activated(self):
-        from contactwb.gui import task_panel
+        from contactwb.gui.panels import task_panel
         doc = FreeCAD.ActiveDocument
         task_panel.open_panel(doc, task_panel.selected_analysis(doc))
 
 
 def _selected_contact():
-    from contactwb.objects.contact_objects import is_contact
     doc = FreeCAD.ActiveDocument
     if doc is None:
         return None
@@ -64,7 +67,7 @@ class Contacts_ShowContactTable:
         return FreeCAD.ActiveDocument is not None
 
     def Activated(self):
-        from contactwb.gui import contact_table
+        from contactwb.gui.panels import contact_table
         contact_table.show()
 
 
@@ -99,8 +102,7 @@ class Contacts_ShowAll:
         }
 
     def IsActive(self):
-        from contactwb import export
-        return bool(export.analyses(FreeCAD.ActiveDocument))
+        return bool(analyses(FreeCAD.ActiveDocument))
 
     def Activated(self):
         from contactwb.gui import actions
@@ -120,8 +122,7 @@ class Contacts_GhostBodies:
         }
 
     def IsActive(self):
-        from contactwb import export
-        return bool(export.analyses(FreeCAD.ActiveDocument))
+        return bool(analyses(FreeCAD.ActiveDocument))
 
     def Activated(self):
         from contactwb.gui import actions
@@ -146,7 +147,8 @@ class Contacts_ShowPartitions:
 
     def Activated(self):
         from contactwb import core
-        from contactwb.gui import partitions_view, task_panel
+        from contactwb.gui.overlay import partitions as partitions_view
+        from contactwb.gui.panels import task_panel
         doc = FreeCAD.ActiveDocument
         if partitions_view.is_shown(doc):
             partitions_view.hide(doc)
@@ -154,14 +156,12 @@ class Contacts_ShowPartitions:
         try:
             partitions_view.show(doc, task_panel.selection_entries(doc))
         except core.ContactsError as error:
-            _show_error(str(error))
+            show_error(str(error))
 
 
 def _analysis_for_joints():
     """The selected analysis (or the one holding a selected contact or
     joint), else the document's only one."""
-    from contactwb import export
-    from contactwb.objects.contact_objects import is_contact, is_contact_analysis, is_joint
     doc = FreeCAD.ActiveDocument
     if doc is None:
         return None
@@ -170,7 +170,7 @@ def _analysis_for_joints():
             return obj
         if is_contact(obj) or is_joint(obj):
             return next((p for p in obj.InList if is_contact_analysis(p)), None)
-    found = export.analyses(doc)
+    found = analyses(doc)
     return found[0] if len(found) == 1 else None
 
 
@@ -201,12 +201,12 @@ class Contacts_DeriveJoints:
                                   clearance_gap=group.ClearanceGap.Value, group=group, derive_joints=True)
         except (core.ContactsError, ValueError) as error:
             doc.abortTransaction()
-            _show_error(str(error))
+            show_error(str(error))
             return
         doc.commitTransaction()
         FreeCAD.Console.PrintMessage(f"Contacts: {'; '.join(group.Mobility[:2])}\n")
-        from contactwb.gui import joint_view
-        joint_view.open_joints_panel(group)
+        from contactwb.gui.panels import joints_panel
+        joints_panel.open_joints_panel(group)
 
 
 class Contacts_ShowJoints:
@@ -225,8 +225,8 @@ class Contacts_ShowJoints:
         return group is not None and bool(getattr(group, "LiaisonGraph", ""))
 
     def Activated(self):
-        from contactwb.gui import joint_view
-        joint_view.open_joints_panel(_analysis_for_joints())
+        from contactwb.gui.panels import joints_panel
+        joints_panel.open_joints_panel(_analysis_for_joints())
 
 
 class Contacts_OpenSample:
@@ -250,18 +250,9 @@ class Contacts_OpenSample:
         return doc
 
 
-def _show_error(message):
-    """An error in the Console and in a message box."""
-    from PySide2 import QtWidgets
-    FreeCAD.Console.PrintError(f"Contacts: {message}\n")
-    QtWidgets.QMessageBox.warning(FreeCADGui.getMainWindow(), "Contacts", message)
-
-
 def _analysis_to_export(doc):
     """The selected ContactAnalysis (or the one holding a selected contact),
     else the document's only one; None when that is ambiguous."""
-    from contactwb import export
-    from contactwb.objects.contact_objects import is_contact, is_contact_analysis
     chosen = []
     for obj in FreeCADGui.Selection.getSelection(doc.Name):
         # the analysis itself, or the one holding a selected contact (a
@@ -271,7 +262,7 @@ def _analysis_to_export(doc):
             if is_contact_analysis(candidate) and candidate not in chosen:
                 chosen.append(candidate)
     if not chosen:
-        chosen = export.analyses(doc)
+        chosen = analyses(doc)
     return chosen[0] if len(chosen) == 1 else None
 
 
@@ -289,17 +280,16 @@ class Contacts_ExportContacts:
         }
 
     def IsActive(self):
-        from contactwb import export
-        return bool(export.analyses(FreeCAD.ActiveDocument))
+        return bool(analyses(FreeCAD.ActiveDocument))
 
     def Activated(self):
         import os
         from PySide2 import QtWidgets
-        from contactwb import export
+        from contactwb.document import export
         doc = FreeCAD.ActiveDocument
         group = _analysis_to_export(doc)
         if group is None:
-            _show_error("Select the contact analysis to export (the document holds several).")
+            show_error("Select the contact analysis to export (the document holds several).")
             return
         folder = os.path.dirname(doc.FileName) if doc.FileName else os.path.expanduser("~")
         suggestion = os.path.join(folder, f"{doc.Label}_{group.Label}.json")
@@ -312,13 +302,13 @@ class Contacts_ExportContacts:
         try:
             count = export.export_contacts(group, path)
         except (OSError, ValueError) as error:
-            _show_error(f"cannot export '{group.Label}': {error}")
+            show_error(f"cannot export '{group.Label}': {error}")
             return
         noun = "contact" if count == 1 else "contacts"
         FreeCAD.Console.PrintMessage(f"Contacts: {count} {noun} of '{group.Label}' written to {path}\n")
 
 
-# Toolbar and menu order (other command modules register their own).
+# Toolbar and menu order (contactwb.gui.commands registers them with the others).
 COMMANDS = {
     "Contacts_FindContacts": Contacts_FindContacts,
     "Contacts_ShowContactTable": Contacts_ShowContactTable,
@@ -336,9 +326,3 @@ COMMANDS = {
 CONTEXT_COMMANDS = ["Contacts_FindContacts", "Contacts_IsolateContact", "Contacts_ShowAll",
                     "Contacts_ShowContactTable"]
 
-
-def register():
-    """Adds the commands to FreeCAD; returns their names in toolbar order."""
-    for name, command in COMMANDS.items():
-        FreeCADGui.addCommand(name, command())
-    return list(COMMANDS)

@@ -1,4 +1,5 @@
-"""Loads the C++ extension `contactcore` and moves shapes between FreeCAD and it.
+"""Loads the C++ extension `contactcore` (no FreeCAD import: moving FreeCAD
+shapes into it is contactwb.document.shapes).
 
 The extension sits beside the workbench once installed; in a source checkout
 it is found in $CONTACTS_PYTHON_DIR or <repo>/build/python."""
@@ -65,35 +66,3 @@ Cancelled = contactcore.Cancelled
 InputError = contactcore.InputError        # a file or shape that cannot be read or used (a ContactsError)
 ArgumentError = contactcore.ArgumentError  # an option out of range (a ContactsError and a ValueError)
 
-
-def shape_to_brep(shape):
-    """BRep text of a Part.Shape (with its placement)."""
-    return shape.exportBrepToString()
-
-
-def shape_from_brep(text):
-    """A Part.Shape from BRep text (needs FreeCAD's Part module)."""
-    import Part
-    shape = Part.Shape()
-    shape.importBrepFromString(text)
-    return shape
-
-
-def assembly_from_shapes(named_shapes):
-    """A contactcore.Assembly from (name, Part.Shape) pairs, shapes already
-    placed globally. They cross into C++ as one compound (instances share
-    geometry in the BRep stream, so this is cheap even for thousands)."""
-    import Part
-    named_shapes = list(named_shapes)
-    if not named_shapes:
-        raise ContactsError("no bodies given")
-    compound = Part.makeCompound([shape for _, shape in named_shapes])
-    try:
-        return contactcore.bodies_from_brep(compound.exportBrepToString(), [name for name, _ in named_shapes])
-    except InputError as error:
-        # FreeCAD wrote this text into memory just now: cut short, it ran out
-        # of memory writing it (it does not say so).
-        if "text cut short" in str(error):
-            raise MemoryError(f"out of memory (FreeCAD's BRep export of the shapes came back cut short: {error})") \
-                from error
-        raise

@@ -76,8 +76,8 @@ def _progress_printer(stream):
 
 # `contacts NAME ...` runs another tool: NAME -> module with main(argv) -> exit code.
 SUBCOMMANDS = {
-    "mesh": "contactwb.cli_mesh",
-    "trial": "contactwb.cli_trial",
+    "mesh": "contactwb.cli.mesh",
+    "trial": "contactwb.cli.trial",
 }
 
 
@@ -110,12 +110,13 @@ def main(argv=None):
                              "model); see docs/reliability.md")
     args = parser.parse_args(argv)
     if args.disassembly:
-        from contactwb import cli_mesh
-        return cli_mesh.print_disassembly(args.file, args.json, args.linear, args.angular)
+        from contactwb.cli.mesh import print_disassembly  # the module, not the package: no cycle through cli/__init__
+        return print_disassembly(args.file, args.json, args.linear, args.angular)
 
     try:
-        from contactwb import analysis, core
-        from contactwb import joints as joints_api
+        from contactwb import core
+        from contactwb.core import analysis
+        from contactwb.core import joints as joints_api
     except MemoryError as error:  # the extension cannot even be loaded under a memory limit
         print(f"contacts: {error} (file '{os.fsdecode(args.file)}')", file=sys.stderr)
         return EXIT_FAILED
@@ -128,19 +129,20 @@ def main(argv=None):
     try:
         with _stdout_to_stderr():
             if path.lower().endswith(".fcstd"):
-                from contactwb import freecad_setup
+                from contactwb.document import analysis as document_analysis
+                from contactwb.document import freecad_setup
                 if not os.path.isfile(path):
                     raise core.InputError(f"no such file: '{path}'")
                 _check_fcstd(path, core)
                 doc = freecad_setup.open_document(os.path.abspath(path))
                 if wants_joints:
-                    result, found, _ = joints_api.joints_in_document(
+                    result, found, _ = document_analysis.joints_in_document(
                         doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
                         clearance_gap=args.clearance_gap, max_pairs=args.max_pairs, check_solids=args.check_solids)
                 else:
-                    result, _ = analysis.find_contacts_in_document(doc, linear=args.linear, angular=args.angular,
-                                                                   progress=progress, max_pairs=args.max_pairs,
-                                                                   check_solids=args.check_solids)
+                    result, _ = document_analysis.find_contacts_in_document(
+                        doc, linear=args.linear, angular=args.angular, progress=progress,
+                        max_pairs=args.max_pairs, check_solids=args.check_solids)
             elif wants_joints:
                 result, found = joints_api.joints_in_step(path, args.linear, args.angular, progress,
                                                           ground=args.ground, clearance_gap=args.clearance_gap,

@@ -1,0 +1,157 @@
+"""Meshes tagged by partition, collision queries and the removal sequence,
+headless and without FreeCAD (the paper's mixed representation, stage 5).
+FreeCAD documents as input: contactwb.document.files.load_assembly.
+
+    from contactwb.core import meshes
+    assembly = meshes.read_step_assembly("Resources/samples/motor.step")
+    for body, result in zip(assembly.bodies, meshes.mesh_assembly(assembly, deflection=0.1)):
+        print(body.name, result.quality.watertight)
+    print(meshes.disassembly_json(assembly))
+"""
+import json
+import os
+
+from contactwb import core
+
+
+def read_step_assembly(path):
+    """The bodies of a STEP file, read in C++."""
+    if not os.path.isfile(path):
+        raise core.ContactsError(f"no such file: '{path}'")
+    return core.contactcore.read_step(os.path.abspath(path))
+
+
+def mesh_assembly(assembly, deflection=0.1, angle=0.5, max_edge=0.0, linear=None, angular=None):
+    """One contactcore.MeshResult (mesh, quality) per body, in order."""
+    options = core.contactcore.MeshOptions(deflection, angle, max_edge)
+    return core.contactcore.mesh_assembly(assembly, options, linear, angular)
+
+
+def quality_report(quality, mesh):
+    """Triangles, closure and shape of one model's mesh (meshes.json)."""
+    return {
+        "triangles": quality.triangles,
+        "watertight": quality.watertight,
+        "min_angle": quality.min_angle_deg,
+        "aspect_ratio": {"p50": quality.aspect_p50, "p90": quality.aspect_p90, "p99": quality.aspect_p99,
+                         "max": quality.aspect_max},
+        "max_edge_length": quality.max_edge_length,
+        "partitions": mesh.partition_count,
+    }
+
+
+def body_report(name, result):
+    """The per-body entry of meshes.json."""
+    return {"name": name, **quality_report(result.quality, result.mesh)}
+
+
+def collision_options(deflection, angle):
+    """The collision model's tessellation: twice as coarse as the view model's, no edge bound
+    (a BVH does not need well-shaped triangles)."""
+    return core.contactcore.MeshOptions(2 * deflection, min(2 * angle, 1.0), 0.0)
+
+
+def simulation_models(assembly, deflection=0.1, angle=0.5, max_edge=0.0, simplify=0.0, envelope=0.0,
+                      linear=None, angular=None, bodies=None):
+    """contactcore.SimulationModels of the bodies (all, or the given numbers): the view model (the
+    original B-rep with the user's tessellation) and the collision model (without the features
+    below `simplify` mm unless that leaves the `envelope`, tessellated coarser)."""
+    view = core.contactcore.MeshOptions(deflection, angle, max_edge)
+    return core.contactcore.simulation_models(assembly, view, collision_options(deflection, angle), simplify,
+                                              envelope, linear, angular, bodies)
+
+
+def ply_name(name):
+    """A file name for a body: path separators and odd characters replaced."""
+    safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
+    return (safe or "body") + ".ply"
+
+
+def _unique_file(name, used, suffix=".ply"):
+    file_name = ply_name(name)[:-4] + suffix
+    stem, number = file_name[:-len(suffix)], 2
+    while file_name in used:
+        file_name = f"{stem}.{number}{suffix}"
+        number += 1
+    used.add(file_name)
+    return file_name
+
+
+def write_meshes(assembly, out_dir, deflection=0.1, angle=0.5, max_edge=0.0, linear=None, angular=None,
+                 simplify=0.0, envelope=0.0):
+    """One PLY per body and out_dir/meshes.json; returns the JSON document. With `simplify` (mm),
+    also each body's collision model (NAME.collision.ply, the "collision" entry), without the
+    features below that size unless that leaves the `envelope` (mm): then from the original B-rep,
+    with a "message" saying so. Each model's "hausdorff" is its distance to the original B-rep
+    (two-sided for a simplified model; for a plain tessellation its farthest point)."""
+    os.makedirs(out_dir, exist_ok=True)
+    bodies = []
+    used = set()
+    if simplify > 0:
+        results = simulation_models(assembly, deflection, angle, max_edge, simplify, envelope, linear, angular)
+        views = [r.view for r in results]
+    else:
+        results = None
+        views = mesh_assembly(assembly, deflection, angle, max_edge, linear, angular)
+    for index, (body, view) in enumerate(zip(assembly.bodies, views)):
+        file_name = _unique_file(body.name, used)
+        view.mesh.write_ply(os.path.join(out_dir, file_name))
+        entry = body_report(body.name, view)
+        entry["file"] = file_name
+        if results is not None:
+            models = results[index]
+            entry["hausdorff"] = models.view_deviation
+            collision_file = _unique_file(body.name, used, ".collision.ply")
+            models.collision.mesh.write_ply(os.path.join(out_dir, collision_file))
+            entry["collision"] = {
+                **quality_report(models.collision.quality, models.collision.mesh),
+                "file": collision_file,
+                "simplified": models.simplified,
+                "hausdorff": models.collision_hausdorff,
+                "removed_faces": [f"Face{f}" for f in models.removed_faces],
+                "features_kept": models.features_kept,
+                "message": models.message,
+            }
+        bodies.append(entry)
+    document = {"deflection": deflection, "angle": angle, "max_edge": max_edge, "bodies": bodies}
+    if simplify > 0:
+        options = collision_options(deflection, angle)
+        document.update({"simplify": simplify, "envelope": envelope,
+                         "collision_deflection": options.deflection, "collision_angle": options.angle})
+    with open(os.path.join(out_dir, "meshes.json"), "w") as stream:
+        json.dump(document, stream, indent=2)
+    return document
+
+
+def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.0, linear=None, angular=None):
+    """contactcore.DisassemblyResult: the removal sequence, blocking graphs, or the reason none exists.
+    `tolerance` (mm; 0: twice the deflection): how deep a swept part must cut into another to be
+    blocked (two tessellations of one surface cross by up to their deflection)."""
+    options = core.contactcore.MeshOptions(deflection, angle, 0.0)
+    return core.contactcore.disassemble(assembly, options, tolerance, linear, angular)
+
+
+def disassembly_json(assembly, result=None):
+    """{"disassembly": [{"parts": [names], "direction": [x, y, z]}, ...], "base", "complete", "reason"}."""
+    result = disassemble(assembly) if result is None else result
+    names = [body.name for body in assembly.bodies]
+    return {
+        "disassembly": [{"parts": [names[i] for i in step.parts], "direction": [round(v, 12) + 0.0 for v in step.direction]}
+                        for step in result.steps],
+        "base": names[result.base] if result.base >= 0 else None,
+        "complete": result.complete,
+        "reason": result.reason,
+    }
+
+
+def disassembly_table(document):
+    """The removal sequence as text, one step a line."""
+    lines = ["Disassembly sequence:"]
+    for number, step in enumerate(document["disassembly"], 1):
+        x, y, z = step["direction"]
+        lines.append(f"{number:3d}. {', '.join(step['parts'])} along ({x:g}, {y:g}, {z:g})")
+    if document["complete"]:
+        lines.append(f"     {document['base']} stays (the base)")
+    else:
+        lines.append(f"Stopped: {document['reason']}")
+    return "\n".join(lines)

@@ -1,0 +1,48 @@
+"""What a document object is, for the workbench: its Contacts kind read from
+its proxy's Type (duck typing, so it also works once a file is re-opened).
+The proxies themselves are in contactwb.objects; the layers below them (the
+document walk, the export) ask here."""
+
+CONTACT_ANALYSIS = "ContactAnalysis"
+CONTACT = "Contact"
+JOINT = "Joint"
+SIMULATION_MODEL = "SimulationModel"
+
+
+def proxy_kind(obj):
+    """The Type of the object's proxy (None: no proxy, or not ours)."""
+    return getattr(getattr(obj, "Proxy", None), "Type", None)
+
+
+def is_contact_analysis(obj):
+    """Whether a document object is a ContactAnalysis group (also once re-opened)."""
+    return proxy_kind(obj) == CONTACT_ANALYSIS
+
+
+def is_contact(obj):
+    """Whether a document object is one Contact of an analysis."""
+    return proxy_kind(obj) == CONTACT
+
+
+def is_joint(obj):
+    """Whether a document object is one Joint of an analysis."""
+    return proxy_kind(obj) == JOINT
+
+
+def is_simulation_model(obj):
+    """Whether a document object is a SimulationModel (also once re-opened)."""
+    return proxy_kind(obj) == SIMULATION_MODEL
+
+
+def is_workbench_result(obj):
+    """The workbench's own results (they link to bodies but hold no solid)."""
+    return proxy_kind(obj) in (CONTACT_ANALYSIS, CONTACT, SIMULATION_MODEL)
+
+
+def analyses(doc):
+    """The ContactAnalysis groups of a document. (Cheap enough for a
+    command's IsActive on large documents: the type is checked first.)"""
+    if doc is None:
+        return []
+    return [obj for obj in doc.Objects
+            if obj.TypeId == "App::DocumentObjectGroupPython" and is_contact_analysis(obj)]

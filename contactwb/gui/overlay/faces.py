@@ -1,0 +1,135 @@
+"""Face geometry for the drawings: a contact's placed faces tessellated as their
+bodies are (or the area the two sides share), pushed out of their body so they
+show over it, and the circle of a ball contact."""
+import math
+
+import FreeCAD
+import numpy
+
+CIRCLE_SEGMENTS = 96
+
+
+def circle_points(centre, axis, radius, segments=CIRCLE_SEGMENTS):
+    axis = FreeCAD.Vector(axis)
+    if axis.Length < 1e-12:
+        return []
+    axis.normalize()
+    helper = FreeCAD.Vector(1, 0, 0) if abs(axis.x) < 0.9 else FreeCAD.Vector(0, 1, 0)
+    u = axis.cross(helper).normalize()
+    v = axis.cross(u)
+    points = []
+    for k in range(segments + 1):
+        angle = 2 * math.pi * k / segments
+        p = centre + u * (radius * math.cos(angle)) + v * (radius * math.sin(angle))
+        points.append((p.x, p.y, p.z))
+    return points
+
+
+class FaceSource:
+    """Placed faces of a contact's XLinkSub links, each tessellated once.
+
+    A face is taken from its object's placed shape (one Part.getShape per
+    object path, sharing the body's geometry) and tessellated asking for the
+    deflection the body's view provider uses, so that OCCT mostly reuses the
+    body's own triangulation. Where the triangulations still differ (a body
+    meshed later, or by other rules), the body's triangles may lie up to one
+    deflection outside ours: the vertices are pushed out of the body's
+    material by that much (along the outward normals of OCCT's triangles),
+    and the polygon offset takes care of the rest."""
+
+    def __init__(self):
+        self._shapes = {}
+        self._meshes = {}
+        self.failures = []
+
+    def _object_shape(self, root, prefix):
+        key = (root.Document.Name, root.Name, prefix)
+        if key not in self._shapes:
+            import Part
+            shape = Part.getShape(root, prefix, transform=True)
+            leaf = root.getSubObject(prefix, retType=1) if prefix else root
+            leaf = leaf.getLinkedObject(True) if leaf is not None else None
+            deviation = getattr(getattr(leaf, "ViewObject", None), "Deviation", 0.5)
+            box = shape.BoundBox if not shape.isNull() else None
+            # ViewProviderPartExt's deflection: box size sum / 300 * Deviation (%).
+            size = (box.XLength + box.YLength + box.ZLength) if box and box.isValid() else 1.0
+            self._shapes[key] = (shape, max(size / 300.0 * deviation, 1e-4))
+        return self._shapes[key]
+
+    def mesh(self, root, subname):
+        """(points (n, 3) array, triangles (m, 3) int array, BoundBox) of the
+        face, or None when it cannot be had."""
+        key = (root.Document.Name, root.Name, subname)
+        if key in self._meshes:
+            return self._meshes[key]
+        mesh = None
+        try:
+            prefix, _, element = subname.rpartition(".")
+            prefix = prefix + "." if prefix else ""
+            shape, deflection = self._object_shape(root, prefix)
+            face = shape.getElement(element)
+            points, triangles = face.tessellate(deflection)
+            if triangles:
+                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
+                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
+                mesh = (pushed_out(points, triangles, deflection), triangles, face.BoundBox)
+        except Exception as error:  # a deleted or broken body: draw the rest
+            self.failures.append(f"{root.Label}.{subname}: {error}")
+        self._meshes[key] = mesh
+        return mesh
+
+    def _face(self, root, subname):
+        prefix, _, element = subname.rpartition(".")
+        prefix = prefix + "." if prefix else ""
+        shape, deflection = self._object_shape(root, prefix)
+        return shape.getElement(element), deflection
+
+    def common_meshes(self, contact, fuzzy):
+        """[(key, mesh) of side A, (key, mesh) of side B]: the area the two
+        sides' faces share (Boolean common with a fuzzy value, for drawing
+        only), pushed out of each side's body; None when there is none to
+        be had (then the whole faces are drawn)."""
+        try:
+            sides = []
+            for links in (contact.FacesA, contact.FacesB):
+                sides.append([self._face(root, subname) for root, subnames in links for subname in subnames])
+            pieces = []
+            for face_a, deflection in sides[0]:
+                for face_b, _ in sides[1]:
+                    if not face_a.BoundBox.intersect(face_b.BoundBox):
+                        continue
+                    common = face_a.common(face_b, fuzzy)
+                    pieces.extend((piece, deflection) for piece in common.Faces if piece.Area > 0)
+            if not pieces:
+                return None
+            meshes = ([], [])
+            for k, (piece, deflection) in enumerate(pieces):
+                points, triangles = piece.tessellate(deflection)
+                if not triangles:
+                    continue
+                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
+                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
+                # the common face keeps side A's orientation: out of A is into B
+                for side, sign in ((0, 1.0), (1, -1.0)):
+                    meshes[side].append(((contact.Name, side, k),
+                                         (pushed_out(points, triangles, sign * deflection), triangles,
+                                          piece.BoundBox)))
+            return meshes if meshes[0] else None
+        except Exception as error:  # drawing only: fall back to the whole faces
+            self.failures.append(f"{contact.Label}: common area: {error}")
+            return None
+
+
+def pushed_out(points, triangles, distance):
+    """Points moved by `distance` along their vertex normals (the area-weighted
+    mean of the normals of their triangles, which OCCT winds outwards)."""
+    corners = points[triangles]
+    normals = numpy.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    vertex_normals = numpy.zeros_like(points)
+    for k in range(3):
+        for axis in range(3):
+            vertex_normals[:, axis] += numpy.bincount(triangles[:, k], weights=normals[:, axis],
+                                                      minlength=len(points))
+    lengths = numpy.linalg.norm(vertex_normals, axis=1)
+    lengths[lengths == 0] = 1.0
+    return points + vertex_normals * (distance / lengths)[:, None]

@@ -1,0 +1,1 @@
+"""Task panels and docks: find contacts, the contact table, joints, haptic trial."""

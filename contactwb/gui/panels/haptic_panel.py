@@ -1,0 +1,387 @@
+"""The haptic trial panel (its command: contactwb.gui.commands.haptics): grab the selected part
+with a device (the simulated hand, or a SpaceMouse through hidapi) and insert
+or extract it. The C++ loop runs at 1 kHz on its own thread; this panel reads
+its snapshot at display rate (30 Hz), moves the part in the 3D view, shows the
+readouts, records or replays the path, and commits the final placement as one
+undoable transaction (or resets it)."""
+import time
+
+import FreeCAD
+import FreeCADGui
+
+from contactwb import core
+
+DISPLAY_PERIOD_MS = 33
+active_panel = None  # the open panel (for scripts and tests)
+
+
+def _body_to_move(bodies, picked):
+    """The document body the selection picks: `picked` is a document object or
+    an (object, subname) pair from the 3D view or the tree."""
+    from contactwb.document import bodies as document_bodies
+    if isinstance(picked, tuple):
+        chosen = document_bodies.bodies_of_selection(bodies, [(picked[0], [picked[1]])])
+        label = picked[0].getSubObject(picked[1], retType=1).Label if picked[1] else picked[0].Label
+    else:
+        chosen = [b for b in bodies if b.obj is picked]
+        label = picked.Label
+    if not chosen:
+        raise core.ContactsError(f"'{label}' is not a visible solid of the document")
+    if len(chosen) != 1 or len([b for b in bodies if b.obj is chosen[0].obj]) != 1:
+        raise core.ContactsError(f"'{label}': the haptic trial moves parts made of one solid")
+    body = chosen[0]
+    # Reached through a link to a container, the part is the original every
+    # instance shows: moving it would move them all.
+    for container in [body.root] + list(body.containers):
+        if container.isDerivedFrom("App::Link") and container is not body.obj:
+            raise core.ContactsError(
+                f"'{body.obj.Label}' is inside the linked container '{container.Label}': move the link "
+                f"or open the original")
+    return body
+
+
+def _joint_choices(assembly, scene, part):
+    """The part's assembled joints the loop can hold it to (from the joints
+    stage, contactwb/core/joints.py): [{"label", "type", "with", "axis", "pair"}]."""
+    from contactwb.core import joints
+    _, found = joints.joints_in_assembly(assembly)
+    choices = []
+    for record, pair in zip(found.joints, found.raw[1].joints):
+        if part not in (record.a, record.b):
+            continue
+        held = scene.joint_of_pair(pair)
+        if held is None:
+            continue
+        other = record.b if record.a == part else record.a
+        axis = ", ".join(f"{v + 0.0:.3g}" for v in held["axis"])  # + 0.0: no "-0"
+        choices.append({"label": f"{held['kind']} with {other} (axis {axis})", "type": held["kind"],
+                        "with": other, "axis": held["axis"], "pair": pair})
+    return choices
+
+
+class HapticTrialPanel:
+    """Task panel: device, enable, part and joint, stiffness and damping,
+    readouts, record / replay, reset; OK commits the placement, Cancel resets."""
+
+    DEVICES = [("Simulated hand", "sim"), ("SpaceMouse (hidapi)", "spacemouse"),
+               ("HID force feedback (PID)", "hid-ff")]
+
+    def __init__(self, doc, picked, device="sim"):
+        """`picked`: the part to move, a document object or an (object,
+        subname) selection path (a part inside an App::Part, or a link)."""
+        global active_panel
+        import Part
+        from contactwb.core import trial
+        from contactwb.document import bodies as document_bodies
+        self.doc = doc
+        assembly, bodies = document_bodies.assembly_from_document(doc)
+        body = _body_to_move(bodies, picked)
+        # The loop moves the part in the global frame; the object's Placement is
+        # local to its containers (App::Part, a link's placement): keep both.
+        self.obj = body.obj
+        self.global_placement = Part.getShape(body.root, body.subname, needSubElement=False,
+                                              transform=True).Placement
+        self.body_name = body.name
+        self.trial = trial
+        self.scene = trial.make_scene(assembly, body.name)
+        # The joints the part could be held to instead of the one engagement finds.
+        self.joint_choices = _joint_choices(assembly, self.scene, body.name)
+        self.chosen = None  # index into joint_choices, or None: the joint found
+        self.original = FreeCAD.Placement(self.obj.Placement)
+        self.session = None
+        self.script = None        # (checked script, start time) played as hand targets
+        self.recording = None     # list of samples while recording
+        self.last = None
+        self.form = self._build_form()
+        self._start_session(device)
+        from PySide2 import QtCore
+        self.timer = QtCore.QTimer()
+        self.timer.timeout.connect(self.update)
+        self.timer.start(DISPLAY_PERIOD_MS)
+        active_panel = self
+
+    # ---- form
+    def _build_form(self):
+        from PySide2 import QtWidgets
+        form = QtWidgets.QWidget()
+        form.setWindowTitle("Haptic trial")
+        layout = QtWidgets.QVBoxLayout(form)
+
+        device_box = QtWidgets.QGroupBox("Device")
+        grid = QtWidgets.QGridLayout(device_box)
+        self.device_combo = QtWidgets.QComboBox()
+        for label, _ in self.DEVICES:
+            self.device_combo.addItem(label)
+        self.device_combo.currentIndexChanged.connect(self._device_changed)
+        self.enable_check = QtWidgets.QCheckBox("Enabled")
+        self.enable_check.setChecked(True)
+        self.enable_check.toggled.connect(lambda on: self.session and self.session.set_enabled(on))
+        self.device_message = QtWidgets.QLabel()
+        self.device_message.setWordWrap(True)
+        self.axes_label = QtWidgets.QLabel()
+        self.axes_label.setWordWrap(True)  # six signed values: wrap rather than widen the panel
+        grid.addWidget(self.device_combo, 0, 0)
+        grid.addWidget(self.enable_check, 0, 1)
+        grid.addWidget(self.device_message, 1, 0, 1, 2)
+        grid.addWidget(QtWidgets.QLabel("Axes"), 2, 0)
+        grid.addWidget(self.axes_label, 2, 1)
+        layout.addWidget(device_box)
+
+        part_box = QtWidgets.QGroupBox("Part and joint")
+        grid = QtWidgets.QGridLayout(part_box)
+        grid.addWidget(QtWidgets.QLabel("Part"), 0, 0)
+        grid.addWidget(QtWidgets.QLabel(self.obj.Label), 0, 1)
+        grid.addWidget(QtWidgets.QLabel("Hold to"), 1, 0)
+        self.joint_combo = QtWidgets.QComboBox()
+        self.joint_combo.addItem("the joint found (engagement)")
+        for choice in self.joint_choices:
+            self.joint_combo.addItem(choice["label"])
+        # Long labels must not widen the task panel past its dock.
+        self.joint_combo.setSizeAdjustPolicy(QtWidgets.QComboBox.AdjustToMinimumContentsLengthWithIcon)
+        self.joint_combo.setMinimumContentsLength(18)
+        self.joint_combo.setToolTip("Hold the part to one of its assembled joints instead of the one its "
+                                    "contacts engage on the way")
+        self.joint_combo.currentIndexChanged.connect(lambda index: self.choose_joint(index - 1 if index else None))
+        grid.addWidget(self.joint_combo, 1, 1)
+        grid.addWidget(QtWidgets.QLabel("Joint"), 4, 0)
+        self.joint_label = QtWidgets.QLabel("free")
+        self.joint_label.setWordWrap(True)
+        grid.addWidget(self.joint_label, 4, 1)
+        grid.addWidget(QtWidgets.QLabel("Stiffness"), 2, 0)
+        self.stiffness_spin = QtWidgets.QDoubleSpinBox()
+        self.stiffness_spin.setDecimals(2)
+        self.stiffness_spin.setSingleStep(0.1)
+        self.stiffness_spin.setSuffix(" N/mm")
+        grid.addWidget(self.stiffness_spin, 2, 1)
+        grid.addWidget(QtWidgets.QLabel("Damping"), 3, 0)
+        self.damping_spin = QtWidgets.QDoubleSpinBox()
+        self.damping_spin.setDecimals(4)
+        self.damping_spin.setSingleStep(0.001)
+        self.damping_spin.setSuffix(" N s/mm")
+        grid.addWidget(self.damping_spin, 3, 1)
+        self.stiffness_spin.valueChanged.connect(self._gains_changed)
+        self.damping_spin.valueChanged.connect(self._gains_changed)
+        layout.addWidget(part_box)
+
+        readout_box = QtWidgets.QGroupBox("Readouts")
+        grid = QtWidgets.QGridLayout(readout_box)
+        self.readouts = {}
+        for row, (key, label) in enumerate([("depth", "Depth"), ("force", "Force"), ("offset", "Offset"),
+                                            ("penetration", "Penetration"), ("rate", "Loop rate"),
+                                            ("jitter", "Jitter"), ("watchdog", "Watchdog")]):
+            grid.addWidget(QtWidgets.QLabel(label), row, 0)
+            value = QtWidgets.QLabel("-")
+            value.setWordWrap(True)
+            grid.addWidget(value, row, 1)
+            self.readouts[key] = value
+        layout.addWidget(readout_box)
+
+        buttons = QtWidgets.QHBoxLayout()
+        self.record_button = QtWidgets.QPushButton("Record")
+        self.record_button.setCheckable(True)
+        self.record_button.toggled.connect(self._record_toggled)
+        replay_button = QtWidgets.QPushButton("Replay...")
+        replay_button.clicked.connect(self._replay_clicked)
+        reset_button = QtWidgets.QPushButton("Reset")
+        reset_button.clicked.connect(self.reset)
+        for b in (self.record_button, replay_button, reset_button):
+            buttons.addWidget(b)
+        layout.addLayout(buttons)
+        layout.addStretch(1)
+        return form
+
+    # ---- session
+    def _start_session(self, device, translate=(0, 0, 0), rotate_deg=(0, 0, 0)):
+        if self.session is not None:
+            self.session.stop()
+        h = self.trial.haptics()
+        # A real-time class for the loop thread when the system grants it (else it runs as it is).
+        self.session = h.HapticSession(self.scene, device, list(translate), list(rotate_deg), realtime_priority=80)
+        caps = self.session.capabilities
+        self.device_message.setText(self.session.message)
+        # Gains within what the device renders (a rate device renders none: keep the defaults).
+        k_max = caps["max_stiffness"] or 5.0
+        b_max = caps["max_damping"] or 0.05
+        self.stiffness_spin.blockSignals(True)
+        self.damping_spin.blockSignals(True)
+        self.stiffness_spin.setRange(0.05, k_max)
+        self.damping_spin.setRange(0.0, b_max)
+        self.stiffness_spin.setValue(min(1.0, k_max))
+        self.damping_spin.setValue(min(0.005, b_max))
+        self.stiffness_spin.blockSignals(False)
+        self.damping_spin.blockSignals(False)
+        self._gains_changed()
+        self.session.set_enabled(self.enable_check.isChecked())
+        self._apply_joint()
+        self.session.start()
+
+    def choose_joint(self, index):
+        """Holds the part to joint_choices[index], or (None) to the joint found."""
+        self.chosen = index
+        self.joint_combo.blockSignals(True)
+        self.joint_combo.setCurrentIndex(0 if index is None else index + 1)
+        self.joint_combo.blockSignals(False)
+        self._apply_joint()
+
+    def _apply_joint(self):
+        if self.session is None:
+            return
+        if self.chosen is None:
+            self.session.release_joint()
+        else:
+            self.session.hold_to_pair(self.joint_choices[self.chosen]["pair"])
+
+    def _device_changed(self, index):
+        self._start_session(self.DEVICES[index][1])
+
+    def _gains_changed(self, *_):
+        if self.session is None:
+            return
+        k = self.stiffness_spin.value()
+        self.session.set_stiffness(k, 3000.0 * k)
+        self.session.set_damping(self.damping_spin.value(), 5.0)
+
+    # ---- display rate
+    def update(self):
+        if self.session is None:
+            return
+        if self.script is not None:
+            self._drive_script()
+        s = self.session.snapshot()
+        self.last = s
+        self._show_placement(s["matrix"])
+        self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s["axes"]))
+        if s["engaged"]:
+            how = "chosen" if s["held"] else "found"
+            self.joint_label.setText(f"{s['joint']} with {', '.join(s['joint_with'])} ({how})")
+        else:
+            self.joint_label.setText("free (stopped only by collisions)")
+        r = self.readouts
+        r["depth"].setText(f"{s['insertion_depth']:.3f} mm" if s["engaged"] else "-")
+        r["force"].setText(f"{s['force_n']:.2f} N")
+        r["offset"].setText("[" + ", ".join(f"{v:.3f}" for v in s["translate"]) + "] mm")
+        r["penetration"].setText(f"{s['penetration']:.4f} mm (max {s['max_penetration']:.4f})")
+        r["rate"].setText(f"{s['rate_hz']:.0f} Hz")
+        r["jitter"].setText(f"{s['jitter_us']:.0f} us")
+        r["watchdog"].setText(s["watchdog"] if s["watchdog"] != "none" else "ok")
+        if self.recording is not None:
+            self.recording.append({"t": s["time"], "translate": s["translate"], "rotate_deg": s["rotate_deg"],
+                                   "force": s["force"], "engaged": s["engaged"], "penetration": s["penetration"]})
+
+    def _local_placement(self, rows):
+        """The object's Placement for the loop's global displacement D (rows):
+        globally D G, locally L G^-1 D G (L its own Placement, G its global one)."""
+        moved = FreeCAD.Placement(FreeCAD.Matrix(*[v for row in rows for v in row]))
+        g = self.global_placement
+        return self.original.multiply(g.inverse()).multiply(moved).multiply(g)
+
+    def _show_placement(self, rows):
+        self.obj.Placement = self._local_placement(rows)
+
+    # ---- scripts, record, replay
+    def play_script(self, script):
+        """Plays a trial script (see `contacts trial`) in real time: the part
+        restarts at the script's start offset and the simulated hand follows
+        the script's targets."""
+        checked = self.trial.check_script(script)
+        self.device_combo.blockSignals(True)
+        self.device_combo.setCurrentIndex(0)
+        self.device_combo.blockSignals(False)
+        start = checked["start"]
+        self._start_session("sim", start["translate"], start["rotate_deg"])
+        self.script = (checked["hand"], time.monotonic())
+        self._drive_script()
+
+    def script_done(self):
+        return self.script is None
+
+    def _drive_script(self):
+        keys, started = self.script
+        t = time.monotonic() - started
+        if t >= keys[-1]["t"]:
+            key = keys[-1]
+            self.script = None
+            self.session.set_hand_target(key["translate"], key["rotate_deg"])
+            return
+        after = next(i for i, k in enumerate(keys) if k["t"] > t)
+        a, b = keys[max(0, after - 1)], keys[after]
+        s = 0.0 if b["t"] <= a["t"] else (t - a["t"]) / (b["t"] - a["t"])
+        mix = [[x + s * (y - x) for x, y in zip(a[field], b[field])] for field in ("translate", "rotate_deg")]
+        self.session.set_hand_target(*mix)
+
+    def start_recording(self):
+        self.recording = []
+
+    def stop_recording(self):
+        samples, self.recording = self.recording or [], None
+        return samples
+
+    def _record_toggled(self, on):
+        from PySide2 import QtWidgets
+        if on:
+            self.start_recording()
+            self.record_button.setText("Stop")
+            return
+        self.record_button.setText("Record")
+        samples = self.stop_recording()
+        if not samples:
+            return
+        path, _ = QtWidgets.QFileDialog.getSaveFileName(self.form, "Save path", "path.csv", "Path (*.csv *.json)")
+        if path:
+            self.trial.write_path(samples, path)
+
+    def replay(self, samples):
+        """Replays a recorded path as the hand's script (from its first placement)."""
+        t0 = samples[0]["t"]
+        hand = [{"t": s["t"] - t0, "translate": s["translate"], "rotate_deg": s["rotate_deg"]} for s in samples]
+        self.play_script({"start": {"translate": hand[0]["translate"], "rotate_deg": hand[0]["rotate_deg"]},
+                          "hand": hand})
+
+    def _replay_clicked(self):
+        from PySide2 import QtWidgets
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(self.form, "Replay path", "", "Path (*.csv *.json)")
+        if path:
+            self.replay(self.trial.read_path(path))
+
+    def reset(self):
+        """Back to the placement the part had when the panel opened."""
+        self.script = None
+        self._start_session(self.DEVICES[self.device_combo.currentIndex()][1])
+        self.obj.Placement = self.original
+
+    # ---- task dialog
+    def _close(self):
+        global active_panel
+        self.timer.stop()
+        if self.session is not None:
+            self.session.stop()
+            self.session = None
+        active_panel = None
+
+    def accept(self):
+        final = FreeCAD.Placement(self.obj.Placement)
+        if self.session is not None:
+            self.session.stop()
+            s = self.session.snapshot()
+            final = self._local_placement(s["matrix"])
+        self._close()
+        # The moves shown during the trial are not in the undo stack: one transaction for the result.
+        self.obj.Placement = self.original
+        doc = self.obj.Document  # the moved object's (a link's own, not its target's)
+        doc.openTransaction("Haptic trial")
+        self.obj.Placement = final
+        doc.commitTransaction()
+        doc.recompute()
+        FreeCADGui.Control.closeDialog()
+        return True
+
+    def reject(self):
+        self._close()
+        self.obj.Placement = self.original
+        FreeCADGui.Control.closeDialog()
+        return True
+
+    def getStandardButtons(self):
+        from PySide2 import QtWidgets
+        return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Cancel)
+

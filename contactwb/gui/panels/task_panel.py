@@ -1,0 +1,287 @@
+"""The Find contacts task panel: scope, tolerances (with units, defaults from
+the model), contact types, clearance gap; progress and Cancel in the panel.
+Run on an existing analysis (selected, or double-clicked) it updates that one
+in place."""
+from math import degrees, radians
+
+import FreeCAD
+import FreeCADGui
+from PySide2 import QtCore, QtWidgets
+
+from contactwb.core.kinds import CONTACT_TYPES, SCOPES, TYPE_NAMES
+from contactwb.document.identify import is_contact, is_contact_analysis
+from contactwb.gui import settings
+
+SCOPE_TEXTS = {"Document": "Whole document", "Selection": "Selected parts only",
+               "PartAgainstRest": "Selected part against the rest"}
+
+
+def selection_entries(doc):
+    """The selection as (top-level object, [subnames]) entries, unresolved
+    (links and their placements kept), without analyses and contacts."""
+    entries = []
+    for selected in FreeCADGui.Selection.getSelectionEx(doc.Name, 0):
+        obj = selected.Object
+        subnames = list(selected.SubElementNames) or [""]
+        kept = [s for s in subnames
+                if not (is_contact(obj.getSubObject(s, retType=1) if s else obj)
+                        or is_contact_analysis(obj.getSubObject(s, retType=1) if s else obj))]
+        if kept and not (is_contact(obj) or is_contact_analysis(obj)):
+            entries.append((obj, kept))
+    return entries
+
+
+def selected_analysis(doc):
+    """The analysis selected (or holding a selected contact), if one. (A
+    selected part is no analysis, though analyses link to it.)"""
+    for obj in FreeCADGui.Selection.getSelection(doc.Name):
+        if is_contact_analysis(obj):
+            return obj
+        if is_contact(obj):
+            return next((p for p in obj.InList if is_contact_analysis(p)), None)
+    return None
+
+
+def model_tolerances(doc, entries=None):
+    """(linear mm, angular rad) the core would choose for the document's
+    visible solids: its defaults scaled to the model's box."""
+    from contactwb import core
+    from contactwb.document import bodies
+    box = FreeCAD.BoundBox()
+    for body in bodies.document_bodies(doc):
+        box.add(body.shape.BoundBox)
+    if not box.isValid():
+        return 1e-3, 1e-4
+    tolerances = core.contactcore.default_tolerances(box.XMin, box.YMin, box.ZMin,
+                                                     box.XMax, box.YMax, box.ZMax)
+    return tolerances.linear, tolerances.angular
+
+
+def _quantity_box(unit, value, decimals=6):
+    """A Gui::QuantitySpinBox (units typed or converted, as FreeCAD's own panels)."""
+    box = FreeCADGui.UiLoader().createWidget("Gui::QuantitySpinBox")
+    box.setProperty("unit", unit)
+    box.setProperty("decimals", decimals)
+    box.setProperty("minimum", 0.0)
+    box.setProperty("rawValue", value)
+    return box
+
+
+class FindContactsPanel:
+    """Task panel of Contacts_FindContacts."""
+
+    def __init__(self, doc, entries=None, group=None):
+        self.doc = doc
+        self.group = group
+        self.entries = list(entries or [])
+        if group is not None and not self.entries:
+            self.entries = [(o, list(s)) for o, s in group.Sources]
+        self.running = False
+        self.cancel_requested = False
+        self.result = None
+        self.form = self._build()
+        self._load()
+
+    # --- widgets ---------------------------------------------------------
+    def _build(self):
+        form = QtWidgets.QWidget()
+        form.setObjectName("ContactsFindPanel")
+        form.setWindowTitle("Find contacts" if self.group is None else f"Find contacts again: {self.group.Label}")
+        layout = QtWidgets.QVBoxLayout(form)
+
+        scope_box = QtWidgets.QGroupBox("Scope")
+        scope_layout = QtWidgets.QVBoxLayout(scope_box)
+        self.scope = QtWidgets.QComboBox()
+        for scope in SCOPES:
+            self.scope.addItem(SCOPE_TEXTS[scope], scope)
+        self.parts = QtWidgets.QLabel()
+        self.parts.setWordWrap(True)
+        scope_layout.addWidget(self.scope)
+        scope_layout.addWidget(self.parts)
+        layout.addWidget(scope_box)
+
+        tolerance_box = QtWidgets.QGroupBox("Tolerances")
+        grid = QtWidgets.QFormLayout(tolerance_box)
+        linear, angular = model_tolerances(self.doc)
+        self.model_linear, self.model_angular = linear, angular
+        self.linear = _quantity_box("mm", linear)
+        self.angular = _quantity_box("deg", degrees(angular))
+        self.gap = _quantity_box("mm", 0.0, 4)
+        grid.addRow("Linear:", self.linear)
+        grid.addRow("Angular:", self.angular)
+        grid.addRow("Clearance gap:", self.gap)
+        self.defaults = QtWidgets.QPushButton("Model defaults")
+        self.defaults.setToolTip(f"Scaled to the model: {linear:.3g} mm, {degrees(angular):.3g}\u00b0")
+        self.defaults.clicked.connect(self._set_model_defaults)
+        grid.addRow("", self.defaults)
+        layout.addWidget(tolerance_box)
+
+        types_box = QtWidgets.QGroupBox("Contact types to look for")
+        types_layout = QtWidgets.QGridLayout(types_box)
+        self.types = {}
+        for index, kind in enumerate(CONTACT_TYPES):
+            check = QtWidgets.QCheckBox(f"{kind} {TYPE_NAMES[kind]}")
+            check.setChecked(True)
+            self.types[kind] = check
+            types_layout.addWidget(check, index // 2, index % 2)
+        layout.addWidget(types_box)
+
+        run_box = QtWidgets.QGroupBox("Progress")
+        run_layout = QtWidgets.QVBoxLayout(run_box)
+        self.status = QtWidgets.QLabel("Press OK to find the contacts.")
+        self.status.setWordWrap(True)
+        self.progress_bar = QtWidgets.QProgressBar()
+        self.progress_bar.setRange(0, 1000)
+        self.progress_bar.setValue(0)
+        self.cancel = QtWidgets.QPushButton("Cancel search")
+        self.cancel.setEnabled(False)
+        self.cancel.clicked.connect(self.request_cancel)
+        for widget in (self.status, self.progress_bar, self.cancel):
+            run_layout.addWidget(widget)
+        layout.addWidget(run_box)
+        layout.addStretch(1)
+        self.scope.currentIndexChanged.connect(self._show_parts)
+        return form
+
+    def _load(self):
+        group = self.group
+        if group is not None:
+            self.scope.setCurrentIndex(SCOPES.index(group.Scope))
+            if group.LinearToleranceSetting.Value:
+                self.linear.setProperty("rawValue", group.LinearToleranceSetting.Value)
+            if group.AngularToleranceSetting.Value:
+                self.angular.setProperty("rawValue", group.AngularToleranceSetting.Value)
+            self.gap.setProperty("rawValue", group.ClearanceGap.Value)
+            for kind, check in self.types.items():
+                check.setChecked(not group.ContactTypes or kind in group.ContactTypes)
+        else:
+            params = settings.params()
+            if params.GetFloat("LinearTolerance", 0.0) > 0:
+                self.linear.setProperty("rawValue", params.GetFloat("LinearTolerance"))
+            if params.GetFloat("AngularTolerance", 0.0) > 0:
+                self.angular.setProperty("rawValue", params.GetFloat("AngularTolerance"))
+            parts = len(self.entries)
+            self.scope.setCurrentIndex(SCOPES.index(
+                "Document" if not parts else "PartAgainstRest" if parts == 1 and len(self.entries[0][1]) == 1
+                else "Selection"))
+        self._show_parts()
+
+    def _show_parts(self, *_):
+        names = []
+        for obj, subnames in self.entries:
+            for subname in subnames:
+                target = obj.getSubObject(subname, retType=1) if subname else obj
+                names.append(getattr(target, "Label", obj.Label))
+        if self.scope_value() == "Document":
+            self.parts.setText("Every visible solid of the document.")
+        elif names:
+            self.parts.setText("Parts: " + ", ".join(names))
+        else:
+            self.parts.setText("Select the parts in the tree or the 3D view first.")
+
+    def _set_model_defaults(self):
+        self.linear.setProperty("rawValue", self.model_linear)
+        self.angular.setProperty("rawValue", degrees(self.model_angular))
+
+    # --- values --------------------------------------------------------
+    def scope_value(self):
+        return self.scope.currentData()
+
+    def settings(self):
+        """(linear mm or None, angular rad or None, types, gap mm) as chosen;
+        the model's defaults are passed as None (so they follow the model)."""
+        linear = float(self.linear.property("rawValue"))
+        angular = radians(float(self.angular.property("rawValue")))
+        linear = None if abs(linear - self.model_linear) <= 1e-12 or linear <= 0 else linear
+        angular = None if abs(angular - self.model_angular) <= 1e-12 or angular <= 0 else angular
+        types = [k for k, check in self.types.items() if check.isChecked()]
+        return linear, angular, types, float(self.gap.property("rawValue"))
+
+    # --- running -------------------------------------------------------
+    def request_cancel(self):
+        self.cancel_requested = True
+
+    def progress(self, stage, fraction):
+        self.status.setText(f"{stage.capitalize()}...")
+        self.progress_bar.setValue(int(fraction * 1000))
+        QtWidgets.QApplication.processEvents()
+        return not self.cancel_requested
+
+    def run(self):
+        """Finds the contacts; True when done (the panel may close)."""
+        from contactwb import core
+        from contactwb.make import make_contact_analysis
+        linear, angular, types, gap = self.settings()
+        if not types:
+            self.status.setText("Tick at least one contact type.")
+            return False
+        scope = self.scope_value()
+        if scope != "Document" and not self.entries:
+            self.status.setText("This scope needs parts: select them, then run Find contacts.")
+            return False
+        self.running, self.cancel_requested = True, False
+        self.cancel.setEnabled(True)
+        self.doc.openTransaction("Find contacts")
+        try:
+            group = make_contact_analysis(self.doc, self.entries if scope != "Document" else None,
+                                          linear, angular, self.progress, scope=scope,
+                                          types=types if len(types) < len(CONTACT_TYPES) else None,
+                                          clearance_gap=gap, group=self.group)
+        except core.Cancelled:
+            self.doc.abortTransaction()
+            self.status.setText("Cancelled: nothing changed.")
+            self.progress_bar.setValue(0)
+            FreeCAD.Console.PrintWarning("Contacts: cancelled\n")
+            return False
+        except (core.ContactsError, ValueError) as error:
+            self.doc.abortTransaction()
+            self.status.setText(f"Error: {error}")
+            FreeCAD.Console.PrintError(f"Contacts: {error}\n")
+            return False
+        finally:
+            self.running = False
+            self.cancel.setEnabled(False)
+        self.doc.commitTransaction()
+        self.group = self.result = group
+        self.progress_bar.setValue(1000)
+        message = (f"{len(group.Group)} contacts between {group.BodyCount} bodies "
+                   f"({', '.join(group.Summary) or 'none'})")
+        self.status.setText(message)
+        FreeCAD.Console.PrintMessage(f"Contacts: {message}\n")
+        from contactwb.gui.panels import contact_table
+        contact_table.refresh()
+        return True
+
+    # --- FreeCAD task dialog -------------------------------------------
+    def getStandardButtons(self):
+        return int(QtWidgets.QDialogButtonBox.Ok | QtWidgets.QDialogButtonBox.Close)
+
+    def accept(self):
+        if self.running:
+            return False
+        if self.run():
+            FreeCADGui.Control.closeDialog()
+            return True
+        return False
+
+    def reject(self):
+        if self.running:
+            self.request_cancel()
+            return False
+        FreeCADGui.Control.closeDialog()
+        return True
+
+
+current = None  # the panel last opened (scripts and tests drive it)
+
+
+def open_panel(doc, group=None):
+    """Shows the panel (for `group`: to find its contacts again)."""
+    if FreeCADGui.Control.activeDialog():
+        FreeCADGui.Control.closeDialog()
+    entries = selection_entries(doc) if group is None else None
+    global current
+    panel = current = FindContactsPanel(doc, entries, group)
+    FreeCADGui.Control.showDialog(panel)
+    QtCore.QCoreApplication.processEvents()
+    return panel

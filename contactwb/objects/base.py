@@ -1,0 +1,61 @@
+"""What every Contacts proxy shares: properties added only where missing (so
+files saved by older versions gain the new ones) and the version records."""
+
+# Version of the objects' properties, saved in each object's ProxyVersion.
+# A property, not the proxy's dumps() state: FreeCAD 0.20 opening a file
+# without the workbench drops the proxy, and saving writes it as null; plain
+# properties survive (contactwb.objects.recovery gives the proxy back).
+#   1: files saved before ProxyVersion existed (0.1.0);
+#   2: ProxyType, ProxyVersion; the analysis counts its contacts and joints.
+PROXY_VERSION = 2
+
+
+def add_property(obj, kind, name, group, doc, mode=None):
+    """Adds a property unless the object has it (files saved by older versions)."""
+    if name not in obj.PropertiesList:
+        obj.addProperty(kind, name, group, doc)
+    if mode is not None:
+        obj.setEditorMode(name, mode)
+
+
+def versioned(obj, proxy_type):
+    """Adds the type and version records; returns the version the object was
+    saved with (1: before they existed)."""
+    saved = obj.ProxyVersion if "ProxyVersion" in obj.PropertiesList else 1
+    add_property(obj, "App::PropertyString", "ProxyType", "Version",
+                 "Kind of Contacts object (lets the workbench give a lost proxy back)", 2)
+    add_property(obj, "App::PropertyInteger", "ProxyVersion", "Version",
+                 "Version of the Contacts object's properties", 2)
+    obj.ProxyType = proxy_type
+    if saved > PROXY_VERSION:
+        import FreeCAD
+        FreeCAD.Console.PrintWarning(
+            f"Contacts: '{obj.Label}' was saved by a newer Contacts (object version {saved}, "
+            f"this one knows {PROXY_VERSION}); its newer properties are kept as they are\n")
+    else:
+        obj.ProxyVersion = PROXY_VERSION
+    return saved
+
+
+class VersionedProxy:
+    """What every Contacts proxy does on creation and restore: keep its type,
+    add or migrate its version records, then its own properties (added only
+    where missing, so older files gain the new ones)."""
+    TYPE = None  # each proxy sets TYPE and add_properties(obj)
+
+    def __init__(self, obj):
+        obj.Proxy = self
+        self.Type = self.TYPE
+        versioned(obj, self.TYPE)
+        self.add_properties(obj)
+
+    def onDocumentRestored(self, obj):
+        obj.Proxy = self
+        versioned(obj, self.TYPE)
+        self.add_properties(obj)
+
+    def dumps(self):
+        return None
+
+    def loads(self, state):
+        self.Type = self.TYPE

@@ -1,0 +1,96 @@
+"""The observer keeping live contact analyses in step with their bodies: it
+marks an analysis touched as soon as one of its bodies moves, changes shape or
+is deleted (FreeCAD itself only recomputes it, silently), so the tree shows it
+out of date before the recompute; and it removes the contacts a recompute no
+longer found once that recompute is over."""
+from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_joint
+
+
+class BodyWatcher:
+    """Marks an analysis touched when a body it depends on moves, changes
+    shape or is deleted (FreeCAD itself only recomputes it, silently)."""
+
+    WATCHED = ("Placement", "Shape", "LinkPlacement", "LinkedObject", "Group")
+
+    def __init__(self):
+        self.documents = set()
+        self.pending = {}  # document name -> contacts to remove once its recompute is over
+
+    def _touch_dependents(self, obj, deleted=False):
+        doc = obj.Document
+        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj):
+            return
+        for group in analyses(doc):
+            if not getattr(group, "UpdateOnRecompute", False):
+                continue
+            if group.Name == obj.Name or "Touched" in group.State:
+                continue
+            if obj in group.OutListRecursive:
+                group.touch()
+
+    def slotChangedObject(self, obj, prop):
+        if prop not in self.WATCHED:
+            return
+        try:
+            self._touch_dependents(obj)
+        except Exception:  # an observer must never break an edit
+            pass
+
+    def slotCreatedObject(self, obj):
+        # a new part (or one brought back by an undo): the document-wide
+        # analyses may have missed its contacts
+        try:
+            doc = obj.Document
+            if doc.Recomputing or doc.Name not in self.documents:
+                return
+            if not (hasattr(obj, "Shape") or obj.isDerivedFrom("App::Link") or obj.isDerivedFrom("App::Part")):
+                return
+            for group in analyses(doc):
+                if group.UpdateOnRecompute and group.Scope != "Selection":
+                    group.touch()
+        except Exception:
+            pass
+
+    def slotRecomputedDocument(self, doc):
+        names = self.pending.pop(doc.Name, [])
+        for name in names:
+            if doc.getObject(name) is not None:
+                doc.removeObject(name)
+
+    def slotDeletedObject(self, obj):
+        try:
+            self._touch_dependents(obj, deleted=True)
+        except Exception:
+            pass
+
+
+_watcher = None
+
+
+def watch_document(doc):
+    """Installs (once) the observer marking this document's analyses touched."""
+    global _watcher
+    import FreeCAD
+    if _watcher is None:
+        _watcher = BodyWatcher()
+        FreeCAD.addDocumentObserver(_watcher)
+    _watcher.documents.add(doc.Name)
+
+
+def pending_removal(doc, names):
+    """Contacts to remove once the document's recompute is over."""
+    watch_document(doc)
+    _watcher.pending.setdefault(doc.Name, []).extend(names)
+
+
+def remove_after_recompute(doc, objects):
+    """Removes contacts no longer found: at once outside a recompute; inside
+    one (the group's execute), once it is over, since FreeCAD defers and
+    mixes up removals made while recomputing."""
+    if not objects:
+        return
+    if not doc.Recomputing:
+        for obj in objects:
+            doc.removeObject(obj.Name)
+        return
+    pending_removal(doc, [obj.Name for obj in objects])
