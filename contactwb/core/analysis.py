@@ -226,7 +226,8 @@ def _convert_result(source, assembly, result, face_name=None):
             faces_b=[face_name(s.body_b, f) for f in s.faces_b], message=s.message))
     mass = _MassTable(assembly)
     times = {"partitions": result.times.partitions, "broad_phase": result.times.broad_phase,
-             "candidates": result.times.candidates, "area": result.times.area}
+             "candidates": result.times.candidates, "area": result.times.area,
+             "validity": result.times.validity, "interferences": result.times.interferences}
     return Analysis(
         source=source, units=assembly.units,
         linear_tolerance=result.tolerances.linear, angular_tolerance=result.tolerances.angular,

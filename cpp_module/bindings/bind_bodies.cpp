@@ -38,6 +38,7 @@ void bind_bodies(py::module_& m) {
       .def_readonly("units", &Assembly::units)
       .def_readonly("source_unit_in_mm", &Assembly::source_unit_in_mm)
       .def_readonly("messages", &Assembly::messages)
+      .def_readonly("reader", &Assembly::reader)
       .def("to_brep", [](const Assembly& a) { return without_gil([&] { return shape_to_brep(assembly_compound(a)); }); },
            "All bodies as one compound, BRep text.")
       .def(
@@ -55,20 +56,25 @@ void bind_bodies(py::module_& m) {
 
   m.def(
       "read_step",
-      [](const std::string& path, py::object progress) {
+      [](const std::string& path, py::object progress, const std::string& reader) {
+        if (reader != "products" && reader != "xde")
+          throw py::value_error("reader must be 'products' or 'xde', not '" + reader + "'");
         std::unique_ptr<PythonProgress> reporter;
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         AssemblyResult result;
         const Status status = guarded([&] {
-          result = read_step(path, reporter.get());
+          result = read_step(path, reporter.get(), reader == "xde" ? StepReadMode::Xde : StepReadMode::Products);
           return result.status;
         });
         if (reporter) reporter->rethrow_if_raised();
         raise_if_failed(status);
         return result.assembly;
       },
-      py::arg("path"), py::arg("progress") = py::none(),
-      "Reads a STEP file through OCCT's XDE reader: product names, instances, units (shapes in mm). "
+      py::arg("path"), py::arg("progress") = py::none(), py::arg("reader") = "products",
+      "Reads a STEP file: product names, instances, units (shapes in mm). reader='products' (the default) "
+      "transfers each product once and places its instances, falling back to OCCT's XDE reader (said in "
+      "Assembly.messages and by a progress stage 'read (XDE fallback)') on a product structure it does not "
+      "know; reader='xde' uses the XDE reader alone. Assembly.reader says which read the file. "
       "`progress(\"read\", fraction)` returning False cancels (raises contactcore.Cancelled), also "
       "inside OCCT's transfer.");
 

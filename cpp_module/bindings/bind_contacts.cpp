@@ -53,6 +53,8 @@ void bind_contacts(py::module_& m) {
       .def_readonly("broad_phase", &StageTimes::broad_phase)
       .def_readonly("candidates", &StageTimes::candidates)
       .def_readonly("area", &StageTimes::area)
+      .def_readonly("validity", &StageTimes::validity)
+      .def_readonly("interferences", &StageTimes::interferences)
       .def("__repr__", [](const StageTimes& t) {
         std::ostringstream out;
         out << "<StageTimes partitions=" << t.partitions << " broad_phase=" << t.broad_phase

@@ -2,6 +2,8 @@
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/out_of_memory.h"
 #include "bodies/step_check.h"
+#include "bodies/solid_harvest.h"
+#include "bodies/step_products.h"
 
 #include "contactcore/bodies/instances.h"
 #include "contactcore/common/parallel.h"
@@ -68,54 +70,6 @@ std::string label_name(const TDF_Label& label) {
   text.ToUTF8CString(buffer);
   out.resize(std::char_traits<char>::length(out.c_str()));
   return out;
-}
-
-// Solids of a shape, in explorer order. Closed shells that no solid holds are
-// turned into solids (some exporters write solids as shell-based models);
-// open shells and faces are counted so the caller can report them.
-struct SolidHarvest {
-  std::vector<TopoDS_Shape> solids;
-  int open_shells = 0;
-  int loose_faces = 0;
-};
-
-SolidHarvest harvest_solids(const TopoDS_Shape& shape) {
-  SolidHarvest out;
-  for (TopExp_Explorer it(shape, TopAbs_SOLID); it.More(); it.Next()) out.solids.push_back(it.Current());
-  for (TopExp_Explorer it(shape, TopAbs_SHELL, TopAbs_SOLID); it.More(); it.Next()) {
-    const TopoDS_Shell& shell = TopoDS::Shell(it.Current());
-    if (BRep_Tool::IsClosed(shell)) {
-      BRepBuilderAPI_MakeSolid make(shell);
-      if (make.IsDone()) {
-        out.solids.push_back(make.Solid());
-        continue;
-      }
-    }
-    ++out.open_shells;
-  }
-  for (TopExp_Explorer it(shape, TopAbs_FACE, TopAbs_SHELL); it.More(); it.Next()) ++out.loose_faces;
-  return out;
-}
-
-std::string skipped_message(const std::string& name, const SolidHarvest& h) {
-  std::ostringstream msg;
-  msg << "skipped in '" << name << "':";
-  if (h.open_shells) msg << ' ' << h.open_shells << " open shell(s)";
-  if (h.loose_faces) msg << ' ' << h.loose_faces << " face(s) outside any shell";
-  msg << " (surface model, not a solid)";
-  return msg.str();
-}
-
-// False for a shape with NaN or infinite coordinates (a broken placement).
-bool has_finite_box(const TopoDS_Shape& shape) {
-  Bnd_Box box;
-  BRepBndLib::Add(shape, box, false);
-  if (box.IsVoid()) return true;
-  double x0, y0, z0, x1, y1, z1;
-  box.Get(x0, y0, z0, x1, y1, z1);
-  for (double v : {x0, y0, z0, x1, y1, z1})
-    if (!std::isfinite(v) || std::abs(v) >= 1e100) return false;
-  return true;
 }
 
 class StepTreeWalker {
@@ -344,7 +298,7 @@ void keep_reader_notes(const OcctGuard& guard, std::vector<std::string>& message
 
 }  // namespace
 
-AssemblyResult read_step(const std::string& path, Progress* progress) {
+AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMode mode) {
   AssemblyResult result;
   const auto fail = [&result, &path](StatusCode code, const std::string& message) {
     result.status = Status::failure(code, message);
@@ -367,7 +321,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
     // Shapes come out in millimetres whatever the file's unit.
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
     app->NewDocument("MDTV-XCAF", doc);
-    STEPCAFControl_Reader reader;
+    StepReader reader;
     reader.SetNameMode(true);
     reader.SetColorMode(false);
     reader.SetLayerMode(false);
@@ -410,6 +364,57 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
         if (check.damaged_count)
           result.assembly.messages.push_back(std::to_string(check.damaged_count) +
                                              " damaged STEP entities ignored: " + describe_damaged(check));
+        // The fast product read first; the XDE read when it cannot serve the
+        // file, said where the user looks: the messages, and the progress (a
+        // stage of its own).
+        bool served = false;
+        StepReader* xde_reader = &reader;
+        std::unique_ptr<StepReader> reread;  // the products' transfer used the first reader's session
+        const auto fall_back = [&](const std::string& why) {
+          result.assembly.messages.push_back("STEP read: the fast product read cannot serve this file (" + why +
+                                             "): read through OCCT's XDE reader");
+          if (progress && !progress->report("read (XDE fallback)", 0.3)) fail(StatusCode::Cancelled, "cancelled");
+        };
+        if (mode == StepReadMode::Products) {
+          const ProductPlanResult plan = plan_products(reader);
+          if (!plan.plan) {
+            fall_back(plan.why_not);
+          } else {
+            result.assembly.reader = "products";
+            ProductRead outcome;
+            try {
+              OCC_CATCH_SIGNALS
+              outcome = read_products(*plan.plan, reader, result.assembly, progress, 0.3, 1.0);
+            } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
+              std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
+              if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
+              message += ")";
+              if (check.damaged_count) message += "; damaged entities: " + describe_damaged(check);
+              fail(StatusCode::ReadError, message);
+            }
+            if (result.status.ok() && outcome.outcome == ProductRead::Cancelled) fail(StatusCode::Cancelled, "cancelled");
+            if (result.status.ok() && outcome.outcome == ProductRead::NotServed) {
+              fall_back(outcome.why_not);
+              reread = std::make_unique<StepReader>();
+              reread->SetNameMode(true);
+              reread->SetColorMode(false);
+              reread->SetLayerMode(false);
+              reread->SetPropsMode(false);
+              if (result.status.ok() && reread->ReadFile(path.c_str()) != IFSelect_RetDone)
+                fail(StatusCode::ReadError, "not a readable STEP file (second read)");
+              xde_reader = reread.get();
+            } else if (result.status.ok()) {
+              served = true;
+              make_names_unique(result.assembly.bodies);
+              if (result.assembly.bodies.empty())
+                fail(StatusCode::InvalidInput, result.assembly.messages.empty()
+                                                   ? "no solid in the file"
+                                                   : "no solid in the file (" + result.assembly.messages.back() + ")");
+            }
+          }
+        }
+        if (result.status.ok() && !served) {
+        result.assembly.reader = "xde";
         bool transferred = false;
         // OCCT's transfer is most of the read (quadratic on some chains of
         // references): its progress is the read's from 0.3 to 0.9, and
@@ -418,7 +423,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
         try {
           OCC_CATCH_SIGNALS
           Handle(detail::OcctBreak) indicator = new detail::OcctBreak(watch, 0.3, 0.9);
-          transferred = reader.Transfer(doc, indicator->Start());
+          transferred = xde_reader->Transfer(doc, indicator->Start());
         } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
           if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
@@ -447,6 +452,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
             fail(StatusCode::InvalidInput, result.assembly.messages.empty()
                                                ? "no solid in the file"
                                                : "no solid in the file (" + result.assembly.messages.back() + ")");
+        }
         }
       }
       keep_reader_notes(guard, result.assembly.messages);

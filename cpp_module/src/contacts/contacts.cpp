@@ -416,12 +416,16 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
     result.times.area = seconds_since(start);
+    start = Clock::now();
     const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks);
+    result.times.validity = seconds_since(start);
     if (!checked.ok()) {
       result.status = checked;
       return result;
     }
+    start = Clock::now();
     const Status interferences = find_interferences(assembly, result, progress, threads);
+    result.times.interferences = seconds_since(start);
     if (!interferences.ok()) {
       result.status = interferences;
       return result;

@@ -95,6 +95,7 @@ struct SkippedPair {
 // Timings of each stage in seconds, for benchmarks and the CLI.
 struct StageTimes {
   double partitions = 0, broad_phase = 0, candidates = 0, area = 0;
+  double validity = 0, interferences = 0;  // the solid checks, the interference pass
 };
 
 struct ContactsResult {
