@@ -3,9 +3,13 @@
 //     partitions) against the batch contact stage on the same assembly;
 //  2. servo step time p50/p99 of the scripted insertion of the motor's axis
 //     in lockstep, with collision models refined to >= 100,000 triangles;
-//  3. the loop on its own thread for 10 s: rate, jitter, overruns.
+//  3. the loop on its own thread for 10 s: rate, jitter, overruns;
+//  4. the proxy in contact: the collision stage's contact query (the proxy's
+//     constraint source) with the Axis seated and every partition switched on
+//     (in contact with all its neighbours), and the ticks of a trial where the
+//     Axis is pushed sideways in its bores, then pulled out (thread CPU time).
 //
-//   bench_haptics [--seconds S] [--triangles N] [MOTOR.step]
+//   bench_haptics [--seconds S] [--triangles N] [--proxy-only] [MOTOR.step]
 #include <time.h>
 
 #include <algorithm>
@@ -65,9 +69,11 @@ int main(int argc, char** argv) {
   std::string path = std::string(CONTACTS_SAMPLES) + "/motor.step";
   double seconds = 10;
   std::size_t want_triangles = 100000;
+  bool proxy_only = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--triangles") && i + 1 < argc) want_triangles = std::atol(argv[++i]);
+    else if (!std::strcmp(argv[i], "--proxy-only")) proxy_only = true;
     else path = argv[i];
   }
   const AssemblyResult read = read_step(path);
@@ -84,6 +90,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", status.describe().c_str());
     return 1;
   }
+  if (!proxy_only) {
   std::vector<double> batch;
   for (int r = 0; r < 5; ++r) {
     const double t0 = now();
@@ -193,6 +200,56 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(loop.overruns()));
   }
   std::printf("\n");
+  }  // !proxy_only
+
+  // 4. The proxy in contact (default scene: deflection 0.01 mm).
+  {
+    ContactPoint contacts[kMaxContacts];
+    std::vector<double> query_cpu;
+    int touching = 0;
+    for (int i = 0; i < 2000; ++i) {
+      const Pose pose = offset_pose(Vec3(0, 0, 0.001 * (i % 10)), Vec3(0, 0, 0.01 * i), scene->centre());
+      const double t0 = cpu_seconds();
+      touching += scene->collision().contacts(pose, -1, 0.2, contacts, kMaxContacts);
+      query_cpu.push_back(cpu_seconds() - t0);
+    }
+    TrialScript sideways;
+    sideways.start = {0, Vec3::Zero(), Vec3::Zero()};
+    sideways.hand = {{0.0, Vec3::Zero(), Vec3::Zero()}, {0.5, Vec3(20, 0, 0), Vec3::Zero()},
+                     {1.0, Vec3(20, 0, 0), Vec3::Zero()}, {2.0, Vec3(20, 0, 90), Vec3::Zero()}};
+    const Vec3 c = scene->centre();
+    std::vector<HandKey> keys;
+    for (const ScriptKey& k : sideways.hand) keys.push_back({k.t, offset_pose(k.translate, Vec3::Zero(), c)});
+    SimulatedHand hand(HandScript(keys), HandParameters{}, c, Pose::Identity());
+    ServoConfig config;
+    config.centre = c;
+    config.lockstep = true;
+    config.inertia_per_mass = scene->inertia_per_mass();
+    ServoLoop loop(hand, config, Pose::Identity());
+    loop.set_joint_finder(&scene->finder());
+    loop.set_collision(&scene->collision());
+    std::vector<double> tick_cpu, contact_tick_cpu;
+    for (int i = 0; i < 3000; ++i) {
+      const double t0 = cpu_seconds();
+      loop.step_lockstep();
+      const double dt = cpu_seconds() - t0;
+      tick_cpu.push_back(dt);
+      if (loop.last().contact_count > 0 || loop.last().blocked) contact_tick_cpu.push_back(dt);
+    }
+    std::printf("| proxy in contact (motor, thread CPU time) | samples | p50 | p99 | max |\n");
+    std::printf("|---|---|---|---|---|\n");
+    std::printf("| contact query, Axis seated, all partitions on (%.1f contacts each) | %zu | %.1f us | %.1f us | %.0f us |\n",
+                double(touching) / query_cpu.size(), query_cpu.size(), percentile(query_cpu, 50) * 1e6,
+                percentile(query_cpu, 99) * 1e6, *std::max_element(query_cpu.begin(), query_cpu.end()) * 1e6);
+    std::printf("| servo tick, Axis pushed sideways in its bores then pulled out, all ticks | %zu | %.1f us | %.1f us | %.0f us |\n",
+                tick_cpu.size(), percentile(tick_cpu, 50) * 1e6, percentile(tick_cpu, 99) * 1e6,
+                *std::max_element(tick_cpu.begin(), tick_cpu.end()) * 1e6);
+    if (!contact_tick_cpu.empty())
+      std::printf("| the same, ticks with an active contact or stop | %zu | %.1f us | %.1f us | %.0f us |\n",
+                  contact_tick_cpu.size(), percentile(contact_tick_cpu, 50) * 1e6, percentile(contact_tick_cpu, 99) * 1e6,
+                  *std::max_element(contact_tick_cpu.begin(), contact_tick_cpu.end()) * 1e6);
+    std::printf("\n");
+  }
   std::printf("Machine load average at end: %s\n", load_average().c_str());
   return 0;
 }

@@ -32,14 +32,18 @@ def insertion(tmp_path_factory):
 
 def test_json_has_the_issue_fields(insertion):
     result, _ = insertion
-    assert set(result) == {"ticks", "rate_hz", "step_us", "overruns", "joints_engaged", "final",
-                           "max_penetration_mm", "max_force_n"}
-    assert set(result["step_us"]) == {"p50", "p99", "max"}
+    assert set(result) == {"mode", "ticks", "sim_time_s", "rate_hz", "step_us", "jitter_us", "overruns",
+                           "realtime_priority", "success", "failure", "joints_engaged", "final",
+                           "max_penetration_mm", "start_penetration_mm", "final_penetration_mm", "max_force_n"}
     assert set(result["final"]) == {"translate", "rotate_deg"}
-    # 3 s of script and 1.5 s to settle, at 1 kHz in lockstep.
+    # 3 s of script and 1.5 s to settle, at 1 kHz in lockstep: no wall-time figures.
+    assert result["mode"] == "lockstep"
     assert result["ticks"] == 4500
-    assert result["rate_hz"] == 1000.0
-    assert result["step_us"]["p50"] <= result["step_us"]["p99"] <= result["step_us"]["max"] + 0.25
+    assert result["sim_time_s"] == pytest.approx(4.5, abs=1e-9)
+    assert result["rate_hz"] is None and result["step_us"] is None and result["jitter_us"] is None
+    assert result["realtime_priority"] is False
+    assert result["success"] is True and result["failure"] is None
+    assert result["start_penetration_mm"] == 0.0
 
 
 def test_motor_axis_ends_seated(insertion):

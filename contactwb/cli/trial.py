@@ -118,18 +118,24 @@ def _trial(argv):
             print(f"contacts trial: cannot write '{args.record}': {error.strerror}", file=sys.stderr)
             return EXIT_FAILED
     if args.json:
-        out = {k: result[k] for k in ("ticks", "rate_hz", "step_us", "overruns")}
+        out = {k: result[k] for k in ("mode", "ticks", "sim_time_s", "rate_hz", "step_us", "jitter_us",
+                                      "overruns", "realtime_priority", "success", "failure")}
         out["joints_engaged"] = [{"with": j["with"], "type": j["type"]} for j in result["joints_engaged"]]
         out["final"] = result["final"]
-        out["max_penetration_mm"] = result["max_penetration_mm"]
-        out["max_force_n"] = result["max_force_n"]
+        for key in ("max_penetration_mm", "start_penetration_mm", "final_penetration_mm", "max_force_n"):
+            out[key] = result[key]
         json.dump(out, sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
         final = result["final"]
-        print(f"Trial of '{escape_controls(args.part)}' in {escape_controls(file)}: {result['ticks']} ticks at {result['rate_hz']:.0f} Hz, "
-              f"step p50 {result['step_us']['p50']:.1f} us, p99 {result['step_us']['p99']:.1f} us, "
-              f"{result['overruns']} over 1 ms")
+        if result["mode"] == "realtime":
+            print(f"Trial of '{escape_controls(args.part)}' in {escape_controls(file)} (realtime): {result['ticks']} ticks at "
+                  f"{result['rate_hz']:.0f} Hz, step p50 {result['step_us']['p50']:.1f} us, "
+                  f"p99 {result['step_us']['p99']:.1f} us, jitter p99 {result['jitter_us']['p99']:.1f} us, "
+                  f"{result['overruns']} overruns")
+        else:
+            print(f"Trial of '{escape_controls(args.part)}' in {escape_controls(file)} (lockstep): {result['ticks']} ticks, "
+                  f"{result['sim_time_s']:.3f} s simulated")
         for j in result["joints_engaged"]:
             print(f"  engaged {j['type']} ({j['joint']}) with {escape_controls(j['with'])} "
                   f"at t = {j['t']:.3f} s")
@@ -142,4 +148,7 @@ def _trial(argv):
             print(f"  device: {result['device_message']}")
         if args.record_hid:
             print(f"  raw HID reports saved to {args.record_hid}")
+    if not result["success"]:  # the trial ran, but its path is not acceptable: the analysis failed
+        print(f"contacts trial: failed: {result['failure']} (file '{escape_controls(file)}')", file=sys.stderr)
+        return EXIT_FAILED
     return EXIT_OK

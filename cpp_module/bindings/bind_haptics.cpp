@@ -536,15 +536,32 @@ void bind_haptics(py::module_& root) {
           raise_if_failed(write_hid_recording(opened.recorder->recording(), record_hid.cast<std::string>()));
         }
         py::dict out;
+        // Timing from wall time in realtime mode only; null in lockstep.
+        out["mode"] = r.realtime ? "realtime" : "lockstep";
         out["ticks"] = r.ticks;
-        out["rate_hz"] = r.rate_hz;
-        py::dict step;
-        step["p50"] = r.step_p50_us;
-        step["p99"] = r.step_p99_us;
-        step["max"] = r.step_max_us;
-        out["step_us"] = step;
+        out["sim_time_s"] = r.sim_time_s;
+        if (r.realtime) {
+          out["rate_hz"] = r.rate_hz;
+          py::dict step;
+          step["p50"] = r.step_p50_us;
+          step["p99"] = r.step_p99_us;
+          step["max"] = r.step_max_us;
+          out["step_us"] = step;
+          py::dict jitter;
+          jitter["p50"] = r.jitter_p50_us;
+          jitter["p99"] = r.jitter_p99_us;
+          out["jitter_us"] = jitter;
+        } else {
+          out["rate_hz"] = py::none();
+          out["step_us"] = py::none();
+          out["jitter_us"] = py::none();
+        }
         out["overruns"] = r.overruns;
+        out["long_steps"] = r.long_steps;
         out["late_wakeups"] = r.late_wakeups;
+        out["realtime_priority"] = r.realtime_priority;
+        out["success"] = r.status.ok();
+        out["failure"] = r.status.ok() ? py::object(py::none()) : py::object(py::str(r.status.message));
         out["memory_locked"] = r.memory_locked;
         out["device"] = device;
         out["device_message"] = opened.message.empty() ? std::string("Simulated hand.") : opened.message;
@@ -563,6 +580,8 @@ void bind_haptics(py::module_& root) {
         final_offset["rotate_deg"] = vec(r.final_rotate_deg);
         out["final"] = final_offset;
         out["max_penetration_mm"] = r.max_penetration_mm;
+        out["start_penetration_mm"] = r.start_penetration_mm;
+        out["final_penetration_mm"] = r.final_penetration_mm;
         out["max_force_n"] = r.max_force_n;
         py::list path;
         for (const auto& p : r.path) {

@@ -236,7 +236,8 @@ ServoConfig lockstep_config() {
   return c;
 }
 
-// Collides when the reference point is beyond x = wall.
+// Collides when the reference point is beyond x = wall: one contact, the
+// reference point, normal -x, gap x_wall - x.
 class Wall : public CollisionQuery {
  public:
   explicit Wall(double x) : x_(x) {}
@@ -244,6 +245,17 @@ class Wall : public CollisionQuery {
     ++queries;
     return pose.translation().x() > x_;
   }
+  int contacts(const Pose& pose, int, double reach, ContactPoint* out, int capacity) noexcept override {
+    ++queries;
+    const double gap = x_ - pose.translation().x();
+    if (gap >= reach || capacity < 1) return 0;
+    out[0].point = pose.translation();
+    out[0].normal = -Vec3::UnitX();
+    out[0].gap = gap;
+    out[0].body = 1;
+    return 1;
+  }
+  double radius_about(const Vec3&) const noexcept override { return 0; }
   int queries = 0;
 
  private:
@@ -320,8 +332,8 @@ TEST(ServoLoop, CollisionHolds) {
     furthest = std::max(furthest, loop.proxy().translation().x());
   }
   EXPECT_LE(furthest, 4.0);
-  // Within the bisection resolution of one tick's motion.
-  EXPECT_GT(loop.proxy().translation().x(), 4.0 - config.max_speed * 1e-3 / 1024 - 1e-12);
+  // The proxy rests on the wall, the contact's skin away.
+  EXPECT_NEAR(loop.proxy().translation().x(), 4.0 - config.contact_skin, 1e-9);
   EXPECT_GT(wall.queries, 2000);
   EXPECT_LT(loop.last().wrench.force.x(), -0.5);
 }

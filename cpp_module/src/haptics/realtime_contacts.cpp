@@ -331,6 +331,7 @@ void ContactJointFinder::fill_axial(const LiveContact& best, int n, JointState& 
   joint.part_axis = m.axis.normalized();
   joint.part_axial_min = m.axial_min;
   joint.part_axial_max = m.axial_max;
+  joint.radius = best.type == ContactType::CLJ ? o.radius : 0.0;
   joint.contact_type = static_cast<int>(best.type);
   const int partition = best.moving_partition;
   joint.group = partition >= 0 && partition < static_cast<int>(groups_.size()) ? groups_[partition] : -1;

@@ -16,6 +16,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "contactcore/contacts/contacts.h"
 #include "contactcore/haptics/spacemouse.h"
 
 namespace contactcore::haptics {
@@ -136,7 +137,8 @@ ServoLoop::ServoLoop(Device& device, const ServoConfig& config, const Pose& init
       angular_stiffness_(config.angular_stiffness),
       damping_(config.damping),
       angular_damping_(config.angular_damping),
-      step_histogram_(kHistogramBins, 0) {
+      step_histogram_(kHistogramBins, 0),
+      jitter_histogram_(kHistogramBins, 0) {
   events_.reserve(kMaxEvents);
   last_.proxy = proxy_;
   last_.target = proxy_;
@@ -149,6 +151,9 @@ void ServoLoop::hold_to(const JointState& joint) {
   joint_ = joint;
   engaged_ = true;
   held_ = true;
+  engaged_ticks_ = 0;
+  event_logged_ = true;  // chosen, not found: not an engagement
+  carried_count_ = 0;
   proxy_ = snap_to_joint(joint_, proxy_);
   engaged_axial_ = (proxy_ * config_.centre).dot(joint_.axis);
 }
@@ -156,6 +161,7 @@ void ServoLoop::hold_to(const JointState& joint) {
 void ServoLoop::release_joint() {
   engaged_ = held_ = false;
   joint_ = JointState{};
+  carried_count_ = 0;
 }
 
 void ServoLoop::request_hold(const JointState& joint) {
@@ -172,12 +178,14 @@ void ServoLoop::request_release() {
   hold_requests_.write(r);
 }
 
-void ServoLoop::engage(const JointState& joint, double now) {
+void ServoLoop::engage(const JointState& joint) {
   joint_ = joint;
   engaged_ = true;
   ++engagements_;
   engaged_axial_ = (proxy_ * config_.centre).dot(joint_.axis);
-  if (events_.size() < events_.capacity()) events_.push_back(EngagementEvent{now, joint});
+  engaged_ticks_ = 0;
+  event_logged_ = false;
+  carried_count_ = 0;  // contacts on the joint's own surfaces no longer hold
 }
 
 Pose ServoLoop::interpolate(const Pose& a, const Pose& b, double s) const {
@@ -190,59 +198,188 @@ Pose ServoLoop::interpolate(const Pose& a, const Pose& b, double s) const {
   return out;
 }
 
-Pose ServoLoop::limit_and_constrain(const Pose& target, double dt) {
+Mat3 ServoLoop::metric_rotation() const {
+  if (config_.inertia_per_mass.isZero()) return config_.length_scale * config_.length_scale * Mat3::Identity();
+  const Mat3& r = proxy_.linear();
+  return r * config_.inertia_per_mass * r.transpose();
+}
+
+bool ServoLoop::on_joint_rim(const ContactPoint& contact, const JointState* joint) const {
+  if (!joint || joint->radius <= 0 ||
+      (joint->kind != JointKind::Cylindrical && joint->kind != JointKind::Revolute))
+    return false;
+  const Vec3 r = contact.point - joint->point;
+  const double radial = (r - r.dot(joint->axis) * joint->axis).norm();
+  return std::abs(radial - joint->radius) <= config_.joint_rim_band;
+}
+
+double ServoLoop::depth_at(const Pose& pose, const JointState* joint) {
+  probe_count_ = 0;
+  if (!collision_) return 0;
+  const int n = collision_->contacts(pose, joint ? joint->group : -1, config_.contact_skin, probe_.data(), kMaxContacts);
+  double deepest = 0;
+  for (int i = 0; i < n; ++i) {
+    if (on_joint_rim(probe_[i], joint)) continue;
+    probe_[probe_count_++] = probe_[i];
+    deepest = std::max(deepest, -probe_[i].gap);
+  }
+  return deepest;
+}
+
+double ServoLoop::gather_contacts(const Pose& pose, double reach) {
+  constraint_count_ = 0;
+  deepest_body_ = -1;
+  if (!collision_) return 0;
+  const int group = engaged_ ? joint_.group : -1;
+  int n = collision_->contacts(pose, group, reach, measured_.data(), kMaxContacts);
+  const JointState* joint = engaged_ ? &joint_ : nullptr;
+  int kept = 0;
+  for (int i = 0; i < n; ++i)
+    if (!on_joint_rim(measured_[i], joint)) measured_[kept++] = measured_[i];
+  n = kept;
+  measured_count_ = n;
+  double deepest = 0;
+  for (int i = 0; i < n; ++i) {
+    constraint_set_[constraint_count_++] = measured_[i];
+    if (-measured_[i].gap > deepest) {
+      deepest = -measured_[i].gap;
+      deepest_body_ = measured_[i].body;
+    }
+  }
+  // The last ticks' contacts, carried on the part: a tilted pin touches a
+  // bore at two points while the query returns one per body.
+  for (int i = 0; i < carried_count_ && constraint_count_ < static_cast<int>(constraint_set_.size()); ++i) {
+    const CarriedContact& k = carried_[i];
+    ContactPoint c;
+    c.point = pose * k.local;
+    c.normal = k.normal;
+    c.gap = k.normal.dot(c.point - k.anchor);
+    c.body = k.body;
+    if (c.gap < reach) constraint_set_[constraint_count_++] = c;
+  }
+  carried_used_ = constraint_count_ - n;
+  return deepest;
+}
+
+void ServoLoop::carry_contacts(const Pose& measured_at) {
+  // The measured contacts first, then the older ones not near a newer one.
+  constexpr int kCarryTicks = 30;
+  constexpr double kSame = 0.2;  // mm: one contact
+  std::array<CarriedContact, kMaxContacts> next{};
+  int count = 0;
+  const Pose inverse = measured_at.inverse();
+  for (int i = 0; i < constraint_count_ && count < kMaxContacts; ++i) {
+    if (i >= measured_count_ && i < measured_count_ + carried_used_) continue;  // carried: aged below
+    const ContactPoint& c = constraint_set_[i];
+    CarriedContact k;
+    k.local = inverse * c.point;
+    k.anchor = c.point - c.gap * c.normal;
+    k.normal = c.normal;
+    k.body = c.body;
+    bool duplicate = false;
+    for (int j = 0; j < count && !duplicate; ++j) duplicate = (next[j].local - k.local).norm() < kSame;
+    if (!duplicate && c.gap < 1.0) next[count++] = k;
+  }
+  for (int i = 0; i < carried_count_ && count < kMaxContacts; ++i) {
+    CarriedContact k = carried_[i];
+    if (++k.age > kCarryTicks) continue;
+    bool duplicate = false;
+    for (int j = 0; j < count && !duplicate; ++j) duplicate = (next[j].local - k.local).norm() < kSame;
+    if (!duplicate) next[count++] = k;
+  }
+  carried_ = next;
+  carried_count_ = count;
+}
+
+Pose ServoLoop::move_proxy(const Pose& target, double dt) {
   const Vec3 c = config_.centre;
+  const Vec3 c0 = proxy_ * c;
   Vec6 xi = twist_between(proxy_, target, c);
-  // Speed limits keep each tick's motion small (collision bisection, capture).
+  // Speed limits keep each tick's motion small (the swept check below, capture).
   const double lin = xi.head<3>().norm(), ang = xi.tail<3>().norm();
   const double max_lin = config_.max_speed * dt, max_ang = config_.max_angular_speed * dt;
   if (lin > max_lin) xi.head<3>() *= max_lin / lin;
   if (ang > max_ang) xi.tail<3>() *= max_ang / ang;
 
-  if (engaged_) {
-    Eigen::Matrix<double, 6, 6> basis;
-    const int n = free_twists(joint_, proxy_ * c, basis);
-    if (n == 0) {
-      xi.setZero();
-    } else if (n < 6) {
-      // Weighted least squares: the free motion nearest the commanded one.
-      Vec6 w;
-      const double l2 = config_.length_scale * config_.length_scale;
-      w << 1, 1, 1, l2, l2, l2;
-      using Cols = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
-      using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-      using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
-      const Cols s = basis.leftCols(n);
-      const Square m = s.transpose() * w.asDiagonal() * s;
-      const Column rhs = s.transpose() * (w.asDiagonal() * xi);
-      const Column q = m.ldlt().solve(rhs);
-      xi = s * q;
-    }
+  Mat6 basis;
+  const int free = engaged_ ? free_twists(joint_, c0, basis) : (basis.setIdentity(), 6);
+  Mat6 metric = Mat6::Zero();
+  metric.topLeftCorner<3, 3>().setIdentity();
+  metric.bottomRightCorner<3, 3>() = metric_rotation();
+
+  // Conservative advancement: no point of the part moves further than the
+  // bound; nothing nearer than it is left out of the contact set.
+  const double bound = xi.head<3>().norm() + xi.tail<3>().norm() * part_radius_;
+  const double reach = bound + config_.max_pushout + 4 * config_.contact_skin;
+  const double depth0 = gather_contacts(proxy_, reach);
+  const double allowed = std::max(config_.penetration_tolerance, depth0);
+  if (ticks_ == 0) start_penetration_ = depth0;
+
+  std::array<ProxyConstraint, 2 * kMaxContacts + kMaxStops> rows{};
+  int row_count = 0;
+  auto add_contact = [&](const ContactPoint& k) {
+    if (row_count >= static_cast<int>(rows.size())) return;
+    ProxyConstraint& r = rows[row_count++];
+    r.row = contact_row(k.point, k.normal, c0);
+    // Keep the skin; an overlap is pushed out at a bounded speed.
+    r.bound = std::min(config_.contact_skin - k.gap, config_.max_pushout);
+  };
+  for (int i = 0; engaged_ && i < joint_.stop_count; ++i) {
+    ProxyConstraint& r = rows[row_count++];
+    r.row.setZero();
+    r.row.head<3>() = -joint_.stops[i].normal;
+    r.bound = joint_.stops[i].normal.dot(c0) - joint_.stops[i].limit;
   }
-  Pose candidate = apply_twist(proxy_, xi, c);
-  if (engaged_) candidate = snap_to_joint(joint_, candidate);
+  for (int i = 0; i < constraint_count_; ++i) add_contact(constraint_set_[i]);
+
   last_.blocked = false;
-  for (int i = 0; i < joint_.stop_count && engaged_; ++i) {
-    const Stop& stop = joint_.stops[i];
-    const double over = stop.normal.dot(candidate * c) - stop.limit;
-    if (over > 0) {
-      candidate.translation() -= over * stop.normal;
-      last_.blocked = true;
+  Pose candidate = proxy_;
+  const JointState* joint = engaged_ ? &joint_ : nullptr;
+  for (int round = 0; round < 4; ++round) {
+    const ProxyStep step = solve_proxy_step(xi, metric, basis, free, rows.data(), row_count);
+    last_.blocked = last_.blocked || step.active > 0;
+    candidate = apply_twist(proxy_, step.twist, c);
+    if (engaged_) candidate = snap_to_joint(joint_, candidate);
+    for (int i = 0; i < joint_.stop_count && engaged_; ++i) {
+      const Stop& stop = joint_.stops[i];
+      const double over = stop.normal.dot(candidate * c) - stop.limit;
+      if (over > 0) {
+        candidate.translation() -= over * stop.normal;
+        last_.blocked = true;
+      }
     }
-  }
-  if (collision_ && collision_->collides(candidate, engaged_ ? joint_.group : -1)) {
-    // Bisection between the free proxy and the candidate: keep the last free pose.
-    double free = 0, hit = 1;
-    for (int k = 0; k < config_.collision_bisections; ++k) {
-      const double mid = 0.5 * (free + hit);
-      if (collision_->collides(interpolate(proxy_, candidate, mid), engaged_ ? joint_.group : -1))
-        hit = mid;
-      else
-        free = mid;
+    if (!collision_ || constraint_count_ == 0) break;  // nothing within reach: the step is free
+    // The end pose, checked: contacts the linearised set missed join it (moved
+    // back onto the proxy's pose) and the step is solved again.
+    const double depth1 = depth_at(candidate, joint);
+    if (depth1 <= allowed) break;
+    const Pose back = proxy_ * candidate.inverse();
+    bool added = false;
+    for (int i = 0; i < probe_count_; ++i) {
+      if (-probe_[i].gap <= allowed) continue;
+      ContactPoint k = probe_[i];
+      const Vec3 at_proxy = back * k.point;
+      k.gap -= k.normal.dot(k.point - at_proxy);
+      k.point = at_proxy;
+      add_contact(k);
+      if (constraint_count_ < static_cast<int>(constraint_set_.size())) constraint_set_[constraint_count_++] = k;
+      added = true;
     }
-    candidate = free > 0 ? interpolate(proxy_, candidate, free) : proxy_;
     last_.blocked = true;
+    if (round == 3 || !added) {
+      // Last resort (a contact the linearisation cannot hold): as far along the
+      // solved step as stays within the allowed depth.
+      double ok = 0, bad = 1;
+      for (int k = 0; k < config_.collision_bisections; ++k) {
+        const double mid = 0.5 * (ok + bad);
+        if (depth_at(interpolate(proxy_, candidate, mid), joint) <= allowed) ok = mid;
+        else bad = mid;
+      }
+      candidate = ok > 0 ? interpolate(proxy_, candidate, ok) : proxy_;
+      break;
+    }
   }
+  carry_contacts(proxy_);
   return candidate;
 }
 
@@ -293,24 +430,29 @@ void ServoLoop::tick(double now, bool wall_clock) {
     }
     was_enabled_ = true;
 
-    // Engagement: capture near a joint (once re-armed after a break-away).
+    // Engagement: capture near a joint (once re-armed after a break-away),
+    // probed where the part is (the proxy), never where the hand is.
     if (finder_ && !engaged_) {
       JointState found;
-      const Pose probe = interpolate(proxy_, target, 1.0);
-      if (finder_->capture(probe, found)) {
+      if (finder_->capture(proxy_, found)) {
         if (rearm_) {
-          engage(found, now);
-          // The snap is a jump only within the capture distance.
-          const Pose snapped = snap_to_joint(joint_, proxy_);
-          if (!collision_ || !collision_->collides(snapped, joint_.group)) proxy_ = snapped;
-          else engaged_ = false;
+          // The snap is a jump within the capture distance and angle: taken
+          // when it leaves the part no deeper in any other body (the joint's
+          // own surfaces off; touching a coplanar face is no overlap).
+          const Pose snapped = snap_to_joint(found, proxy_);
+          const double before = depth_at(proxy_, &found);
+          if (depth_at(snapped, &found) <= std::max(config_.penetration_tolerance, before)) {
+            engage(found);
+            engaged_at_ = now;
+            proxy_ = snapped;
+          }
         }
       } else {
         rearm_ = true;
       }
     }
 
-    const Pose next = limit_and_constrain(target, dt);
+    const Pose next = move_proxy(target, dt);
     proxy_velocity_ = twist_between(proxy_, next, c) / dt;
     proxy_ = next;
 
@@ -331,7 +473,11 @@ void ServoLoop::tick(double now, bool wall_clock) {
         const Vec3 tilt = -coupling.torque;
         across = (tilt - tilt.dot(joint_.axis) * joint_.axis) / config_.length_scale;
       }
-      if (across.norm() > config_.breakaway_force) {
+      // A shaft inside its bore cannot leave it sideways: a bore joint ends
+      // only when the part has left the bore (still_engaged below).
+      const bool in_bore = joint_.contact_type == static_cast<int>(ContactType::CLJ) &&
+                           (joint_.kind == JointKind::Cylindrical || joint_.kind == JointKind::Revolute);
+      if (!in_bore && across.norm() > config_.breakaway_force) {
         engaged_ = false;
         rearm_ = false;
       } else if (finder_ && !finder_->still_engaged(proxy_, joint_)) {
@@ -351,10 +497,22 @@ void ServoLoop::tick(double now, bool wall_clock) {
   if (reason == Watchdog::None) device_.write(rendered);
   else device_.halt();
 
-  double penetration = engaged_ ? joint_deviation(joint_, proxy_) : 0.0;
+  // The overlap measured at this tick's start pose (the contact set), the
+  // joint's deviation and stop overshoot.
+  double penetration = reason == Watchdog::None ? std::max(0.0, -min_gap_of_measured()) : last_.penetration;
+  if (engaged_) penetration = std::max(penetration, joint_deviation(joint_, proxy_));
   for (int i = 0; engaged_ && i < joint_.stop_count; ++i)
     penetration = std::max(penetration, joint_.stops[i].normal.dot(proxy_ * c) - joint_.stops[i].limit);
   max_penetration_ = std::max(max_penetration_, penetration);
+  if (engaged_ && !held_) {
+    ++engaged_ticks_;
+    if (!event_logged_ && engaged_ticks_ >= static_cast<std::uint64_t>(config_.engaged_after_ticks)) {
+      event_logged_ = true;
+      if (events_.size() < events_.capacity()) events_.push_back(EngagementEvent{engaged_at_, joint_});
+    }
+  } else if (!engaged_) {
+    engaged_ticks_ = 0;
+  }
   max_force_ = std::max(max_force_, rendered.force.norm());
 
   ++ticks_;
@@ -363,6 +521,7 @@ void ServoLoop::tick(double now, bool wall_clock) {
   ++step_histogram_[std::min<std::size_t>(static_cast<std::size_t>(step_us / kBinUs), kHistogramBins - 1)];
   if (step_us > period_ * 1e6) {
     ++overruns_;
+    ++long_steps_;
     overrun_pending_ = wall_clock && !config_.lockstep;
   }
 
@@ -385,6 +544,10 @@ void ServoLoop::tick(double now, bool wall_clock) {
   last_.insertion_depth = engaged_ ? (proxy_ * c).dot(joint_.axis) - engaged_axial_ : 0.0;
   last_.penetration = penetration;
   last_.max_penetration = max_penetration_;
+  last_.start_penetration = start_penetration_;
+  last_.engaged_ticks = engaged_ticks_;
+  last_.contact_count = constraint_count_;
+  last_.deepest_body = deepest_body_;
   last_.max_force = max_force_;
   last_.engagements = engagements_;
   last_.axes = sample.axes;
@@ -434,17 +597,13 @@ void ServoLoop::run() {
       ++wake_count_;
       wake_latency_sum_us_ += latency_us;
       wake_latency_max_us_ = std::max(wake_latency_max_us_, latency_us);
-      if (latency_us > config_.late_wakeup_us) ++late_wakeups_;
+      if (latency_us > config_.late_wakeup_us) {
+        ++late_wakeups_;
+        ++overruns_;  // a late wake-up is an overrun too: the device waited
+      }
     }
     const double now = seconds_of(woke) - origin;
-    if (ticks_ > 0) {
-      // Welford's running mean and variance of the tick period.
-      const double p = now - last_tick_start_;
-      ++period_count_;
-      const double delta = p - period_mean_;
-      period_mean_ += delta / period_count_;
-      period_m2_ += delta * (p - period_mean_);
-    }
+    if (ticks_ > 0) note_period(now);
     last_tick_start_ = now;
     tick(now, true);
     advance(deadline, period_ns);
@@ -460,8 +619,33 @@ void ServoLoop::run() {
   device_.halt();
 }
 
+void ServoLoop::note_period(double now) {
+  // Welford's running mean and variance of the tick period, and its jitter histogram.
+  const double p = now - last_tick_start_;
+  ++period_count_;
+  const double delta = p - period_mean_;
+  period_mean_ += delta / period_count_;
+  period_m2_ += delta * (p - period_mean_);
+  const double off_us = std::abs(p - period_) * 1e6;
+  ++jitter_histogram_[std::min<std::size_t>(static_cast<std::size_t>(off_us / kBinUs), kHistogramBins - 1)];
+}
+
+double ServoLoop::jitter_percentile_us(double p) const {
+  if (config_.lockstep) return 0;
+  std::uint64_t total = 0;
+  for (auto n : jitter_histogram_) total += n;
+  if (total == 0) return 0;
+  const double wanted = p / 100.0 * total;
+  std::uint64_t seen = 0;
+  for (std::size_t i = 0; i < jitter_histogram_.size(); ++i) {
+    seen += jitter_histogram_[i];
+    if (seen >= wanted) return (static_cast<double>(i) + 0.5) * kBinUs;
+  }
+  return static_cast<double>(jitter_histogram_.size()) * kBinUs;
+}
+
 double ServoLoop::rate_hz() const {
-  if (config_.lockstep) return config_.rate_hz;
+  if (config_.lockstep) return 0;
   return period_count_ > 0 && period_mean_ > 0 ? 1.0 / period_mean_ : 0.0;
 }
 

@@ -1,5 +1,8 @@
 #include "contactcore/haptics/stage_collision.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace contactcore::haptics {
 
 namespace {
@@ -13,6 +16,7 @@ Eigen::AlignedBox3d box_of(const TaggedMesh& mesh) {
 StageCollision::StageCollision(const std::vector<CollisionModelPtr>& models, int moving,
                                const CollisionGroups& groups)
     : groups_(groups), moving_(moving) {
+  models_ = models;
   for (std::size_t b = 0; b < models.size(); ++b) {
     if (!models[b]) continue;
     triangles_ += models[b]->triangle_count();
@@ -21,6 +25,7 @@ StageCollision::StageCollision(const std::vector<CollisionModelPtr>& models, int
   if (!models[moving]) return;
   moving_triangles_ = models[moving]->triangle_count();
   moving_box_ = box_of(models[moving]->mesh());
+  for (const auto& v : models[moving]->mesh().vertices) moving_vertices_.emplace_back(v[0], v[1], v[2]);
   for (std::size_t b = 0; b < models.size(); ++b) {
     if (static_cast<int>(b) == moving || !models[b]) continue;
     Neighbour n;
@@ -30,7 +35,11 @@ StageCollision::StageCollision(const std::vector<CollisionModelPtr>& models, int
     neighbours_.push_back(std::move(n));
   }
   // The first queries grow the pairs' scratch buffers: do them here, not in the loop.
-  for (int g = -1; g < groups_.count(); ++g) collides(Pose::Identity(), g);
+  ContactPoint scratch[kMaxContacts];
+  for (int g = -1; g < groups_.count(); ++g) {
+    collides(Pose::Identity(), g);
+    contacts(Pose::Identity(), g, 1.0, scratch, kMaxContacts);
+  }
   switch_to(-1);
 }
 
@@ -49,13 +58,8 @@ void StageCollision::switch_to(int group) {
 bool StageCollision::collides(const Pose& pose, int group) noexcept {
   if (group >= groups_.count()) group = -1;
   switch_to(group);
-  Eigen::AlignedBox3d box;
-  for (int i = 0; i < 8; ++i) box.extend(pose * moving_box_.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
-  RigidTransform place;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) place.rotation[3 * r + c] = pose.linear()(r, c);
-    place.translation[r] = pose.translation()[r];
-  }
+  const Eigen::AlignedBox3d box = moving_box_at(pose, 0.0);
+  const RigidTransform place = placement(pose);
   const RigidTransform still = RigidTransform::identity();
   for (Neighbour& n : neighbours_) {
     if (!box.intersects(n.box)) continue;
@@ -63,6 +67,92 @@ bool StageCollision::collides(const Pose& pose, int group) noexcept {
     if (result_.intersecting) return true;
   }
   return false;
+}
+
+
+RigidTransform StageCollision::placement(const Pose& pose) {
+  RigidTransform place;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) place.rotation[3 * r + c] = pose.linear()(r, c);
+    place.translation[r] = pose.translation()[r];
+  }
+  return place;
+}
+
+Eigen::AlignedBox3d StageCollision::moving_box_at(const Pose& pose, double inflate) const {
+  Eigen::AlignedBox3d box;
+  for (int i = 0; i < 8; ++i) box.extend(pose * moving_box_.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i)));
+  box.min().array() -= inflate;
+  box.max().array() += inflate;
+  return box;
+}
+
+double StageCollision::radius_about(const Vec3& centre) const noexcept {
+  double r = 0;
+  for (const Vec3& v : moving_vertices_) r = std::max(r, (v - centre).norm());
+  return r;
+}
+
+namespace {
+// Unit normal of a mesh triangle (the mesh's winding: outwards), world frame.
+Vec3 triangle_normal(const TaggedMesh& mesh, int triangle, const Mat3& rotation) {
+  const auto& t = mesh.triangles[triangle];
+  const auto& a = mesh.vertices[t[0]];
+  const auto& b = mesh.vertices[t[1]];
+  const auto& c = mesh.vertices[t[2]];
+  const Vec3 pa(a[0], a[1], a[2]), pb(b[0], b[1], b[2]), pc(c[0], c[1], c[2]);
+  const Vec3 n = (pb - pa).cross(pc - pa);
+  return n.norm() > 0 ? Vec3(rotation * n.normalized()) : Vec3::UnitZ();
+}
+Vec3 triangle_centroid(const TaggedMesh& mesh, int triangle, const Pose& pose) {
+  const auto& t = mesh.triangles[triangle];
+  Vec3 sum = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) sum += Vec3(mesh.vertices[t[k]][0], mesh.vertices[t[k]][1], mesh.vertices[t[k]][2]);
+  return pose * (sum / 3.0);
+}
+}  // namespace
+
+int StageCollision::contacts(const Pose& pose, int group, double reach, ContactPoint* out, int capacity) noexcept {
+  if (group >= groups_.count()) group = -1;
+  switch_to(group);
+  if (!models_[moving_]) return 0;
+  const Eigen::AlignedBox3d box = moving_box_at(pose, reach);
+  const RigidTransform place = placement(pose);
+  const RigidTransform still = RigidTransform::identity();
+  const TaggedMesh& moving_mesh = models_[moving_]->mesh();
+  int n = 0;
+  for (Neighbour& nb : neighbours_) {
+    if (n >= capacity) break;
+    if (!box.intersects(nb.box)) continue;
+    nb.pair->set_distance_limit(reach);
+    nb.pair->query(place, still, QueryKind::Penetration, result_);
+    ContactPoint& c = out[n];
+    c.body = nb.body;
+    if (result_.depth > 0) {
+      // Overlapping: the deepest point and the way out.
+      c.point = Vec3(result_.depth_point_a[0], result_.depth_point_a[1], result_.depth_point_a[2]);
+      c.normal = Vec3(result_.direction[0], result_.direction[1], result_.direction[2]);
+      c.gap = -result_.depth;
+    } else if (result_.intersecting) {
+      // Touching (coplanar faces, tessellations crossing without a vertex
+      // inside): no gap, the other body's face normal out.
+      if (result_.triangle_a < 0 || result_.triangle_b < 0) continue;
+      c.point = triangle_centroid(moving_mesh, result_.triangle_a, pose);
+      c.normal = triangle_normal(models_[nb.body]->mesh(), result_.triangle_b, Mat3::Identity());
+      c.gap = 0;
+    } else if (std::isfinite(result_.distance) && result_.distance <= reach) {
+      c.point = Vec3(result_.point_a[0], result_.point_a[1], result_.point_a[2]);
+      const Vec3 other(result_.point_b[0], result_.point_b[1], result_.point_b[2]);
+      const Vec3 d = c.point - other;
+      c.normal = d.norm() > 1e-9 ? Vec3(d.normalized())
+                                 : triangle_normal(models_[nb.body]->mesh(), result_.triangle_b, Mat3::Identity());
+      c.gap = result_.distance;
+    } else {
+      continue;
+    }
+    ++n;
+  }
+  return n;
 }
 
 }  // namespace contactcore::haptics

@@ -1,10 +1,14 @@
 #include "contactcore/haptics/trial.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <set>
 #include <thread>
 
+#include <BRepBndLib.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
 #include <Standard_Failure.hxx>
 
 #include "contactcore/common/occt_guard.h"
@@ -56,10 +60,16 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
         return nullptr;
       }
     }
-    scene->centre_ = [&] {
-      const MassProperties mp = mass_properties(assembly.bodies[moving].shape);
-      return Vec3(mp.centre.X(), mp.centre.Y(), mp.centre.Z());
-    }();
+    {
+      GProp_GProps props;
+      BRepGProp::VolumeProperties(assembly.bodies[moving].shape, props);
+      const gp_Pnt centre = props.CentreOfMass();
+      scene->centre_ = Vec3(centre.X(), centre.Y(), centre.Z());
+      const gp_Mat inertia = props.MatrixOfInertia();  // about the centre of mass
+      if (props.Mass() > 0)
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) scene->inertia_per_mass_(r, c) = inertia(r + 1, c + 1) / props.Mass();
+    }
     scene->contacts_ = std::make_unique<RealtimeContacts>(scene->partitions_, moving, options.capture);
     scene->groups_ = collision_groups(*scene->contacts_);
     scene->finder_ = std::make_unique<ContactJointFinder>(*scene->contacts_, scene->groups_.moving_group,
@@ -70,6 +80,7 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
     mesh_options.deflection = options.deflection;
     mesh_options.angle = options.angle;
     for (std::size_t i = 0; i < n; ++i) {
+      mesh_options.max_edge_length = static_cast<int>(i) == moving ? options.moving_max_edge : 0.0;
       MeshResult mesh;
       std::string failure;
       if (!run_guarded([&] { mesh = mesh_body(assembly.bodies[i].shape, scene->partitions_[i], mesh_options); }, failure,
@@ -152,6 +163,7 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
   ServoConfig config = options.servo;
   config.centre = c;
   config.lockstep = !realtime;
+  if (config.inertia_per_mass.isZero()) config.inertia_per_mass = scene.inertia_per_mass();
   ServoLoop loop(options.device ? *options.device : static_cast<Device&>(hand), config, start);
   loop.set_joint_finder(&scene.finder());
   loop.set_collision(&scene.collision());
@@ -173,7 +185,8 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
     result.joints_engaged.push_back(j);
   };
   auto track = [&](const ServoSnapshot& s) {
-    if (!s.engaged) return;
+    // Joints held at least engaged_after_ticks consecutive ticks only.
+    if (!s.engaged || s.held || s.engaged_ticks < static_cast<std::uint64_t>(config.engaged_after_ticks)) return;
     for (int k = 0; k < s.joint.body_count; ++k) note(s.joint.bodies[k], s.joint.contact_type, s.joint.kind, s.time);
     const int n = scene.contacts().update(s.proxy, live.data(), static_cast<int>(live.size()));
     for (int i = 0; i < n; ++i) {
@@ -216,13 +229,21 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
     loop.stop();
   }
   const ServoSnapshot& last = loop.last();
+  result.realtime = realtime;
+  result.realtime_priority = loop.got_realtime_priority();
   result.ticks = loop.ticks();
+  result.sim_time_s = loop.sim_time_s();
   result.rate_hz = loop.rate_hz();
   result.step_p50_us = loop.step_percentile_us(50);
   result.step_p99_us = loop.step_percentile_us(99);
   result.step_max_us = loop.step_max_us();
+  result.jitter_p50_us = loop.jitter_percentile_us(50);
+  result.jitter_p99_us = loop.jitter_percentile_us(99);
   result.overruns = loop.overruns();
+  result.long_steps = loop.long_steps();
   result.late_wakeups = loop.late_wakeups();
+  result.start_penetration_mm = last.start_penetration;
+  result.final_penetration_mm = last.penetration;
   Vec3 r;
   offset_of(last.proxy, c, result.final_translate, r);
   result.final_rotate_deg = Vec3(deg(r.x()), deg(r.y()), deg(r.z()));
@@ -234,6 +255,15 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
                    [](const EngagedJoint& a, const EngagedJoint& b) { return a.time < b.time; });
   result.setup_seconds = scene.setup_seconds();
   result.status = Status::success();
+  if (result.final_penetration_mm > kLeftInsideMm) {
+    // Never a silent success with the part inside another body.
+    const std::string other = last.deepest_body >= 0 ? scene.body_names()[last.deepest_body] : "another body";
+    char text[256];
+    std::snprintf(text, sizeof text, "the part ends %.4f mm inside %s (it started %.4f mm inside)",
+                  result.final_penetration_mm, other.c_str(), result.start_penetration_mm);
+    result.status = Status::failure(StatusCode::InvalidInput, text);
+    result.status.body = scene.part_name();
+  }
   return result;
 }
 

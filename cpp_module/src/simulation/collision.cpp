@@ -349,6 +349,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   out.partition_a = out.partition_b = -1;
   out.depth = 0;
   out.direction = {0, 0, 0};
+  out.depth_point_a = {0, 0, 0};
   out.partitions_a.clear();
   out.partitions_b.clear();
   s.transform[0] = to_fcl(place_a);
@@ -579,6 +580,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       out.depth = gap;
       const Eigen::Vector3d move = side == 0 ? closest - p : p - closest;  // how A leaves
       out.direction = to_array(move.norm() > 0 ? move.normalized() : Eigen::Vector3d(-normal));
+      out.depth_point_a = to_array(side == 0 ? p : closest);
     }
     const auto& impl = s.impl(side);
     for (int k = impl.adjacency_start[vertex]; k < impl.adjacency_start[vertex + 1]; ++k) {

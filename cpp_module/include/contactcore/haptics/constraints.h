@@ -36,6 +36,7 @@ struct JointState {
   Vec3 part_point = Vec3::Zero();
   Vec3 part_axis = Vec3::UnitZ();
   double part_axial_min = 0, part_axial_max = 0;  // extent along part_axis from part_point
+  double radius = 0;  // the bore's radius (a shaft in a bore), 0 when not one
   std::array<Stop, kMaxStops> stops{};
   int stop_count = 0;
   int group = -1;  // which collision partitions to switch off (-1: none)
@@ -76,12 +77,32 @@ class JointFinder {
   virtual bool still_engaged(const Pose& pose, const JointState& joint) noexcept = 0;
 };
 
+// One contact of the part with another body, as the proxy's solver uses it:
+// the gap along `normal` at `point` must not close (a non-penetration
+// constraint, linearised about the pose it was measured at).
+struct ContactPoint {
+  Vec3 point = Vec3::Zero();   // on the part's surface (world)
+  Vec3 normal = Vec3::UnitZ(); // unit, from the other body towards the part: the way out
+  double gap = 0;              // mm: > 0 apart, < 0 overlapping (minus the depth)
+  int body = -1;               // the other body
+};
+
+constexpr int kMaxContacts = 16;
+
 class CollisionQuery {
  public:
   virtual ~CollisionQuery() = default;
   // True when the part at `pose` overlaps a neighbour; the partitions of
   // collision group `group` (a joint's own surfaces) are switched off.
   virtual bool collides(const Pose& pose, int group) noexcept = 0;
+  // The part's contacts at `pose` with every neighbour nearer than `reach`
+  // (mm): per neighbour its closest pair when apart, its deepest point (depth
+  // and the direction out) when overlapping. At most `capacity` written;
+  // returns how many. Allocation-free after set-up.
+  virtual int contacts(const Pose& pose, int group, double reach, ContactPoint* out, int capacity) noexcept = 0;
+  // Largest distance of the part's surface from `centre` (its assembled
+  // frame): bounds how far any point moves for a given twist.
+  virtual double radius_about(const Vec3& centre) const noexcept = 0;
 };
 
 }  // namespace contactcore::haptics

@@ -1,9 +1,12 @@
 // The 1 kHz servo loop of haptic trials. Each tick: read the device (never
 // blocking), map its input to a commanded pose (position control for an arm,
-// rate control for a SpaceMouse), capture or keep the joint, project the
-// commanded motion onto the joint's free twists, apply the one-sided stops,
-// stop at collisions (bisection to the last free pose), and render the
-// virtual-coupling force and torque clamped to the device's limits. A
+// rate control for a SpaceMouse), capture or keep the joint (probed at the
+// proxy's pose), move the proxy (god-object) toward the commanded pose as far
+// as the constraints allow: the joint's free twists and one-sided stops and
+// the non-penetration constraints of its contact set, solved as a small
+// quadratic program in the part's mass metric (proxy_solver.h), the step
+// checked against the collision stage (swept: conservative advancement), and
+// render the virtual-coupling force and torque clamped to the device's limits. A
 // watchdog zeroes the force on an overrun, a stale or unplugged device, or
 // disable. Nothing inside a tick allocates, takes a lock, or calls Python or
 // OCCT; the GUI reads a lock-free snapshot and writes atomics.
@@ -12,6 +15,8 @@
 // headless trials, in lockstep (step_lockstep: a virtual clock of exact ticks).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <thread>
@@ -20,6 +25,7 @@
 #include "contactcore/haptics/constraints.h"
 #include "contactcore/haptics/device.h"
 #include "contactcore/haptics/triple_buffer.h"
+#include "contactcore/haptics/proxy_solver.h"
 
 namespace contactcore::haptics {
 
@@ -41,7 +47,15 @@ struct ServoConfig {
   double stale_after = 0.25;        // s without a device report
   double length_scale = 10;         // mm: weighs rotations against translations
   double breakaway_force = 8;       // N across the joint's free directions breaks away
-  int collision_bisections = 10;
+  int collision_bisections = 10;    // last resort when the solve cannot clear a step
+  // The proxy's mass metric: the part's inertia per unit mass about its centre
+  // (mm^2, assembled frame); zero: length_scale^2 times the identity.
+  Mat3 inertia_per_mass = Mat3::Zero();
+  double contact_skin = 0.001;      // mm: the gap the contact constraints keep
+  double penetration_tolerance = 0.002;  // mm: an end pose deeper than this (and than the start) is refused
+  double max_pushout = 0.02;        // mm per tick: how fast a start overlap is pushed out
+  int engaged_after_ticks = 50;     // a joint held this many consecutive ticks is reported engaged
+  double joint_rim_band = 0.03;     // mm: three times the collision models' deflection (both sides chordal)
   bool lockstep = false;            // virtual clock; overruns counted, not acted on
   int realtime_priority = 0;        // > 0: ask for SCHED_FIFO at this priority (needs CAP_SYS_NICE)
   // Thread mode: lock the process' memory (mlockall) so no tick waits on a
@@ -69,8 +83,14 @@ struct ServoSnapshot {
   double rate_hz = 0, jitter_us = 0;
   double last_step_us = 0;
   double insertion_depth = 0;       // mm along the joint axis from where it engaged
-  double penetration = 0;           // mm: stop overshoot or distance off the joint
+  // mm: the deepest overlap of the part's collision model with another body
+  // (the joint's own surfaces switched off), stop overshoot or distance off the joint.
+  double penetration = 0;
   double max_penetration = 0, max_force = 0;
+  double start_penetration = 0;     // mm: overlap at the first tick (a start inside another body)
+  std::uint64_t engaged_ticks = 0;  // consecutive ticks on the current joint
+  int contact_count = 0;            // constraints from the contact set this tick
+  int deepest_body = -1;            // the body the part overlaps deepest (-1: none)
   std::uint64_t engagements = 0;
   Vec6 axes = Vec6::Zero();
   // Real-time hygiene (thread mode; 0 / false in lockstep).
@@ -94,7 +114,10 @@ class ServoLoop {
   ServoLoop& operator=(const ServoLoop&) = delete;
 
   void set_joint_finder(JointFinder* finder) { finder_ = finder; }
-  void set_collision(CollisionQuery* collision) { collision_ = collision; }
+  void set_collision(CollisionQuery* collision) {
+    collision_ = collision;
+    part_radius_ = collision ? collision->radius_about(config_.centre) : 0.0;
+  }
   // Holds the part to a given joint (tests, or a joint chosen in the panel).
   // Call when the loop is stopped or from its thread; from another thread
   // (the GUI) while it runs, request_hold / request_release: applied at the
@@ -126,11 +149,18 @@ class ServoLoop {
 
   // Statistics (call when stopped or from the loop's thread).
   std::uint64_t ticks() const { return ticks_; }
+  // Ticks whose step took longer than the period plus ticks that woke up late
+  // (more than config.late_wakeup_us after their absolute deadline; thread mode only).
   std::uint64_t overruns() const { return overruns_; }
+  std::uint64_t long_steps() const { return long_steps_; }
   double step_percentile_us(double p) const;  // from a 0.25 us histogram
   double step_max_us() const { return step_max_us_; }
+  // Measured from wall time between tick starts (thread mode); 0 in lockstep.
   double rate_hz() const;
-  double jitter_us() const;
+  double jitter_us() const;                   // standard deviation of the period
+  // |period - nominal| percentile (us), thread mode; 0 in lockstep.
+  double jitter_percentile_us(double p) const;
+  double sim_time_s() const { return static_cast<double>(ticks_) * period_; }
   const Pose& proxy() const { return proxy_; }
   const ServoSnapshot& last() const { return last_; }
   const std::vector<EngagementEvent>& engagement_events() const { return events_; }
@@ -148,9 +178,29 @@ class ServoLoop {
   // trips the watchdog; on a virtual clock (step_lockstep) it is only counted.
   void tick(double now, bool wall_clock);
   void run();
-  void engage(const JointState& joint, double now);
+  // Thread mode, at each tick's start: the period since the last tick
+  // (statistics only; late wake-ups are counted where the loop wakes).
+  void note_period(double now);
+  void engage(const JointState& joint);
   Pose interpolate(const Pose& a, const Pose& b, double s) const;
-  Pose limit_and_constrain(const Pose& target, double dt);
+  Pose move_proxy(const Pose& target, double dt);
+  // The contact set at `pose` (reach mm) merged with the last ticks' contacts
+  // carried on the part; returns the deepest overlap (mm, >= 0).
+  double gather_contacts(const Pose& pose, double reach);
+  // The deepest overlap at `pose` with collision group `group` off; its
+  // contacts are left in probe_ (probe_count_).
+  double depth_at(const Pose& pose, const JointState* joint);
+  // A contact on the rim of a bore joint's own surfaces (its point within
+  // joint_rim_band of the bore's cylinder): where a line-to-line shaft passes
+  // its bore's edges the tessellations touch, the solids do not.
+  bool on_joint_rim(const ContactPoint& contact, const JointState* joint) const;
+  void carry_contacts(const Pose& measured_at);
+  Mat3 metric_rotation() const;
+  double min_gap_of_measured() const {
+    double gap = 0;
+    for (int i = 0; i < measured_count_; ++i) gap = std::min(gap, measured_[i].gap);
+    return gap;
+  }
 
   Device& device_;
   ServoConfig config_;
@@ -177,16 +227,33 @@ class ServoLoop {
   std::atomic<bool> memory_locked_{false};
   std::thread thread_;
 
-  std::uint64_t ticks_ = 0, overruns_ = 0;
+  std::uint64_t ticks_ = 0, overruns_ = 0, long_steps_ = 0;
   std::uint64_t late_wakeups_ = 0, wake_count_ = 0;
   double wake_latency_max_us_ = 0, wake_latency_sum_us_ = 0;
   std::vector<std::uint32_t> step_histogram_;  // allocated once: 0.25 us bins
+  std::vector<std::uint32_t> jitter_histogram_;  // |period - nominal|, 0.25 us bins
   double step_max_us_ = 0;
   double start_time_ = 0, last_tick_start_ = 0;
   double period_mean_ = 0, period_m2_ = 0;
   std::uint64_t period_count_ = 0;
-  double max_penetration_ = 0, max_force_ = 0;
-  std::uint64_t engagements_ = 0;
+  double max_penetration_ = 0, max_force_ = 0, start_penetration_ = 0;
+  double part_radius_ = 0;          // from the collision query, at set_collision
+  std::uint64_t engagements_ = 0, engaged_ticks_ = 0;
+  double engaged_at_ = 0;
+  bool event_logged_ = false;
+  // The contact set: measured this tick, and carried from the last ticks
+  // (point in the part's frame, the other body's point and normal in world).
+  struct CarriedContact {
+    Vec3 local = Vec3::Zero(), anchor = Vec3::Zero(), normal = Vec3::UnitZ();
+    int age = 0, body = -1;
+  };
+  std::array<CarriedContact, kMaxContacts> carried_{};
+  int carried_count_ = 0;
+  std::array<ContactPoint, kMaxContacts> measured_{};
+  std::array<ContactPoint, 2 * kMaxContacts> constraint_set_{};
+  int constraint_count_ = 0;
+  std::array<ContactPoint, kMaxContacts> probe_{};
+  int probe_count_ = 0, deepest_body_ = -1, measured_count_ = 0, carried_used_ = 0;
   std::vector<EngagementEvent> events_;  // reserved up front; full: later ones dropped
   ServoSnapshot last_;
   TripleBuffer<ServoSnapshot> snapshots_;

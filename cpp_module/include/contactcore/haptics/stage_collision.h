@@ -18,6 +18,8 @@ class StageCollision : public CollisionQuery {
   // models: one per body (global frame), nullptr for a body without triangles.
   StageCollision(const std::vector<CollisionModelPtr>& models, int moving, const CollisionGroups& groups);
   bool collides(const Pose& pose, int group) noexcept override;
+  int contacts(const Pose& pose, int group, double reach, ContactPoint* out, int capacity) noexcept override;
+  double radius_about(const Vec3& centre) const noexcept override;
   std::size_t triangle_count() const { return triangles_; }
   std::size_t moving_triangle_count() const { return moving_triangles_; }
 
@@ -28,6 +30,10 @@ class StageCollision : public CollisionQuery {
     std::unique_ptr<CollisionPair> pair;
     Eigen::AlignedBox3d box;
   };
+  static RigidTransform placement(const Pose& pose);
+  Eigen::AlignedBox3d moving_box_at(const Pose& pose, double inflate) const;
+  std::vector<Vec3> moving_vertices_;
+  std::vector<CollisionModelPtr> models_;
   std::vector<Neighbour> neighbours_;
   CollisionGroups groups_;
   Eigen::AlignedBox3d moving_box_;

@@ -20,6 +20,10 @@ struct SceneOptions {
   CaptureTolerances capture;
   double deflection = 0.01;  // mm, triangle models
   double angle = 0.2;        // rad
+  // mm: the moving part's triangles no longer than this, so the collision
+  // stage's overlap depth (its deepest vertex) sees a long face crossing
+  // another body mid-way (a pin's side across a bore's rim); 0: no bound.
+  double moving_max_edge = 1.0;
 };
 
 // Everything the loop needs about the assembly, built once (OCCT here only).
@@ -31,6 +35,9 @@ class TrialScene {
   int moving() const { return moving_; }
   const std::string& part_name() const { return part_name_; }
   const Vec3& centre() const { return centre_; }
+  // The part's inertia about its centre of mass per unit mass (mm^2,
+  // assembled frame): the proxy's mass metric.
+  const Mat3& inertia_per_mass() const { return inertia_per_mass_; }
   RealtimeContacts& contacts() { return *contacts_; }
   ContactJointFinder& finder() { return *finder_; }
   StageCollision& collision() { return *collision_; }
@@ -46,6 +53,7 @@ class TrialScene {
   int moving_ = 0;
   std::string part_name_;
   Vec3 centre_ = Vec3::Zero();
+  Mat3 inertia_per_mass_ = Mat3::Zero();
   std::vector<std::string> names_;
   std::vector<BodyPartitions> partitions_;
   std::unique_ptr<RealtimeContacts> contacts_;
@@ -95,12 +103,24 @@ struct EngagedJoint {
   double time = 0;
 };
 
+// Timing figures are measured from wall time only in realtime mode (the loop
+// on its thread); in lockstep (a virtual clock) they mean nothing and the
+// result says so (`realtime` false, the JSON's null), giving sim_time_s.
+// status fails when the part is left inside another body (deeper than
+// kLeftInsideMm at the end, e.g. a start overlap that could not be resolved).
 struct TrialResult {
   Status status;
+  bool realtime = false;            // "mode": "realtime" | "lockstep"
+  bool realtime_priority = false;   // the loop thread got SCHED_FIFO
   std::uint64_t ticks = 0;
-  double rate_hz = 0;
-  double step_p50_us = 0, step_p99_us = 0, step_max_us = 0;
-  std::uint64_t overruns = 0;
+  double sim_time_s = 0;            // ticks x period
+  double rate_hz = 0;               // realtime: 1 / mean period between tick starts
+  double step_p50_us = 0, step_p99_us = 0, step_max_us = 0;  // realtime: tick compute time
+  double jitter_p50_us = 0, jitter_p99_us = 0;               // realtime: |period - nominal|
+  std::uint64_t overruns = 0;       // long steps + late wake-ups
+  std::uint64_t long_steps = 0, late_wakeups = 0;
+  double start_penetration_mm = 0;  // overlap at the start pose
+  double final_penetration_mm = 0;  // at the end
   std::vector<EngagedJoint> joints_engaged;
   Vec3 final_translate = Vec3::Zero(), final_rotate_deg = Vec3::Zero();
   double max_penetration_mm = 0, max_force_n = 0;
@@ -111,6 +131,8 @@ struct TrialResult {
   std::uint64_t late_wakeups = 0;
   bool memory_locked = false;
 };
+
+constexpr double kLeftInsideMm = 0.01;
 
 // Runs the script with the simulated hand in lockstep (deterministic), or on
 // the loop's own thread in real time when `realtime`.

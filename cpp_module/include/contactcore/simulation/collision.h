@@ -93,6 +93,10 @@ struct QueryResult {
   // body A must move to reduce it. 0 and zeros when not penetrating.
   double depth = 0;
   std::array<double, 3> direction{};
+  // Penetration: where the deepest point lies on A's surface (world): the
+  // deepest vertex of A, or the point of A's surface closest to B's deepest
+  // vertex inside A (a contact point for a constraint solver).
+  std::array<double, 3> depth_point_a{};
   // Partitions of each body that take part in the intersection (ascending).
   std::vector<int> partitions_a, partitions_b;
 };
