@@ -46,3 +46,15 @@ def analyses(doc):
         return []
     return [obj for obj in doc.Objects
             if obj.TypeId == "App::DocumentObjectGroupPython" and is_contact_analysis(obj)]
+
+
+def is_alive(doc, obj):
+    """Whether `obj` is still this document's object: not deleted, nor
+    replaced by an undo (which brings back a new object of the same name);
+    a reference kept across an undo must be checked before use."""
+    if obj is None or doc is None:
+        return False
+    try:
+        return doc.getObject(obj.Name) is obj
+    except Exception:  # deleted: its attributes raise
+        return False

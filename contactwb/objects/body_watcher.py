@@ -2,8 +2,20 @@
 marks an analysis touched as soon as one of its bodies moves, changes shape or
 is deleted (FreeCAD itself only recomputes it, silently), so the tree shows it
 out of date before the recompute; and it removes the contacts a recompute no
-longer found once that recompute is over."""
+longer found once that recompute is over.
+
+Undo: a recompute that updates a live analysis is recorded as one entry,
+RECOMPUTE_TRANSACTION (its contacts found, changed and removed, with the
+group's membership), never as FreeCAD's implicit "Delete" of the contacts it
+removed. Undoing that entry also undoes the user's action it followed (the
+move or the deletion that made the analysis out of date), so one Ctrl+Z
+restores the part and its contacts together; redo replays both."""
 from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_joint
+
+RECOMPUTE_TRANSACTION = "Recompute contacts"
+# Entries whose own run updates the analyses: a recompute entry right above
+# one of them followed no user edit (an undo had made the analysis stale).
+OWN_TRANSACTIONS = ("Find contacts", "Derive joints", RECOMPUTE_TRANSACTION)
 
 
 class BodyWatcher:
@@ -15,6 +27,8 @@ class BodyWatcher:
     def __init__(self):
         self.documents = set()
         self.pending = {}  # document name -> contacts to remove once its recompute is over
+        self.recording = set()  # documents whose recompute this watcher records as one undo entry
+        self.chaining = False  # an undo or redo this watcher runs itself
 
     def _touch_dependents(self, obj, deleted=False):
         doc = obj.Document
@@ -51,11 +65,62 @@ class BodyWatcher:
         except Exception:
             pass
 
+    def slotBeforeRecomputeDocument(self, doc):
+        """Opens the recompute's undo entry when a live analysis is out of
+        date and no command has its own transaction open."""
+        try:
+            if doc.Name not in self.documents or not doc.UndoMode or doc.HasPendingTransaction:
+                return
+            import FreeCAD
+            if FreeCAD.getActiveTransaction():
+                return
+            if any(group.UpdateOnRecompute and "Touched" in group.State for group in analyses(doc)):
+                doc.openTransaction(RECOMPUTE_TRANSACTION)
+                self.recording.add(doc.Name)
+        except Exception:  # an observer must never break a recompute
+            pass
+
     def slotRecomputedDocument(self, doc):
         names = self.pending.pop(doc.Name, [])
         for name in names:
             if doc.getObject(name) is not None:
                 doc.removeObject(name)
+        if doc.Name in self.recording:
+            self.recording.discard(doc.Name)
+            doc.commitTransaction()  # nothing changed: no entry
+
+    def slotUndoDocument(self, doc):
+        # the recompute entry undone: undo the user's action it followed too
+        if self.chaining or doc.Name not in self.documents:
+            return
+        if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
+                and doc.UndoNames[0] not in OWN_TRANSACTIONS:
+            self._later(doc, doc.undo)
+
+    def slotRedoDocument(self, doc):
+        # the user's action redone: its recompute entry too
+        if self.chaining or doc.Name not in self.documents:
+            return
+        if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
+                and doc.UndoNames[0] not in OWN_TRANSACTIONS:
+            self._later(doc, doc.redo)
+
+    def _later(self, doc, step):
+        """Runs step() once the current undo or redo is over (at once headless)."""
+        import FreeCAD
+
+        def run():
+            self.chaining = True
+            try:
+                if doc.Name in FreeCAD.listDocuments():
+                    step()
+            finally:
+                self.chaining = False
+        if FreeCAD.GuiUp:
+            from PySide2 import QtCore
+            QtCore.QTimer.singleShot(0, run)
+        else:
+            run()
 
     def slotDeletedObject(self, obj):
         try:
