@@ -136,3 +136,36 @@ def test_the_same_scope_finds_its_analysis(boxes):
     assert analysis_of_scope(boxes, "Selection", [base, top]) is chosen
     assert analysis_of_scope(boxes, "Selection", [(top, [""]), (base, ["Face6"])]) is None
     assert analysis_of_scope(boxes, "PartAgainstRest", [top]) is None
+
+
+def test_a_recompute_leaves_no_transaction_open(boxes):
+    """An unchanged recompute records nothing, and the next edit outside a
+    transaction is not recorded under the recompute's name."""
+    group = find(boxes)
+    group.touch()
+    boxes.recompute()
+    assert FreeCAD.getActiveTransaction() is None
+    boxes.getObject("Top").Label = "Top again"
+    assert list(boxes.UndoNames) == ["Find contacts"]
+
+
+def test_undo_and_redo_restore_whether_the_analysis_is_current(boxes):
+    group = find(boxes)
+    top = boxes.getObject("Top")
+    boxes.openTransaction("Move Top")
+    top.Placement.Base = FreeCAD.Vector(2, 3, 30)
+    boxes.commitTransaction()
+    assert "Touched" in group.State and group.OutOfDate
+    boxes.recompute()
+    assert "Touched" not in group.State and not group.OutOfDate
+    boxes.undo()  # the recompute and the move: current again, not touched
+    assert list(boxes.UndoNames) == ["Find contacts"]
+    assert "Touched" not in group.State and not group.OutOfDate
+    boxes.openTransaction("Move Top")
+    top.Placement.Base = FreeCAD.Vector(2, 3, 30)
+    boxes.commitTransaction()
+    boxes.openTransaction("Rename")
+    top.Label = "Top block"
+    boxes.commitTransaction()
+    boxes.undo()  # the rename only: the move is still not searched again
+    assert "Touched" in group.State and group.OutOfDate

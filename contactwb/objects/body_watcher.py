@@ -34,12 +34,18 @@ class BodyWatcher:
         doc = obj.Document
         if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj):
             return
+        if doc.Transacting:
+            # an undo or redo: it restores the analyses with their bodies
+            # (the recompute that followed an edit is undone with it)
+            return
         for group in analyses(doc):
             if not getattr(group, "UpdateOnRecompute", False):
                 continue
             if group.Name == obj.Name or "Touched" in group.State:
                 continue
             if obj in group.OutListRecursive:
+                if not getattr(group, "OutOfDate", True):
+                    group.OutOfDate = True  # recorded with the edit
                 group.touch()
 
     def slotChangedObject(self, obj, prop):
@@ -55,7 +61,7 @@ class BodyWatcher:
         # analyses may have missed its contacts
         try:
             doc = obj.Document
-            if doc.Recomputing or doc.Name not in self.documents:
+            if doc.Recomputing or doc.Transacting or doc.Name not in self.documents:
                 return
             if not (hasattr(obj, "Shape") or obj.isDerivedFrom("App::Link") or obj.isDerivedFrom("App::Part")):
                 return
@@ -87,7 +93,14 @@ class BodyWatcher:
                 doc.removeObject(name)
         if doc.Name in self.recording:
             self.recording.discard(doc.Name)
-            doc.commitTransaction()  # nothing changed: no entry
+            import FreeCAD
+            active = FreeCAD.getActiveTransaction()
+            if active and active[0] == RECOMPUTE_TRANSACTION:
+                # closes it also when nothing changed (no entry then): left
+                # open, it would take the next edit under its name
+                FreeCAD.closeActiveTransaction()
+            elif doc.HasPendingTransaction:
+                doc.commitTransaction()
 
     def slotUndoDocument(self, doc):
         # the recompute entry undone: undo the user's action it followed too
@@ -95,7 +108,8 @@ class BodyWatcher:
             return
         if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
                 and doc.UndoNames[0] not in OWN_TRANSACTIONS:
-            self._later(doc, doc.undo)
+            self._chain(doc.undo)
+        self._restore_states(doc)
 
     def slotRedoDocument(self, doc):
         # the user's action redone: its recompute entry too
@@ -103,30 +117,34 @@ class BodyWatcher:
             return
         if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
                 and doc.UndoNames[0] not in OWN_TRANSACTIONS:
-            self._later(doc, doc.redo)
+            self._chain(doc.redo)
+        self._restore_states(doc)
 
-    def _later(self, doc, step):
-        """Runs step() once the current undo or redo is over (at once headless)."""
-        import FreeCAD
-
-        def run():
-            self.chaining = True
-            try:
-                if doc.Name in FreeCAD.listDocuments():
-                    step()
-            finally:
-                self.chaining = False
-        if FreeCAD.GuiUp:
-            from PySide2 import QtCore
-            QtCore.QTimer.singleShot(0, run)
-        else:
-            run()
-
-    def slotDeletedObject(self, obj):
+    @staticmethod
+    def _restore_states(doc):
+        """An undo or redo brings back the analyses' contacts with their
+        bodies, and OutOfDate as it was then: out of date (touched) or
+        current (not touched, though FreeCAD touched it relinking bodies)."""
         try:
-            self._touch_dependents(obj, deleted=True)
+            for group in analyses(doc):
+                if not group.UpdateOnRecompute:
+                    continue
+                if getattr(group, "OutOfDate", False):
+                    group.touch()
+                else:
+                    group.purgeTouched()
         except Exception:
             pass
+
+    def _chain(self, step):
+        """Runs the chained undo or redo now, inside the signal of the one
+        that asked for it (a deferred one could race with a script's next
+        undo)."""
+        self.chaining = True
+        try:
+            step()
+        finally:
+            self.chaining = False
 
 
 _watcher = None

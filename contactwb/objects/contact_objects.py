@@ -80,6 +80,9 @@ def _analysis_properties(obj):
     add_property(obj, "App::PropertyInteger", "JointCount", "Joints", "Joints derived", 1)
     # numbers by identity, never given twice in a document (added where missing)
     add_property(obj, "App::PropertyInteger", "LastNumber", "Contacts", "Highest contact number issued", 2)
+    # recorded in the undo history with the edits and recomputes, so that an
+    # undo or redo knows whether the contacts it restores are current
+    add_property(obj, "App::PropertyBool", "OutOfDate", "Contacts", "Bodies changed since the last search", 2)
 
 
 def count_children(obj):
@@ -319,6 +322,7 @@ def update_contact_analysis(group, progress=None):
         set_if_changed(group, "Mobility", [])
         set_if_changed(group, "LiaisonGraph", "")
     count_children(group)
+    set_if_changed(group, "OutOfDate", False)
     return group
 
 
