@@ -169,3 +169,36 @@ def test_undo_and_redo_restore_whether_the_analysis_is_current(boxes):
     boxes.commitTransaction()
     boxes.undo()  # the rename only: the move is still not searched again
     assert "Touched" in group.State and group.OutOfDate
+
+
+def test_interferences_are_objects_with_their_solid_and_exported(boxes, tmp_path):
+    """Issue 21 item 5, headless: a box pushed 2 mm into another gives an
+    Interference child (pair, volume 6 x 4 x 2 = 48 mm3, the common solid as
+    its Shape), counted, exported; moved out again, it goes."""
+    import json
+    from contactwb.document import export
+    from contactwb.document.identify import is_interference
+    group = find(boxes)
+    top = boxes.getObject("Top")
+    top.Placement.Base = FreeCAD.Vector(2, 3, 8)  # 2 mm into Base
+    boxes.recompute()
+    (found,) = [o for o in group.Group if is_interference(o)]
+    assert (found.BodyA, found.BodyB) == ("Base", "Top")
+    assert found.Volume.Value == pytest.approx(48.0, rel=1e-6)
+    assert found.Shape.Volume == pytest.approx(48.0, rel=1e-6)  # the overlapping solid itself
+    assert found.Label == "Interference 1: Base \u2013 Top" and found.Label2 == "48 mm\u00b3"
+    assert group.InterferenceCount == 1 and group.Interferences == ["Base \u2013 Top: 48 mm\u00b3"]
+    path = tmp_path / "boxes.json"
+    export.export_contacts(group, str(path))
+    written = json.loads(path.read_text())["interferences"]
+    assert [(i["a"], i["b"]) for i in written] == [("Base", "Top")]
+    assert written[0]["volume"] == pytest.approx(48.0, rel=1e-6)
+    # the interference is no body of the next search, and a recompute keeps its object
+    name = found.Name
+    group.touch()
+    boxes.recompute()
+    assert [o.Name for o in group.Group if is_interference(o)] == [name]
+    assert group.BodyCount == 3
+    top.Placement.Base = FreeCAD.Vector(2, 3, 10)
+    boxes.recompute()
+    assert not [o for o in boxes.Objects if is_interference(o)] and group.InterferenceCount == 0

@@ -10,7 +10,7 @@ group's membership), never as FreeCAD's implicit "Delete" of the contacts it
 removed. Undoing that entry also undoes the user's action it followed (the
 move or the deletion that made the analysis out of date), so one Ctrl+Z
 restores the part and its contacts together; redo replays both."""
-from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_joint
+from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_interference, is_joint
 
 RECOMPUTE_TRANSACTION = "Recompute contacts"
 # Entries whose own run updates the analyses: a recompute entry right above
@@ -32,7 +32,8 @@ class BodyWatcher:
 
     def _touch_dependents(self, obj, deleted=False):
         doc = obj.Document
-        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj):
+        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj) \
+                or is_interference(obj):
             return
         if doc.Transacting:
             # an undo or redo: it restores the analyses with their bodies

@@ -20,7 +20,7 @@ from contactwb import core
 from contactwb.core import analysis as contact_analysis
 from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, SCOPES  # noqa: F401  (SCOPES: this module's API)
 from contactwb.document import bodies as document_bodies
-from contactwb.document.identify import is_contact, is_contact_analysis, is_joint  # noqa: F401
+from contactwb.document.identify import is_contact, is_contact_analysis, is_interference, is_joint  # noqa: F401
 from contactwb.document.shapes import assembly_from_shapes
 from contactwb.objects import gui_hooks
 from contactwb.objects.base import PROXY_VERSION, VersionedProxy, add_property, versioned  # noqa: F401
@@ -83,6 +83,10 @@ def _analysis_properties(obj):
     # recorded in the undo history with the edits and recomputes, so that an
     # undo or redo knows whether the contacts it restores are current
     add_property(obj, "App::PropertyBool", "OutOfDate", "Contacts", "Bodies changed since the last search", 2)
+    add_property(obj, "App::PropertyInteger", "InterferenceCount", "Contacts",
+                 "Pairs of bodies whose material overlaps", 1)
+    add_property(obj, "App::PropertyStringList", "Interferences", "Contacts",
+                 "Overlapping pairs with their common volume", 1)
 
 
 def count_children(obj):
@@ -186,6 +190,24 @@ class Joint(VersionedProxy):
     """The kinematic joint two bodies' contacts allow (contactcore.find_joints)."""
     TYPE = "Joint"  # version 2 added only the version records
     add_properties = staticmethod(_joint_properties)
+
+
+def _interference_properties(obj):
+    add_property(obj, "App::PropertyString", "BodyA", "Interference", "First body")
+    add_property(obj, "App::PropertyString", "BodyB", "Interference", "Second body")
+    add_property(obj, "App::PropertyVolume", "Volume", "Interference",
+                 "Volume of the material both bodies occupy (its solid is the Shape)")
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == "Interference":
+            obj.setEditorMode(name, 1)
+
+
+class Interference(VersionedProxy):
+    """Two bodies whose material overlaps (a modelling error, not a contact):
+    the pair, the common volume, and the overlapping solid as its Shape (a
+    Part feature, so it shows in the view; the GUI draws it red)."""
+    TYPE = "Interference"
+    add_properties = staticmethod(_interference_properties)
 
 
 # --- the recompute ------------------------------------------------------
@@ -314,6 +336,7 @@ def update_contact_analysis(group, progress=None):
     set_if_changed(group, "Clearances", _clearance_lines(raw, group.ClearanceGap.Value,
                                                          [b.name for b in result.bodies]))
     _update_children(doc, group, records, bodies)
+    _update_interferences(doc, group, result.interferences, bodies)
     if group.DeriveJoints:
         _update_joints(doc, group, assembly, raw, result, kept, bodies)
     else:
@@ -324,6 +347,54 @@ def update_contact_analysis(group, progress=None):
     count_children(group)
     set_if_changed(group, "OutOfDate", False)
     return group
+
+
+def _same_solid(old, new):
+    """Whether an interference's stored solid is already `new` (unchanged
+    bodies: nothing to record)."""
+    if old.isNull() or new.isNull():
+        return old.isNull() == new.isNull()
+    return abs(old.Volume - new.Volume) <= 1e-9 * max(1.0, abs(new.Volume)) and \
+        (old.BoundBox.Center - new.BoundBox.Center).Length <= 1e-9 and \
+        abs(old.BoundBox.DiagonalLength - new.BoundBox.DiagonalLength) <= 1e-9
+
+
+def _update_interferences(doc, group, interferences, bodies):
+    """Interference children, one per overlapping pair (kept by pair across
+    recomputes), after the contacts: the common solid of the two bodies
+    (their Boolean common, made only for the pairs the core found
+    overlapping) and its volume as the core measured it."""
+    by_name = {b.name: b for b in bodies}
+    old = {}
+    for obj in group.Group:
+        if is_interference(obj):
+            old.setdefault((obj.BodyA, obj.BodyB), obj)
+    found = []
+    for index, (a, b, volume) in enumerate(interferences):
+        obj = old.pop((a, b), None)
+        if obj is None:
+            obj = doc.addObject("Part::FeaturePython", "Interference")
+            Interference(obj)
+            gui_hooks.new_object(obj)
+        set_if_changed(obj, "BodyA", a)
+        set_if_changed(obj, "BodyB", b)
+        set_if_changed(obj, "Volume", volume)
+        if a in by_name and b in by_name:
+            common = by_name[a].shape.common(by_name[b].shape)
+            if not _same_solid(obj.Shape, common):
+                obj.Shape = common
+        set_if_changed(obj, "Label", f"Interference {index + 1}: {a} {EN_DASH} {b}")
+        set_if_changed(obj, "Label2", f"{volume:.4g} mm\u00b3")
+        found.append(obj)
+    remove_after_recompute(doc, list(old.values()))
+    contacts = [o for o in group.Group if is_contact(o)]
+    others = [o for o in group.Group if not is_contact(o) and not is_interference(o)]
+    set_if_changed(group, "Group", contacts + found + others)
+    set_if_changed(group, "InterferenceCount", len(found))
+    set_if_changed(group, "Interferences", [f"{o.BodyA} {EN_DASH} {o.BodyB}: {o.Volume.Value:.4g} mm\u00b3"
+                                            for o in found])
+    for obj in found:
+        obj.purgeTouched()
 
 
 def _update_joints(doc, group, assembly, raw, result, kept, bodies):
@@ -381,7 +452,7 @@ def _update_joints(doc, group, assembly, raw, result, kept, bodies):
                                      f"{obj.BodyA} {EN_DASH} {obj.BodyB}")
         set_if_changed(obj, "Label2", f"{obj.DOF} DOF")
     remove_after_recompute(doc, list(old.values()))
-    set_if_changed(group, "Group", contacts + joints)
+    set_if_changed(group, "Group", contacts + [o for o in group.Group if is_interference(o)] + joints)
     for obj in joints:
         obj.purgeTouched()
 

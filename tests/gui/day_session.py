@@ -244,6 +244,53 @@ def move_recompute_undo():
     report["move_undo"] = result
 
 
+def interferences():
+    """Item 5: Screw-1 pushed 0.6 mm sideways into its holes: the CLI's three
+    interferences as objects with their solids (red), in the export and the
+    panel's message; one Ctrl+Z removes them with the move."""
+    from contactwb.document import export
+    from contactwb.document.identify import is_interference
+    doc, group = state["doc"], state["group"]
+    screw = doc.getObjectsByLabel("Screw-1")[0]
+    placement = FreeCAD.Placement(screw.Placement)
+    doc.openTransaction("Move Screw-1")
+    screw.Placement = FreeCAD.Placement(placement.Base + FreeCAD.Vector(0.6, 0, 0), placement.Rotation)
+    doc.commitTransaction()
+    with Timer("recompute_with_interferences"):
+        run("Std_Refresh")
+    found = [o for o in group.Group if is_interference(o)]
+    result = {"objects": sorted([o.BodyA, o.BodyB, o.Volume.Value, o.Shape.Volume, o.Label, o.Label2,
+                                 list(o.ViewObject.ShapeColor[:3]), o.ViewObject.Visibility] for o in found),
+              "count": group.InterferenceCount, "lines": list(group.Interferences),
+              "export": export.to_json(group)["interferences"],
+              "undo": list(doc.UndoNames[:2])}
+    # the picture: the overlaps in red on the see-through screw, the rest hidden
+    shown = {o.Name: o.ViewObject.Visibility for o in doc.Objects if o.TypeId == "Part::Feature"}
+    for obj in doc.Objects:
+        if obj.TypeId == "Part::Feature":
+            obj.ViewObject.Visibility = obj is screw
+    screw.ViewObject.Transparency = 75
+    for joint in joints_of(group):
+        joint.ViewObject.Visibility = False
+    switch = group.ViewObject.Proxy.switch
+    switch.whichChild.setValue(coin.SO_SWITCH_NONE)
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewIsometric()
+    view.fitAll()
+    result["png"] = save_view("day_interferences.png")
+    result["display_modes"] = [o.ViewObject.DisplayMode for o in found]
+    for name, visible in shown.items():
+        doc.getObject(name).ViewObject.Visibility = visible
+    screw.ViewObject.Transparency = 0
+    for joint in joints_of(group):
+        joint.ViewObject.Visibility = True
+    switch.whichChild.setValue(coin.SO_SWITCH_ALL)
+    run("Std_Undo")
+    result["after_undo"] = {"interferences": [o.Name for o in doc.Objects if is_interference(o)],
+                            "snapshot": snapshot(doc, group)}
+    report["interferences"] = result
+
+
 def view_only_actions():
     """Item 2: ghost, isolate, show all never enter the undo stack."""
     doc, group = state["doc"], state["group"]
@@ -265,7 +312,7 @@ def report_view():
 
 
 for function in (open_sample, find_contacts_twice, delete_recompute_undo_derive, move_recompute_undo,
-                 view_only_actions, report_view):
+                 interferences, view_only_actions, report_view):
     step(function)
 with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
     json.dump(report, stream, indent=1)

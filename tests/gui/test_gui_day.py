@@ -105,6 +105,37 @@ def test_one_undo_restores_a_moved_part_and_its_contacts(run):
     assert again["contacts"] == before and again["undo"] == undone["undo"]
 
 
+# The CLI's figures for the motor with Screw-1 0.6 mm sideways (contacts
+# motor.FCStd after the same move; the common volumes by OCCT Booleans agree)
+SCREW_INTERFERENCES = {("Body", "Screw-1"): 71.517, ("Back-cover", "Screw-1"): 9.4512,
+                       ("Front-cover", "Screw-1"): 14.303}
+
+
+def test_interferences_are_shown_exported_and_undone(run):
+    """Item 5: the three interferences as red solids in the tree, with their
+    volumes, counted, exported; one Ctrl+Z takes them away with the move."""
+    no_error(run, "interferences")
+    found = run["interferences"]
+    objects = {(a, b): (volume, solid, label, label2, colour, shown)
+               for a, b, volume, solid, label, label2, colour, shown in found["objects"]}
+    assert sorted(objects) == sorted(SCREW_INTERFERENCES)
+    for pair, volume in SCREW_INTERFERENCES.items():
+        core_volume, solid, label, label2, colour, shown = objects[pair]
+        assert core_volume == pytest.approx(volume, rel=1e-3)
+        assert solid == pytest.approx(volume, rel=1e-3)  # the shown solid is the overlap
+        assert label.endswith(f"{pair[0]} \u2013 {pair[1]}") and label.startswith("Interference ")
+        assert label2.endswith("mm\u00b3")
+        assert colour[0] > 0.8 and colour[1] < 0.2 and colour[2] < 0.2 and shown
+    assert found["display_modes"] == ["Flat Lines"] * 3  # drawn
+    assert found["count"] == 3 and len(found["lines"]) == 3
+    assert sorted((i["a"], i["b"]) for i in found["export"]) == sorted(SCREW_INTERFERENCES)
+    for entry in found["export"]:
+        assert entry["volume"] == pytest.approx(SCREW_INTERFERENCES[(entry["a"], entry["b"])], rel=1e-3)
+    assert found["undo"] == ["Recompute contacts", "Move Screw-1"]
+    assert found["after_undo"]["interferences"] == []
+    current(found["after_undo"]["snapshot"], MOTOR_CONTACTS)
+
+
 def test_view_only_commands_stay_out_of_the_undo_stack(run):
     no_error(run, "view_only_actions")
     view = run["view_only"]

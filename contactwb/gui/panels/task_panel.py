@@ -246,8 +246,11 @@ class FindContactsPanel:
         self.doc.commitTransaction()
         self.group = self.result = group
         self.progress_bar.setValue(1000)
-        message = (f"{len(group.Group)} contacts between {group.BodyCount} bodies "
+        message = (f"{group.ContactCount} contacts between {group.BodyCount} bodies "
                    f"({', '.join(group.Summary) or 'none'})")
+        if group.InterferenceCount:
+            message += (f"; {group.InterferenceCount} interference{'s' if group.InterferenceCount > 1 else ''} "
+                        f"(overlapping material): " + "; ".join(group.Interferences))
         self.status.setText(message)
         FreeCAD.Console.PrintMessage(f"Contacts: {message}\n")
         from contactwb.gui.panels import contact_table
