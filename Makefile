@@ -78,7 +78,7 @@ samples:
 	$(PYTHON) tools/make_samples.py --out Resources/samples
 
 bench: deps-test build
-	$(PYTHON) bench/run_benchmarks.py --build-dir $(BUILD_DIR)
+	$(PYTHON) bench/run_benchmarks.py --build-dir $(BUILD_DIR) --plot docs/read_scaling.png
 	$(PYTHON) bench/bench_bad_inputs.py --build-dir $(BUILD_DIR)
 
 test: deps-test build

@@ -2,15 +2,19 @@
 """Time and memory bounds of the bad-input corpus (issue 14): every case of
 tools/make_bad_inputs.py (small and large sets) through the `contacts` CLI,
 one process each, with its wall time, exit code and peak memory (the child's
-maximum resident set), against a stated bound per case.
+maximum resident set), against a stated bound per case. With --hostile (issue
+25): every refusal of tools/make_hostile_inputs.py, bound 2 s and 300 MB each
+(process start included), and the time from SIGINT to the exit of long runs
+(bound 0.5 s).
 
-    python3 bench/bench_bad_inputs.py [--build-dir build] [--write docs/benchmarks.md]
+    python3 bench/bench_bad_inputs.py [--build-dir build] [--hostile] [--write docs/benchmarks.md]
 
 The tests check what each case gives (tests/test_bad_inputs.py); the bounds
 live here, not in the tests."""
 import argparse
 import json
 import os
+import signal
 import subprocess
 import sys
 import tempfile
@@ -31,9 +35,14 @@ BOUNDS = {
 HANG = 600  # a case still running after this is reported as a hang
 
 
+REFUSAL_BOUND = (2.0, 300)  # issue 25: every refusal
+SIGINT_BOUND = 0.5           # seconds from SIGINT to the exit
+
+
 def run_case(case, env):
     """(wall seconds, exit code, peak MB) of one CLI run."""
-    command = [sys.executable, "-m", "contactwb.cli", os.fsencode(case["file"]), *case["args"]]
+    arguments = case["argv"] if "argv" in case else [case["file"], *case["args"]]
+    command = [sys.executable, "-m", "contactwb.cli", *(os.fsencode(a) for a in arguments)]
     start = time.perf_counter()
     process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     deadline = start + HANG
@@ -68,12 +77,71 @@ def table(rows):
     return "\n".join(lines)
 
 
+def interrupted(argv, delay, env):
+    """Seconds from SIGINT (sent `delay` s after the start) to the exit, and the exit code."""
+    process = subprocess.Popen([sys.executable, "-m", "contactwb.cli", *argv], env=env,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    time.sleep(delay)
+    sent = time.perf_counter()
+    process.send_signal(signal.SIGINT)
+    process.wait(timeout=HANG)
+    return time.perf_counter() - sent, process.returncode
+
+
+def hostile(env):
+    """The issue-25 section: refusals and SIGINT times."""
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="hostile-inputs-") as out:
+        subprocess.run([sys.executable, os.path.join(REPO, "tools", "make_hostile_inputs.py"), "--out", out],
+                       check=True, env=env)
+        with open(os.path.join(out, "cases.json")) as stream:
+            cases = [c for c in json.load(stream) if c["refusal"]]
+        for case in cases:
+            elapsed, code, peak = run_case(case, env)
+            met = code == case["exit"] and elapsed <= REFUSAL_BOUND[0] and peak <= REFUSAL_BOUND[1]
+            rows.append(f"| {case['name']} | {code} ({case['exit']}) | {elapsed:.2f} | {peak:.0f} | "
+                        f"{'yes' if met else '**no**'} |")
+            print(rows[-1], file=sys.stderr)
+        motor = os.path.join(REPO, "Resources", "samples", "motor.step")
+        script = os.path.join(out, "long_trial.json")
+        with open(script, "w") as stream:
+            json.dump({"hand": [{"t": 0}, {"t": 600, "translate": [0, 0, 5]}]}, stream)
+        signals = []
+        for label_text, argv in (("mesh --deflection 0.002", ["mesh", motor, "--out", os.path.join(out, "m"),
+                                                               "--deflection", "0.002"]),
+                                 ("trial of 600 s", ["trial", motor, "--part", "Axis", "--script", script]),
+                                 ("--disassembly", [motor, "--disassembly"])):
+            for delay in (1.0, 2.0):
+                after, code = interrupted(argv, delay, env)
+                signals.append(f"| {label_text} | {delay:g} s | {code} | {after * 1000:.0f} | "
+                               f"{'yes' if code == 130 and after <= SIGINT_BOUND else '**no**'} |")
+                print(signals[-1], file=sys.stderr)
+    met = sum(1 for row in rows if row.endswith("| yes |"))
+    return "\n".join([
+        "## Hostile inputs: refusal times and Ctrl+C (issue 25)", "",
+        f"`python3 bench/bench_bad_inputs.py --hostile --write docs/benchmarks.md`: the {len(rows)} refusals of "
+        "`tools/make_hostile_inputs.py`, each through the CLI in its own process (start-up included): exit code "
+        f"(expected), wall time, peak resident memory; bound {REFUSAL_BOUND[0]:g} s and {REFUSAL_BOUND[1]} MB. "
+        f"**{met} of {len(rows)} met** ({time.strftime('%Y-%m-%d', time.gmtime())}, the 2-core machine shared "
+        "with other builds).", "",
+        "| case | exit (expected) | wall s | peak MB | met |", "|---|---|---:|---:|---|", *rows, "",
+        f"SIGINT sent after a delay to long runs: time to the exit (bound {SIGINT_BOUND * 1000:.0f} ms).", "",
+        "| run | SIGINT after | exit | ms to exit | met |", "|---|---|---|---:|---|", *signals])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default=os.path.join(REPO, "build"))
     parser.add_argument("--write", metavar="MARKDOWN", help="write the table into this file's section")
+    parser.add_argument("--hostile", action="store_true", help="the issue-25 refusals and SIGINT times only")
     args = parser.parse_args()
     env = dict(os.environ, PYTHONPATH=REPO, CONTACTS_PYTHON_DIR=os.path.join(os.path.abspath(args.build_dir), "python"))
+    if args.hostile:
+        text = hostile(env)
+        print(text)
+        if args.write:
+            write_section(args.write, "hostile inputs bench", text)
+        return
     with tempfile.TemporaryDirectory(prefix="bad-inputs-") as out:
         start = time.perf_counter()
         subprocess.run([sys.executable, os.path.join(REPO, "tools", "make_bad_inputs.py"), "--out", out,

@@ -112,14 +112,15 @@ int pipeline(const std::string& path, int threads) {
   size_t faces = 0;
   for (const BodyPartitions& body : result.partitions) faces += body.faces.size();
   std::printf(
-      "{\"file\": \"%s\", \"run\": \"ours\", \"bodies\": %zu, \"faces\": %zu, \"contacts\": %zu, "
+      "{\"file\": \"%s\", \"run\": \"ours\", \"reader\": \"%s\", \"bodies\": %zu, \"faces\": %zu, \"contacts\": %zu, "
       "\"body_pairs\": %zu, \"candidates\": %zu, \"skipped\": %zu, \"read\": %.6f, \"partitions\": %.6f, "
-      "\"broad_phase\": %.6f, \"candidates_time\": %.6f, \"area\": %.6f, \"after_read\": %.6f, "
+      "\"broad_phase\": %.6f, \"candidates_time\": %.6f, \"area\": %.6f, \"validity\": %.6f, "
+      "\"interferences\": %.6f, \"after_read\": %.6f, "
       "\"total\": %.6f, \"cancel_latency\": %.6f, \"peak_rss_mb\": %.1f}\n",
-      json_escape(path).c_str(), read.assembly.bodies.size(), faces, result.contacts.size(),
+      json_escape(path).c_str(), read.assembly.reader.c_str(), read.assembly.bodies.size(), faces, result.contacts.size(),
       result.body_pairs.size(), result.candidates, result.skipped.size(), read_seconds,
       result.times.partitions, result.times.broad_phase, result.times.candidates, result.times.area,
-      after_read, total, cancel_latency, peak);
+      result.times.validity, result.times.interferences, after_read, total, cancel_latency, peak);
   return 0;
 }
 

@@ -201,6 +201,82 @@ def end_to_end_table(cases, ours):
     return "\n".join(lines)
 
 
+STAGES = (("read", "read"), ("partitions", "partitions"), ("contacts", None), ("interferences", "interferences"),
+          ("validity", "validity"))
+
+
+def stage_seconds(row):
+    """Seconds of each stage of one pipeline row, and what is left (the
+    tolerances, the clearances, freeing memory): they add up to the total."""
+    seconds = {"read": row["read"], "partitions": row["partitions"],
+               "contacts": row["broad_phase"] + row["candidates_time"] + row["area"],
+               "interferences": row.get("interferences", 0.0), "validity": row.get("validity", 0.0)}
+    seconds["other"] = max(0.0, row["total"] - sum(seconds.values()))
+    return seconds
+
+
+def shares_table(cases, ours):
+    """Each stage's share of the end-to-end time, per case: the slowest stage
+    at a glance."""
+    names = [name for name, _ in STAGES] + ["other"]
+    lines = ["| case | reader | end to end s | " + " | ".join(f"{n} %" for n in names) + " | slowest |",
+             "|---|---|---|" + "---|" * len(names) + "---|"]
+    for name, path in cases:
+        r = ours[path]["ours"]
+        seconds = stage_seconds(r)
+        total = r["total"]
+        slowest = max(names, key=lambda n: seconds[n])
+        lines.append(f"| {name} | {r.get('reader', '?')} | {total:.3f} | "
+                     + " | ".join(f"{100 * seconds[n] / total:.1f}" for n in names) + f" | {slowest} |")
+    return "\n".join(lines)
+
+
+def plot_read_scaling(series, path):
+    """A PNG, log-log: seconds against parts, one line per series
+    ([(label, colour, [(n, seconds)])]), drawn with PIL (python3-pil)."""
+    from PIL import Image, ImageDraw
+    width, height, left, right, top, bottom = 900, 600, 90, 30, 40, 70
+    points = [p for _, _, pts in series for p in pts if p[1] > 0]
+    if not points:
+        return
+    n0, n1 = min(p[0] for p in points), max(p[0] for p in points)
+    t0, t1 = min(p[1] for p in points), max(p[1] for p in points)
+    lx0, lx1 = math.floor(math.log10(n0)), math.ceil(math.log10(n1))
+    ly0, ly1 = math.floor(math.log10(t0)), math.ceil(math.log10(t1))
+    if lx1 == lx0:
+        lx1 += 1
+    if ly1 == ly0:
+        ly1 += 1
+
+    def xy(n, t):
+        x = left + (math.log10(n) - lx0) / (lx1 - lx0) * (width - left - right)
+        y = height - bottom - (math.log10(t) - ly0) / (ly1 - ly0) * (height - top - bottom)
+        return x, y
+    image = Image.new("RGB", (width, height), "white")
+    draw = ImageDraw.Draw(image)
+    for e in range(lx0, lx1 + 1):
+        x, _ = xy(10 ** e, 10 ** ly0)
+        draw.line([(x, top), (x, height - bottom)], fill=(220, 220, 220))
+        draw.text((x - 15, height - bottom + 8), f"{10 ** e:,}", fill="black")
+    for e in range(ly0, ly1 + 1):
+        _, y = xy(10 ** lx0, 10 ** e)
+        draw.line([(left, y), (width - right, y)], fill=(220, 220, 220))
+        draw.text((10, y - 6), f"{10.0 ** e:g} s", fill="black")
+    draw.rectangle([left, top, width - right, height - bottom], outline="black")
+    draw.text((width // 2 - 40, height - 30), "parts (log)", fill="black")
+    draw.text((left, 12), "seconds against parts, log-log (bench/run_benchmarks.py)", fill="black")
+    for k, (label, colour, pts) in enumerate(series):
+        pts = sorted(p for p in pts if p[1] > 0)
+        xys = [xy(n, t) for n, t in pts]
+        if len(xys) > 1:
+            draw.line(xys, fill=colour, width=3)
+        for x, y in xys:
+            draw.ellipse([x - 4, y - 4, x + 4, y + 4], fill=colour)
+        draw.line([(left + 20, top + 20 + 18 * k), (left + 50, top + 20 + 18 * k)], fill=colour, width=3)
+        draw.text((left + 58, top + 14 + 18 * k), label, fill="black")
+    image.save(path)
+
+
 def growth_table(families):
     lines = ["| family | N from | N to | after the read: time ratio | exponent | bare read exponent "
              "| end to end exponent |", "|---|---|---|---|---|---|---|"]
@@ -247,6 +323,8 @@ def main():
                         help="largest grid on which the scripted baseline runs")
     parser.add_argument("--grids", type=int, nargs="*", default=GRID_SIZES)
     parser.add_argument("--write", help="also write the report to this Markdown file")
+    parser.add_argument("--plot", help="also draw time against parts (bare XDE read, ours) into this PNG")
+    parser.add_argument("--skip-meshes", action="store_true", help="leave out bench/bench_meshes.py")
     args = parser.parse_args()
     build_dir = os.path.abspath(args.build_dir)
     data_dir = os.path.join(build_dir, "bench-data")
@@ -279,14 +357,21 @@ def main():
               f"builds. Each run in its own process; best of {args.repeat}.",
               "",
               "*Bare XDE read*: OCCT alone bringing the file into an XDE document (STEPCAFControl_Reader, "
-              "names on, colours/layers/properties off: the floor of any STEP tool). *Ours end to end*: "
-              "read_step (that read, plus the walk of the assembly tree and names) then find_contacts on all "
-              "cores, from the same file. Peaks are each process's maximum resident memory. *Cancel latency*: "
+              "names on, colours/layers/properties off: what a STEP tool built on XDE waits for). *Ours end to "
+              "end*: read_step (the read by products: each product transferred once, its instances placed; "
+              "OCCT's XDE read where it falls back, see *reader* below) then find_contacts on all cores, from "
+              "the same file. Peaks are each process's maximum resident memory. *Cancel latency*: "
               "a second run asked to stop halfway through find_contacts, time from the request to the return.",
               "", "## End to end, against a bare XDE read of the same file", "", end_to_end_table(cases, ours), "",
               "## Growth (N log N gives about 1.1)", "",
               "Exponents between successive sizes: log(time ratio) / log(N ratio). *After the read* is "
               "find_contacts alone: what we add to the read.", "", growth_table(families), "",
+              "## Where the time goes", "",
+              "Each stage's share of *ours end to end* (the rows above): *read* is read_step, *contacts* the "
+              "broad phase, candidates and common areas, *interferences* and *validity* the passes after the "
+              "contacts, *other* the rest (tolerances, clearances). *reader*: `products` when the fast "
+              "product read served the file, `xde` when it fell back to OCCT's XDE read.", "",
+              shares_table(cases, ours), "",
               "## Against brute force (shapes in memory)", "",
               "*scripted* is what a FreeCAD user can script today (body box filter, Boolean common of every "
               "same-type face pair whose boxes meet); *checker* is the tests' brute-force checker "
@@ -298,11 +383,21 @@ def main():
         out = subprocess.run([exe, "--benchmark_min_time=0.05"], capture_output=True, text=True)
         table = [line for line in out.stdout.splitlines() if line.startswith("|")]
         report += ["", "## Partitions (ours vs ShapeUpgrade_UnifySameDomain)", "", *(table or [out.stdout])]
+    if args.plot:
+        plot_read_scaling([("bare XDE read, bolted grid", (200, 40, 40),
+                            [(n, ours[path]["bare"]["seconds"]) for n, _, path in grid_cases]),
+                           ("ours end to end, bolted grid", (30, 90, 200),
+                            [(n, ours[path]["ours"]["total"]) for n, _, path in grid_cases]),
+                           ("ours: read alone, bolted grid", (40, 160, 60),
+                            [(n, ours[path]["ours"]["read"]) for n, _, path in grid_cases])], args.plot)
+        report += ["", f"Plot of these rows: {os.path.relpath(args.plot, REPO)}."]
     text = "\n".join(report)
     print(text)
     if args.write:
         write_section(args.write, "contacts bench", "`make bench` (bench/run_benchmarks.py) prints these tables.\n\n" + text)
     # Meshes, collision and disassembly: their own program and section (bench/bench_meshes.py).
+    if args.skip_meshes:
+        return
     subprocess.run([sys.executable, os.path.join(REPO, "bench", "bench_meshes.py"), "--build-dir", build_dir]
                    + (["--write", args.write] if args.write else []), check=True)
 

@@ -95,3 +95,39 @@ def test_hidden_objects_are_not_bodies():
         assert [b.name for b in bodies.document_bodies(doc)] == ["Shown"]
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+@pytest.mark.parametrize("name", ["motor.step", "families/bolted_grid_100.step", "cases/inch.step"])
+def test_fast_step_read_gives_what_the_xde_read_gives(sample, name):
+    """The read by products (the default) against OCCT's XDE read, through the
+    binding: same names, paths, units, volumes and centres, in the same order."""
+    fast = core.contactcore.read_step(sample(name))
+    xde = core.contactcore.read_step(sample(name), reader="xde")
+    assert (fast.reader, xde.reader) == ("products", "xde")
+    assert fast.units == xde.units
+    assert [(b.name, b.path) for b in fast.bodies] == [(b.name, b.path) for b in xde.bodies]
+    for a, b in zip(fast.bodies, xde.bodies):
+        assert a.volume == pytest.approx(b.volume, rel=1e-9)
+        assert a.center == pytest.approx(b.center, abs=1e-9)
+
+
+def test_fast_step_read_falls_back_in_the_json_messages(shared_step):
+    """R09 places a product through a MAPPED_ITEM: the XDE read serves it, and
+    `contacts --json --progress` says so."""
+    import json
+    import subprocess
+    import sys
+    path = shared_step("R09_chrono_assembly.stp")
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    out = subprocess.run([sys.executable, "-m", "contactwb.cli", path, "--json", "--progress"], capture_output=True,
+                         text=True, env=dict(os.environ, PYTHONPATH=repo), cwd=repo, timeout=300)
+    assert out.returncode == 0, out.stderr
+    messages = json.loads(out.stdout)["messages"]
+    assert ("STEP read: the fast product read cannot serve this file (a mapped item of a product (#106)): "
+            "read through OCCT's XDE reader") in messages
+    assert "read (XDE fallback)" in out.stderr
+
+
+def test_step_reader_must_be_known(sample):
+    with pytest.raises(ValueError, match="products' or 'xde'"):
+        core.contactcore.read_step(sample("motor.step"), reader="fast")

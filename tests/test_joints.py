@@ -145,7 +145,9 @@ def test_cli_joints_json_fields(sample):
     document = json.loads(done.stdout)
     assert len(document["joints"]) == 29  # one per body pair in contact
     for j in document["joints"]:
-        assert set(j) == {"a", "b", "type", "dof", "rotations", "translations", "free_directions", "contacts"}
+        assert set(j) == {"a", "b", "type", "dof", "rotations", "translations", "free_directions", "contacts",
+                          "higher_pairs"}
+        assert j["higher_pairs"] == []  # the motor has no point or line contact
         assert len(j["rotations"]) + len(j["translations"]) == j["dof"]
         for r in j["rotations"]:
             assert set(r) == {"point", "direction"}

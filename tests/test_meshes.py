@@ -143,7 +143,7 @@ def test_simplification_beyond_the_envelope_keeps_the_original(tmp_path):
 
 
 def test_mesh_command_refuses_bad_input(tmp_path, capsys):
-    assert cli.main(["mesh", str(tmp_path / "missing.step"), "--out", str(tmp_path / "o")]) == 1
+    assert cli.main(["mesh", str(tmp_path / "missing.step"), "--out", str(tmp_path / "o")]) == cli.EXIT_INPUT
     assert "missing.step" in capsys.readouterr().err
     with pytest.raises(SystemExit):
         cli.main(["mesh", MOTOR, "--out", str(tmp_path / "o"), "--deflection", "0"])
@@ -167,7 +167,7 @@ def test_disassembly_json_of_the_taper_pin(capsys):
 def test_disassembly_of_a_ball_bearing_reports_the_interlock(capsys):
     # Balls held between the rings' grooves: nothing can leave without deforming a part.
     path = os.path.join(SAMPLES, "cases", "ball_bearing.step")
-    assert cli.main([path, "--disassembly"]) == 2
+    assert cli.main([path, "--disassembly"]) == cli.EXIT_FAILED  # the analysis found no sequence (not a usage error)
     text = capsys.readouterr().out
     assert "Stopped: no part or group of the remaining parts" in text
     assert "Inner-ring" in text and "Outer-ring" in text

@@ -131,7 +131,7 @@ def test_bad_scripts_are_named(tmp_path, script, message):
     path = tmp_path / "bad.json"
     path.write_text(json.dumps(script))
     done = run_cli(MOTOR, "--part", "Axis", "--script", str(path), "--json")
-    assert done.returncode == 1
+    assert done.returncode == 3  # the script is an input: refused
     assert message in done.stderr
     assert str(path) in done.stderr
     assert done.stdout == ""
@@ -139,15 +139,15 @@ def test_bad_scripts_are_named(tmp_path, script, message):
 
 def test_unknown_part_lists_the_bodies():
     done = run_cli(MOTOR, "--part", "Crankshaft", "--script", SCRIPT)
-    assert done.returncode == 1
+    assert done.returncode == 3
     assert "no body named 'Crankshaft'" in done.stderr and "Bearing-front" in done.stderr
 
 
 def test_missing_files_are_named(tmp_path):
     done = run_cli(str(tmp_path / "none.step"), "--part", "Axis", "--script", SCRIPT)
-    assert done.returncode == 1 and "none.step" in done.stderr
+    assert done.returncode == 3 and "none.step" in done.stderr
     done = run_cli(MOTOR, "--part", "Axis", "--script", str(tmp_path / "none.json"))
-    assert done.returncode == 1 and "none.json" in done.stderr
+    assert done.returncode == 3 and "none.json" in done.stderr
 
 
 def test_spacemouse_report_through_the_binding():

@@ -3,9 +3,12 @@
 Prints the paper's table (per contact type, the body pairs and counts, with
 totals), or JSON with --json.
 
-Exit codes: 0 done; 2 usage error (bad option or tolerance); 3 the input
-cannot be read or holds no usable solid; 4 the analysis failed (OCCT error,
-out of memory); 5 internal error (a bug: please report it); 130 cancelled."""
+Exit codes (every subcommand): 0 done; 2 usage error (bad option or
+tolerance); 3 the input cannot be read, holds no usable solid or is refused
+(beyond a limit); 4 the analysis failed (OCCT error, out of memory, parts
+interlocked) or the output could not be written; 5 internal error (a bug:
+please report it); 130 cancelled (Ctrl+C, SIGTERM); 141 standard output
+closed by its reader."""
 import argparse
 import contextlib
 import json
@@ -13,9 +16,9 @@ import math
 import os
 import sys
 import time
-import zipfile
 
-EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED = 0, 2, 3, 4, 5, 130
+from contactwb.cli.process import finite_number, nonnegative_count, run as run_command
+from contactwb.cli.process import EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED  # noqa: F401
 
 
 def _tolerance(text):
@@ -43,22 +46,6 @@ def _stdout_to_stderr():
         os.close(saved)
 
 
-def _check_fcstd(path, core):
-    """A clear error for what FreeCAD would half-open or crash on."""
-    if not zipfile.is_zipfile(path):
-        raise core.InputError(f"not a FreeCAD document (not a zip archive: truncated, or another format) "
-                              f"(file '{path}')")
-    try:
-        with zipfile.ZipFile(path) as archive:
-            if "Document.xml" not in archive.namelist():
-                raise core.InputError(f"not a FreeCAD document (no Document.xml) (file '{path}')")
-            damaged = archive.testzip()
-    except zipfile.BadZipFile as error:
-        raise core.InputError(f"damaged FreeCAD document ({error}) (file '{path}')")
-    if damaged:
-        raise core.InputError(f"damaged FreeCAD document (member '{damaged}' is corrupt) (file '{path}')")
-
-
 def _progress_printer(stream):
     last = {"stage": None, "shown": -1}
 
@@ -82,10 +69,17 @@ SUBCOMMANDS = {
 
 
 def main(argv=None):
+    """The command; called without argv (the process's command line) it also
+    takes SIGINT/SIGTERM and checks standard output (run)."""
+    own_process = argv is None
     argv = sys.argv[1:] if argv is None else list(argv)
     if argv and argv[0] in SUBCOMMANDS:
         import importlib
-        return importlib.import_module(SUBCOMMANDS[argv[0]]).main(argv[1:])
+        return importlib.import_module(SUBCOMMANDS[argv[0]]).main(argv[1:], own_process=own_process)
+    return run_command("contacts", lambda: _contacts(argv), own_process)
+
+
+def _contacts(argv):
     parser = argparse.ArgumentParser(prog="contacts", description=__doc__,  # exit codes in __doc__
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("file", help="a STEP (.step/.stp) or FreeCAD (.FCStd) assembly")
@@ -93,13 +87,20 @@ def main(argv=None):
     parser.add_argument("--linear", type=_tolerance, help="linear tolerance, mm (default: scales with the model)")
     parser.add_argument("--angular", type=_tolerance, help="angular tolerance, radians (default 1e-4)")
     parser.add_argument("--progress", action="store_true", help="show progress on stderr")
-    parser.add_argument("--max-pairs", type=int, default=None, metavar="N",
+    parser.add_argument("--max-pairs", type=nonnegative_count, default=None, metavar="N",
                         help="stop when more than N body pairs have meeting boxes (default 2000000): "
                              "heavily overlapping input")
+    parser.add_argument("--max-bodies", type=nonnegative_count, default=None, metavar="N",
+                        help="refuse a STEP assembly expanding to more than N instances, counted before it is "
+                             "expanded (default 1000000)")
     parser.add_argument("--joints", action="store_true", help="also print joints, mobility and rigid groups")
     parser.add_argument("--graph", metavar="FILE", help="write the liaison graph (.svg, .png or .dot)")
     parser.add_argument("--ground", metavar="NAME", help="body held still (default: the largest by volume)")
-    parser.add_argument("--clearance-gap", type=float, default=0.0, metavar="MM",
+    parser.add_argument("--annotations", metavar="FILE.json",
+                        help="the designer's fits and bonds (docs/joints.md): a JSON list of {\"a\", \"b\", "
+                             "\"type\" (optional), \"intent\": clearance|transition|interference|bonded|ignored, "
+                             "\"fit\" (optional)}; press fits and bonds make their pairs rigid (implies --joints)")
+    parser.add_argument("--clearance-gap", type=finite_number(low=0), default=0.0, metavar="MM",
                         help="with --joints: also list clearance fits with a gap below MM")
     parser.add_argument("--disassembly", action="store_true",
                         help="print the removal sequence (with --json: {\"disassembly\": [{\"parts\", \"direction\"}]})")
@@ -109,9 +110,17 @@ def main(argv=None):
                              "BRepCheck_Analyzer and faces crossing each other: seconds on a large "
                              "model); see docs/reliability.md")
     args = parser.parse_args(argv)
+    if args.graph:
+        from contactwb.core import output_files
+        try:
+            output_files.check_target(args.graph)
+        except output_files.UnsafeTarget as error:
+            print(f"contacts: --graph {error}", file=sys.stderr)
+            return EXIT_USAGE
     if args.disassembly:
         from contactwb.cli.mesh import print_disassembly  # the module, not the package: no cycle through cli/__init__
-        return print_disassembly(args.file, args.json, args.linear, args.angular)
+        return print_disassembly(os.fsdecode(args.file), args.json, args.linear, args.angular,
+                                 max_bodies=args.max_bodies)
 
     try:
         from contactwb import core
@@ -123,6 +132,8 @@ def main(argv=None):
     progress = _progress_printer(sys.stderr) if args.progress else None
     start = time.perf_counter()
     found = None
+    if args.annotations:
+        args.joints = True
     wants_joints = args.joints or args.graph
     # Paths go to C++ as bytes: a file name that is not UTF-8 still works.
     path = os.fsdecode(args.file)
@@ -130,15 +141,16 @@ def main(argv=None):
         with _stdout_to_stderr():
             if path.lower().endswith(".fcstd"):
                 from contactwb.document import analysis as document_analysis
-                from contactwb.document import freecad_setup
+                from contactwb.document import files, freecad_setup
                 if not os.path.isfile(path):
                     raise core.InputError(f"no such file: '{path}'")
-                _check_fcstd(path, core)
+                files.check_fcstd(path)
                 doc = freecad_setup.open_document(os.path.abspath(path))
                 if wants_joints:
                     result, found, _ = document_analysis.joints_in_document(
                         doc, linear=args.linear, angular=args.angular, progress=progress, ground=args.ground,
-                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs, check_solids=args.check_solids)
+                        clearance_gap=args.clearance_gap, max_pairs=args.max_pairs, check_solids=args.check_solids,
+                        annotations=args.annotations)
                 else:
                     result, _ = document_analysis.find_contacts_in_document(
                         doc, linear=args.linear, angular=args.angular, progress=progress,
@@ -146,10 +158,13 @@ def main(argv=None):
             elif wants_joints:
                 result, found = joints_api.joints_in_step(path, args.linear, args.angular, progress,
                                                           ground=args.ground, clearance_gap=args.clearance_gap,
-                                                          max_pairs=args.max_pairs, check_solids=args.check_solids)
+                                                          max_pairs=args.max_pairs, check_solids=args.check_solids,
+                                                          max_bodies=args.max_bodies,
+                                                          annotations=args.annotations)
             else:
                 result = analysis.find_contacts_in_step(path, args.linear, args.angular, progress,
-                                                        max_pairs=args.max_pairs, check_solids=args.check_solids)
+                                                        max_pairs=args.max_pairs, check_solids=args.check_solids,
+                                                        max_bodies=args.max_bodies)
             if args.graph:
                 found.write_graph(args.graph)
     except (core.Cancelled, KeyboardInterrupt):
@@ -162,15 +177,22 @@ def main(argv=None):
         where = "" if os.path.basename(path) in str(error) else f" (file '{path}')"  # a document's body errors
         print(f"contacts: {error}{where}", file=sys.stderr)
         return EXIT_INPUT
-    except core.ContactsError as error:
-        print(f"contacts: {error}", file=sys.stderr)
-        return EXIT_FAILED
     except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
         text = str(error) if "out of memory" in str(error) else "out of memory"
         where = "" if os.path.basename(path) in text else f" (file '{path}')"
         print(f"contacts: {text}{where}", file=sys.stderr)
         return EXIT_FAILED
-    except (OSError, UnicodeError, ValueError) as error:
+    except core.InternalError as error:  # a bug in the core
+        print(f"contacts: internal error ({error}); please report it", file=sys.stderr)
+        return EXIT_INTERNAL
+    except core.ContactsError as error:
+        print(f"contacts: {error}", file=sys.stderr)
+        return EXIT_FAILED
+    except (OSError, UnicodeError, ValueError, OverflowError) as error:
+        if args.graph and isinstance(error, OSError) and error.filename and \
+                os.fsdecode(error.filename) == os.fsdecode(args.graph):
+            print(f"contacts: cannot write '{args.graph}': {error.strerror}", file=sys.stderr)
+            return EXIT_FAILED
         print(f"contacts: cannot read '{path}': {error}", file=sys.stderr)
         return EXIT_INPUT
     except Exception as error:  # a bug: say so, without a traceback unless asked

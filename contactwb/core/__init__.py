@@ -5,6 +5,6 @@ JSON and CSV forms. FreeCAD adapters are in contactwb.document.
 
     from contactwb import core
     core.contactcore.read_step(...)     # the extension
-    core.ContactsError, core.Cancelled, core.InputError, core.ArgumentError"""
+    core.ContactsError, core.Cancelled, core.InputError, core.ArgumentError, core.InternalError"""
 from contactwb.core.extension import (ArgumentError, Cancelled, ContactsError, InputError,  # noqa: F401
-                                      contactcore)
+                                      InternalError, contactcore)

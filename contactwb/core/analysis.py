@@ -11,7 +11,7 @@ import os
 from collections import Counter, defaultdict
 from dataclasses import dataclass, field
 from math import degrees
-from typing import Dict, List, Tuple
+from typing import Dict, List, Optional, Tuple
 
 from contactwb import core
 from contactwb.core.kinds import CONTACT_TYPES, TYPE_TITLES
@@ -94,10 +94,22 @@ class ContactRecord:
     direction: Tuple[float, float, float]
     body_a: int = 0
     body_b: int = 0
+    intent: str = ""            # the designer's annotation (contactwb.core.annotations), "" when none
+    fit: Optional[str] = None   # its ISO 286 fit code, when given
 
     def __str__(self):
         extra = f", partial {self.span:.0f} deg" if self.partial else ""
         return f"{self.type} {self.a} <-> {self.b} (area {self.area:.3f} mm2{extra})"
+
+
+def printable(text):
+    """A line of a table with its control characters (terminal escapes, CR,
+    LF, ... from body names) shown as \\x.. escapes: a name cannot retitle the
+    terminal or fake a line of the table."""
+    if text.isprintable():
+        return text
+    return "".join(c if c.isprintable() else
+                   (f"\\x{ord(c):02x}" if ord(c) < 0x100 else f"\\u{ord(c):04x}") for c in text)
 
 
 @dataclass
@@ -116,6 +128,9 @@ class Analysis:
     skipped: List[SkippedRecord] = field(default_factory=list)
     # Bodies whose solid is not valid: {"body", "faces": ["Face3", ...], "reason"}
     invalid_bodies: List[dict] = field(default_factory=list)
+    # Point and line contacts, apart from `contacts` (docs/joints.md): {"type", "kind", "a", "b",
+    # "faces_a", "faces_b", "point", "normal", "start", "end", "length"}
+    higher_pairs: List[dict] = field(default_factory=list)
 
     def counts(self):
         """Counter of contact types."""
@@ -136,14 +151,12 @@ class Analysis:
             "tolerances": {"linear": self.linear_tolerance, "angular": self.angular_tolerance},
             "bodies": [{"name": b.name, "path": b.path, "volume": b.volume, "center": list(b.center)}
                        for b in self.bodies],
-            "contacts": [{"type": c.type, "a": c.a, "b": c.b, "faces_a": c.faces_a, "faces_b": c.faces_b,
-                          "area": c.area, "partial": c.partial, "span": c.span, "radius": c.radius,
-                          "half_angle": c.half_angle, "point": list(c.point),
-                          "direction": list(c.direction)} for c in self.contacts],
+            "contacts": [_contact_json(c) for c in self.contacts],
             "totals": dict(self.counts()),
             "skipped": [{"a": s.a, "b": s.b, "faces_a": s.faces_a, "faces_b": s.faces_b, "message": s.message}
                         for s in self.skipped],
             "interferences": [{"a": a, "b": b, "volume": v} for a, b, v in self.interferences],
+            "higher_pairs": self.higher_pairs,
             "invalid_bodies": self.invalid_bodies,
             "messages": self.messages,
             "times": self.times,
@@ -167,6 +180,14 @@ class Analysis:
             for (a, b), n in pairs.items():
                 note = f"  ({partial[(a, b)]} partial)" if partial[(a, b)] else ""
                 lines.append(f"  {a:<{width}}  <->  {b:<{width}}  {n}{note}")
+        if self.higher_pairs:
+            lines.append("")
+            lines.append(f"Point and line contacts (higher pairs, apart from the contacts above): "
+                         f"{len(self.higher_pairs)}")
+            for h in self.higher_pairs:
+                where = (f"along {h['length']:.4g} mm" if h["kind"] == "line" else
+                         "at (" + ", ".join(f"{v:.4g}" for v in h["point"]) + ")")
+                lines.append(f"  {h['a']:<{width}}  <->  {h['b']:<{width}}  {h['type']} {where}")
         if self.interferences:
             lines.append("")
             lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
@@ -185,7 +206,17 @@ class Analysis:
             pairs = ", ".join(f"{s.a} <-> {s.b}" for s in self.skipped)
             lines.append(f"Skipped {len(self.skipped)} candidate pair(s) whose test failed, the rest kept "
                          f"(see the notes): {pairs}")
-        return "\n".join(lines)
+        return "\n".join(printable(line) for line in lines)
+
+
+def _contact_json(c):
+    out = {"type": c.type, "a": c.a, "b": c.b, "faces_a": c.faces_a, "faces_b": c.faces_b, "area": c.area,
+           "partial": c.partial, "span": c.span, "radius": c.radius, "half_angle": c.half_angle,
+           "point": list(c.point), "direction": list(c.direction)}
+    if c.intent:  # annotated (--annotations): the designer's intent and fit, echoed
+        out["intent"] = c.intent
+        out["fit"] = c.fit
+    return out
 
 
 def analysis_of_result(source, assembly, result, face_name=None):
@@ -226,7 +257,8 @@ def _convert_result(source, assembly, result, face_name=None):
             faces_b=[face_name(s.body_b, f) for f in s.faces_b], message=s.message))
     mass = _MassTable(assembly)
     times = {"partitions": result.times.partitions, "broad_phase": result.times.broad_phase,
-             "candidates": result.times.candidates, "area": result.times.area}
+             "candidates": result.times.candidates, "area": result.times.area,
+             "validity": result.times.validity, "interferences": result.times.interferences}
     return Analysis(
         source=source, units=assembly.units,
         linear_tolerance=result.tolerances.linear, angular_tolerance=result.tolerances.angular,
@@ -235,7 +267,13 @@ def _convert_result(source, assembly, result, face_name=None):
         interferences=[(names[i.body_a], names[i.body_b], i.volume) for i in result.interferences],
         candidates=result.candidates, times=times, skipped=skipped,
         invalid_bodies=[{"body": names[i.body], "faces": [face_name(i.body, f) for f in i.faces], "reason": i.reason}
-                        for i in getattr(result, "invalid_bodies", [])])
+                        for i in getattr(result, "invalid_bodies", [])],
+        higher_pairs=[{"type": h.type, "kind": h.kind, "a": names[h.body_a], "b": names[h.body_b],
+                       "faces_a": [face_name(h.body_a, f) for f in h.faces_a],
+                       "faces_b": [face_name(h.body_b, f) for f in h.faces_b],
+                       "point": list(h.point), "normal": list(h.normal), "start": list(h.start),
+                       "end": list(h.end), "length": h.length}
+                      for h in getattr(result, "higher_pairs", [])])
 
 
 def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None,
@@ -252,8 +290,15 @@ def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=
     return analysis_of_result(source, assembly, result, face_name)
 
 
-def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None, check_solids="quick"):
-    """Contacts of a STEP file, read in C++ (no FreeCAD needed)."""
+def max_bodies_keyword(max_bodies):
+    """read_step's keyword for a limit given (None: its default)."""
+    return {} if max_bodies is None else {"max_bodies": int(max_bodies)}
+
+
+def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pairs=None, check_solids="quick",
+                          max_bodies=None):
+    """Contacts of a STEP file, read in C++ (no FreeCAD needed). An assembly expanding to more than
+    `max_bodies` instances (default one million) is refused before it is expanded."""
     if "\0" in str(path):
         raise core.InputError(f"the path contains a NUL character: {path!r}")
     if os.path.isdir(path):
@@ -261,7 +306,8 @@ def find_contacts_in_step(path, linear=None, angular=None, progress=None, max_pa
     if not os.path.isfile(path):
         raise core.InputError(f"no such file: '{path}'")
     # As bytes: a file name that is not UTF-8 reaches OCCT unchanged.
-    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)), progress=progress)  # errors name the file
+    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)), progress=progress,
+                                          **max_bodies_keyword(max_bodies))  # errors name the file
     try:
         return find_contacts_in_assembly(assembly, os.path.basename(path), linear, angular, progress,
                                          max_pairs=max_pairs, check_solids=check_solids)

@@ -65,4 +65,5 @@ ContactsError = contactcore.ContactsError
 Cancelled = contactcore.Cancelled
 InputError = contactcore.InputError        # a file or shape that cannot be read or used (a ContactsError)
 ArgumentError = contactcore.ArgumentError  # an option out of range (a ContactsError and a ValueError)
+InternalError = contactcore.InternalError  # a bug in the core (the CLI's exit 5; a ContactsError)
 

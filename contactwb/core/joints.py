@@ -17,6 +17,7 @@ from typing import List, Optional
 
 from contactwb import core
 from contactwb.core import analysis
+from contactwb.core import annotations as annotation_api
 
 
 def _vec(values):
@@ -40,11 +41,16 @@ class JointRecord:
     one_sided: int = 0     # number of one-sided stops
     body_a: int = 0
     body_b: int = 0
+    higher_pairs: List[int] = field(default_factory=list)  # indices into the analysis' higher_pairs
+    annotated_rigid: bool = False  # held rigid by an annotated press fit or bond
 
     def to_json(self):
-        return {"a": self.a, "b": self.b, "type": self.type, "dof": self.dof, "rotations": self.rotations,
-                "translations": self.translations, "free_directions": self.free_directions,
-                "contacts": self.contacts}
+        out = {"a": self.a, "b": self.b, "type": self.type, "dof": self.dof, "rotations": self.rotations,
+               "translations": self.translations, "free_directions": self.free_directions,
+               "contacts": self.contacts, "higher_pairs": self.higher_pairs}
+        if self.annotated_rigid:  # only with --annotations
+            out["annotated_rigid"] = True
+        return out
 
 
 @dataclass
@@ -85,7 +91,7 @@ class Joints:
             axes = [f"turns about {_fmt(r['direction'])} through {_fmt(r['point'])}" for r in j.rotations]
             axes += [f"slides along {_fmt(t['direction'])}" for t in j.translations]
             if j.type in ("rigid",):
-                axes = []
+                axes = ["held by annotated fits or bonds"] if j.annotated_rigid else []
             leaves = (f"; leaves along {', '.join(_fmt(d) for d in j.free_directions)}"
                       if j.free_directions and len(j.free_directions) <= 4 else
                       f"; leaves within a cone of {len(j.free_directions)} directions" if j.free_directions else
@@ -114,7 +120,7 @@ class Joints:
             lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
             for i in self.interferences:
                 lines.append(f"  {i['a']:<{width}}  <->  {i['b']:<{width}}  {i['volume']:.4g} mm3")
-        return "\n".join(lines)
+        return "\n".join(analysis.printable(line) for line in lines)
 
     def free_directions_of(self, body):
         """Directions in which `body` (a name) can translate out, every part it
@@ -158,23 +164,38 @@ def _ground_index(names, ground):
 
 
 def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None, face_name=None,
-                       ground=None, clearance_gap=0.0, max_pairs=None, check_solids="quick"):
+                       ground=None, clearance_gap=0.0, max_pairs=None, check_solids="quick", annotations=None):
     """(analysis.Analysis, Joints) of a contactcore.Assembly: contacts, then
     joints, mobility and liaison graph. `ground`: a body name (default: the
-    largest by volume). `clearance_gap` > 0 also lists clearance fits."""
+    largest by volume). `clearance_gap` > 0 also lists clearance fits.
+    `annotations`: the designer's fits and bonds (contactwb.core.annotations:
+    a list of Annotation, of dicts, or a JSON file's path): press fits and
+    bonds make their pairs rigid, ignored contacts are left out."""
     cc = core.contactcore
     names = [b.name for b in assembly.bodies]
     ground_index = _ground_index(names, ground)
+    notes = None
+    if annotations is not None:  # checked before the work, resolved after the contacts
+        notes = (annotation_api.load(annotations) if isinstance(annotations, (str, os.PathLike)) else
+                 annotation_api.parse(annotations) if annotations and isinstance(annotations[0], dict) else
+                 list(annotations))
     raw = cc.find_contacts(assembly, linear=linear, angular=angular, progress=progress, max_pairs=max_pairs,
                            clearance_gap=clearance_gap, check_solids=check_solids)
     result = analysis.analysis_of_result(source, assembly, raw, face_name)
-    found = cc.find_joints(assembly, raw)
+    contact_marks, higher_marks = [], []
+    if notes is not None:
+        contact_marks, higher_marks = annotation_api.resolve(notes, names, raw.contacts, raw.higher_pairs)
+        for record, (intent, fit) in zip(result.contacts, contact_marks):
+            record.intent, record.fit = intent, fit
+    found = cc.find_joints(assembly, raw, contact_intents=[intent for intent, _ in contact_marks],
+                           higher_pair_intents=[intent for intent, _ in higher_marks])
     mobility = cc.assembly_mobility(assembly, raw, found, ground_index)
     records = [JointRecord(
         a=names[j.body_a], b=names[j.body_b], type=j.type, dof=j.dof, rotations=_rotations(j.rotations),
         translations=[{"direction": _vec(d)} for d in j.translations],
         free_directions=[_vec(d) for d in j.free_directions], contacts=list(j.contacts),
-        one_sided=len(j.stops), body_a=j.body_a, body_b=j.body_b) for j in found.joints]
+        one_sided=len(j.stops), body_a=j.body_a, body_b=j.body_b,
+        higher_pairs=list(j.higher_pairs), annotated_rigid=j.annotated_rigid) for j in found.joints]
     group_joints = []
     for group, motion in zip(mobility.groups, mobility.group_motions):
         group_joints.append({
@@ -201,14 +222,17 @@ def interferences_of(raw, names):
 
 
 def joints_in_step(path, linear=None, angular=None, progress=None, ground=None, clearance_gap=0.0,
-                   max_pairs=None, check_solids="quick"):
+                   max_pairs=None, check_solids="quick", max_bodies=None,
+                   annotations=None):
     """(analysis.Analysis, Joints) of a STEP file, read in C++."""
     if not os.path.isfile(path):
-        raise core.ContactsError(f"no such file: '{path}'")
-    assembly = core.contactcore.read_step(os.path.abspath(path), progress=progress)
+        raise core.InputError(f"no such file: '{path}'")
+    assembly = core.contactcore.read_step(os.fsencode(os.path.abspath(path)), progress=progress,
+                                          **analysis.max_bodies_keyword(max_bodies))  # bytes: non-UTF-8 names work
     try:
         return joints_in_assembly(assembly, os.path.basename(path), linear, angular, progress, ground=ground,
-                                  clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids)
+                                  clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids,
+                                  annotations=annotations)
     except core.Cancelled:
         raise
     except core.ContactsError as error:

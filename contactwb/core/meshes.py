@@ -9,22 +9,42 @@ FreeCAD documents as input: contactwb.document.files.load_assembly.
     print(meshes.disassembly_json(assembly))
 """
 import json
+import math
 import os
 
 from contactwb import core
+from contactwb.core import output_files
+
+DEFAULT_MAX_TRIANGLES = 10_000_000  # refused before meshing beyond this estimate (MeshOptions.max_triangles)
 
 
-def read_step_assembly(path):
-    """The bodies of a STEP file, read in C++."""
+def read_step_assembly(path, max_bodies=None):
+    """The bodies of a STEP file, read in C++. An assembly expanding to more than `max_bodies`
+    instances (default one million) is refused before it is expanded."""
     if not os.path.isfile(path):
-        raise core.ContactsError(f"no such file: '{path}'")
-    return core.contactcore.read_step(os.path.abspath(path))
+        raise core.InputError(f"no such file: '{path}'")
+    limit = {} if max_bodies is None else {"max_bodies": int(max_bodies)}
+    return core.contactcore.read_step(os.fsencode(os.path.abspath(path)), **limit)  # bytes: non-UTF-8 names work
 
 
-def mesh_assembly(assembly, deflection=0.1, angle=0.5, max_edge=0.0, linear=None, angular=None):
-    """One contactcore.MeshResult (mesh, quality) per body, in order."""
-    options = core.contactcore.MeshOptions(deflection, angle, max_edge)
+def mesh_assembly(assembly, deflection=0.1, angle=0.5, max_edge=0.0, linear=None, angular=None,
+                  max_triangles=None):
+    """One contactcore.MeshResult (mesh, quality, failed_faces, invalid_reason) per body, in order.
+    Refused (InputError) before meshing when the sizes asked need more than `max_triangles`
+    (estimated; default DEFAULT_MAX_TRIANGLES)."""
+    options = core.contactcore.MeshOptions(deflection, angle, max_edge, _max_triangles(max_triangles))
     return core.contactcore.mesh_assembly(assembly, options, linear, angular)
+
+
+def _max_triangles(value):
+    return float(DEFAULT_MAX_TRIANGLES if value is None else value)
+
+
+def _finite(value):
+    """A number for meshes.json: JSON has no NaN or infinity (null instead)."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
 
 
 def quality_report(quality, mesh):
@@ -32,17 +52,25 @@ def quality_report(quality, mesh):
     return {
         "triangles": quality.triangles,
         "watertight": quality.watertight,
-        "min_angle": quality.min_angle_deg,
-        "aspect_ratio": {"p50": quality.aspect_p50, "p90": quality.aspect_p90, "p99": quality.aspect_p99,
-                         "max": quality.aspect_max},
-        "max_edge_length": quality.max_edge_length,
+        "min_angle": _finite(quality.min_angle_deg),
+        "aspect_ratio": {"p50": _finite(quality.aspect_p50), "p90": _finite(quality.aspect_p90),
+                         "p99": _finite(quality.aspect_p99), "max": _finite(quality.aspect_max)},
+        "max_edge_length": _finite(quality.max_edge_length),
         "partitions": mesh.partition_count,
     }
 
 
 def body_report(name, result):
-    """The per-body entry of meshes.json."""
-    return {"name": name, **quality_report(result.quality, result.mesh)}
+    """The per-body entry of meshes.json; "invalid" ({"reason", "faces"}) when the body is not a
+    valid solid (meshed all the same), "failed_faces" ([{"face", "message"}]) for faces OCCT could
+    not tessellate (left out: the mesh is then not watertight)."""
+    entry = {"name": name, **quality_report(result.quality, result.mesh)}
+    if getattr(result, "invalid_reason", ""):
+        entry["invalid"] = {"reason": result.invalid_reason, "faces": list(result.invalid_faces)}
+    failed = getattr(result, "failed_faces", [])
+    if failed:
+        entry["failed_faces"] = [{"face": face, "message": message} for face, message in failed]
+    return entry
 
 
 def collision_options(deflection, angle):
@@ -52,11 +80,11 @@ def collision_options(deflection, angle):
 
 
 def simulation_models(assembly, deflection=0.1, angle=0.5, max_edge=0.0, simplify=0.0, envelope=0.0,
-                      linear=None, angular=None, bodies=None):
+                      linear=None, angular=None, bodies=None, max_triangles=None):
     """contactcore.SimulationModels of the bodies (all, or the given numbers): the view model (the
     original B-rep with the user's tessellation) and the collision model (without the features
     below `simplify` mm unless that leaves the `envelope`, tessellated coarser)."""
-    view = core.contactcore.MeshOptions(deflection, angle, max_edge)
+    view = core.contactcore.MeshOptions(deflection, angle, max_edge, _max_triangles(max_triangles))
     return core.contactcore.simulation_models(assembly, view, collision_options(deflection, angle), simplify,
                                               envelope, linear, angular, bodies)
 
@@ -77,37 +105,67 @@ def _unique_file(name, used, suffix=".ply"):
     return file_name
 
 
+def _stale_outputs(out_dir):
+    """The PLY files an earlier run listed in out_dir/meshes.json (plain names
+    inside out_dir only)."""
+    try:
+        with open(os.path.join(out_dir, "meshes.json"), encoding="utf-8") as stream:
+            earlier = json.load(stream)
+    except (OSError, ValueError):
+        return set()
+    names = set()
+    for body in earlier.get("bodies", []) if isinstance(earlier, dict) else []:
+        for entry in (body, body.get("collision") or {}) if isinstance(body, dict) else ():
+            name = entry.get("file") if isinstance(entry, dict) else None
+            if isinstance(name, str) and name.endswith(".ply") and name == os.path.basename(name) \
+                    and name not in (".", ".."):
+                names.add(name)
+    return names
+
+
+def _write_ply(mesh, out_dir, file_name):
+    with output_files.replaced(os.path.join(out_dir, file_name)) as temporary:
+        mesh.write_ply(temporary)
+
+
 def write_meshes(assembly, out_dir, deflection=0.1, angle=0.5, max_edge=0.0, linear=None, angular=None,
-                 simplify=0.0, envelope=0.0):
+                 simplify=0.0, envelope=0.0, max_triangles=None):
     """One PLY per body and out_dir/meshes.json; returns the JSON document. With `simplify` (mm),
     also each body's collision model (NAME.collision.ply, the "collision" entry), without the
     features below that size unless that leaves the `envelope` (mm): then from the original B-rep,
     with a "message" saying so. Each model's "hausdorff" is its distance to the original B-rep
-    (two-sided for a simplified model; for a plain tessellation its farthest point)."""
+    (two-sided for a simplified model; for a plain tessellation its farthest point).
+
+    Every file is written to a temporary name and renamed into place (output_files): never
+    through a symbolic link already there, never outside out_dir; meshes.json comes last, and the
+    PLY files an earlier run listed there that this run does not write again are removed."""
     os.makedirs(out_dir, exist_ok=True)
     bodies = []
     used = set()
     if simplify > 0:
-        results = simulation_models(assembly, deflection, angle, max_edge, simplify, envelope, linear, angular)
+        results = simulation_models(assembly, deflection, angle, max_edge, simplify, envelope, linear, angular,
+                                    max_triangles=max_triangles)
         views = [r.view for r in results]
+        # Invalid solids and faces left out are checked by mesh_assembly's pass only.
     else:
         results = None
-        views = mesh_assembly(assembly, deflection, angle, max_edge, linear, angular)
+        views = mesh_assembly(assembly, deflection, angle, max_edge, linear, angular, max_triangles)
+    stale = _stale_outputs(out_dir)
     for index, (body, view) in enumerate(zip(assembly.bodies, views)):
         file_name = _unique_file(body.name, used)
-        view.mesh.write_ply(os.path.join(out_dir, file_name))
+        _write_ply(view.mesh, out_dir, file_name)
         entry = body_report(body.name, view)
         entry["file"] = file_name
         if results is not None:
             models = results[index]
-            entry["hausdorff"] = models.view_deviation
+            entry["hausdorff"] = _finite(models.view_deviation)
             collision_file = _unique_file(body.name, used, ".collision.ply")
-            models.collision.mesh.write_ply(os.path.join(out_dir, collision_file))
+            _write_ply(models.collision.mesh, out_dir, collision_file)
             entry["collision"] = {
                 **quality_report(models.collision.quality, models.collision.mesh),
                 "file": collision_file,
                 "simplified": models.simplified,
-                "hausdorff": models.collision_hausdorff,
+                "hausdorff": _finite(models.collision_hausdorff),
                 "removed_faces": [f"Face{f}" for f in models.removed_faces],
                 "features_kept": models.features_kept,
                 "message": models.message,
@@ -118,16 +176,22 @@ def write_meshes(assembly, out_dir, deflection=0.1, angle=0.5, max_edge=0.0, lin
         options = collision_options(deflection, angle)
         document.update({"simplify": simplify, "envelope": envelope,
                          "collision_deflection": options.deflection, "collision_angle": options.angle})
-    with open(os.path.join(out_dir, "meshes.json"), "w") as stream:
-        json.dump(document, stream, indent=2)
+    with output_files.output_file(os.path.join(out_dir, "meshes.json"), encoding="utf-8") as stream:
+        json.dump(document, stream, indent=2, allow_nan=False)
+    for name in stale - used:
+        try:
+            os.unlink(os.path.join(out_dir, name))
+        except FileNotFoundError:
+            pass
     return document
 
 
-def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.0, linear=None, angular=None):
+def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.0, linear=None, angular=None, max_triangles=None):
     """contactcore.DisassemblyResult: the removal sequence, blocking graphs, or the reason none exists.
     `tolerance` (mm; 0: twice the deflection): how deep a swept part must cut into another to be
-    blocked (two tessellations of one surface cross by up to their deflection)."""
-    options = core.contactcore.MeshOptions(deflection, angle, 0.0)
+    blocked (two tessellations of one surface cross by up to their deflection); refused
+    (ArgumentError) unless below half the thinnest part's thickness."""
+    options = core.contactcore.MeshOptions(deflection, angle, 0.0, _max_triangles(max_triangles))
     return core.contactcore.disassemble(assembly, options, tolerance, linear, angular)
 
 
@@ -141,6 +205,7 @@ def disassembly_json(assembly, result=None):
         "base": names[result.base] if result.base >= 0 else None,
         "complete": result.complete,
         "reason": result.reason,
+        **({"messages": list(result.messages)} if getattr(result, "messages", None) else {}),
     }
 
 
@@ -154,4 +219,6 @@ def disassembly_table(document):
         lines.append(f"     {document['base']} stays (the base)")
     else:
         lines.append(f"Stopped: {document['reason']}")
+    for message in document.get("messages", []):
+        lines.append(f"  note: {message}")
     return "\n".join(lines)

@@ -56,23 +56,131 @@ def check_script(script, source="script"):
     return checked
 
 
+# Limits of a script file, checked before the trial starts (issue 25): the
+# lockstep loop simulates every millisecond of the script before it answers.
+MAX_SCRIPT_BYTES = 1_000_000      # the file
+MAX_SCRIPT_KEYS = 10_000          # hand keys
+MAX_SCRIPT_DURATION_S = 600.0     # the last key's time
+MAX_SCRIPT_NESTING = 16           # arrays and objects inside each other
+MAX_SCRIPT_OFFSET = 1e6           # |translate| in mm, |rotate_deg| in degrees
+MAX_SCRIPT_DIGITS = 30            # digits of one number
+
+
+def _nesting_depth(text):
+    """The deepest nesting of arrays and objects, strings skipped (json
+    would recurse into 200,000 nested arrays until RecursionError)."""
+    depth = deepest = 0
+    in_string = escaped = False
+    for char in text:
+        if in_string:
+            if escaped:
+                escaped = False
+            elif char == "\\":
+                escaped = True
+            elif char == '"':
+                in_string = False
+        elif char == '"':
+            in_string = True
+        elif char in "[{":
+            depth += 1
+            deepest = max(deepest, depth)
+            if deepest > MAX_SCRIPT_NESTING:
+                return deepest
+        elif char in "]}":
+            depth -= 1
+    return deepest
+
+
 def read_script(path):
+    """The script file, checked: UTF-8 JSON of at most MAX_SCRIPT_BYTES, nested at most
+    MAX_SCRIPT_NESTING deep, numbers finite and short, at most MAX_SCRIPT_KEYS hand keys over at
+    most MAX_SCRIPT_DURATION_S seconds, offsets within MAX_SCRIPT_OFFSET. Raises InputError naming
+    the file and what is wrong."""
+    where = f"script '{path}'"
+
+    def refuse(message):
+        return core.InputError(f"{where}: {message}")
     try:
-        with open(path, encoding="utf-8") as stream:
-            return check_script(json.load(stream), f"script '{path}'")
+        with open(path, "rb") as stream:
+            data = stream.read(MAX_SCRIPT_BYTES + 1)
     except OSError as error:
-        raise core.ContactsError(f"cannot read script '{path}': {error.strerror}") from error
+        raise core.InputError(f"cannot read script '{path}': {error.strerror}") from error
+    if len(data) > MAX_SCRIPT_BYTES:
+        raise refuse(f"larger than {MAX_SCRIPT_BYTES} bytes")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as error:
+        raise refuse(f"not UTF-8 text (byte 0x{data[error.start]:02x} at offset {error.start})") from None
+    if _nesting_depth(text) > MAX_SCRIPT_NESTING:
+        raise refuse(f"nested deeper than {MAX_SCRIPT_NESTING} levels")
+
+    def number(literal):
+        if len(literal.lstrip("-").replace(".", "").split("e")[0].split("E")[0]) > MAX_SCRIPT_DIGITS:
+            raise refuse(f"the number {literal[:20]}... has more than {MAX_SCRIPT_DIGITS} digits")
+        value = float(literal)
+        if value != value or value in (float("inf"), float("-inf")):
+            raise refuse(f"the number {literal[:40]} is not finite")
+        return value
+
+    def constant(name):
+        raise refuse(f"{name} is not a number a script may hold (finite numbers only)")
+    try:
+        loaded = json.loads(text, parse_int=number, parse_float=number, parse_constant=constant)
     except json.JSONDecodeError as error:
-        raise core.ContactsError(f"script '{path}': not JSON ({error})") from error
+        raise refuse(f"not JSON ({error})") from error
+    except RecursionError:
+        raise refuse(f"nested deeper than {MAX_SCRIPT_NESTING} levels") from None
+    if isinstance(loaded, dict) and isinstance(loaded.get("hand"), list) and len(loaded["hand"]) > MAX_SCRIPT_KEYS:
+        raise refuse(f"{len(loaded['hand'])} hand keys (at most {MAX_SCRIPT_KEYS})")
+    try:
+        checked = check_script(loaded, where)
+    except core.InputError:
+        raise
+    except core.ContactsError as error:
+        raise core.InputError(str(error)) from None
+    last = checked["hand"][-1]["t"]
+    if last > MAX_SCRIPT_DURATION_S:
+        raise refuse(f"hand[{len(checked['hand']) - 1}].t = {last:g} s: the script lasts at most "
+                     f"{MAX_SCRIPT_DURATION_S:g} s")
+    for name, values in [("start.translate", checked["start"]["translate"]),
+                         ("start.rotate_deg", checked["start"]["rotate_deg"])] + \
+            [(f"hand[{i}].{field}", key[field]) for i, key in enumerate(checked["hand"])
+             for field in ("translate", "rotate_deg")]:
+        if any(abs(v) > MAX_SCRIPT_OFFSET for v in values):
+            raise refuse(f"{name} = {values}: beyond {MAX_SCRIPT_OFFSET:g} (mm or degrees)")
+    return checked
 
 
 def make_scene(assembly, part, progress=None, **options):
     return haptics().TrialScene(assembly, part, progress=progress, **options)
 
 
-def run(scene, script, realtime=False, record_every=10, **options):
-    """The trial's result dict (see `contacts trial --json`) with its 'path'."""
-    return haptics().run_trial(scene, check_script(script), realtime=realtime, record_every=record_every, **options)
+DEVICES = ("sim", "spacemouse", "hid-ff", "replay")
+
+
+def run(scene, script, realtime=False, record_every=10, device="sim", hid_file=None, record_hid=None,
+        duration=None, **options):
+    """The trial's result dict (see `contacts trial --json`) with its 'path'.
+
+    device: 'sim' (the scripted simulated hand), 'spacemouse' or 'hid-ff'
+    (hardware, real time; `record_hid` a file for the raw reports), 'replay'
+    (`hid_file`, a recording). Hardware that is not there raises
+    haptics().DeviceUnavailable, whose `devices` lists the HID devices seen.
+    A device other than 'sim' needs no hand keys: the script gives the start."""
+    if device == "sim" or script is not None and script.get("hand"):
+        script = check_script(script)
+    else:
+        script = {"start": check_script({"start": (script or {}).get("start", {}), "hand": [{"t": 0}]})["start"]}
+    return haptics().run_trial(scene, script, realtime=realtime, record_every=record_every, device=device,
+                               hid_file=hid_file, record_hid=record_hid, duration=duration, **options)
+
+
+def describe_devices_seen(devices):
+    """One line per HID device seen (for "no device" messages), or a line saying there were none."""
+    if not devices:
+        return "no HID devices seen"
+    return "\n".join(f"{d['vendor']:04x}:{d['product_id']:04x} {d['manufacturer']} {d['product']} ({d['path']})"
+                     for d in devices)
 
 
 def write_path(path_samples, target):

@@ -28,20 +28,21 @@ def find_contacts_in_document(doc, objects=None, linear=None, angular=None, prog
     return result, bodies
 
 
-def joints_in_shapes(named_shapes, source="shapes", linear=None, angular=None, ground=None, clearance_gap=0.0):
+def joints_in_shapes(named_shapes, source="shapes", linear=None, angular=None, ground=None, clearance_gap=0.0,
+                     annotations=None):
     """(analysis.Analysis, Joints) of (name, Part.Shape) pairs placed globally."""
     return joints.joints_in_assembly(assembly_from_shapes(named_shapes), source, linear, angular, ground=ground,
-                                     clearance_gap=clearance_gap)
+                                     clearance_gap=clearance_gap, annotations=annotations)
 
 
 def joints_in_document(doc, objects=None, linear=None, angular=None, progress=None, ground=None,
-                       clearance_gap=0.0, max_pairs=None, check_solids="quick"):
+                       clearance_gap=0.0, max_pairs=None, check_solids="quick", annotations=None):
     """(analysis.Analysis, Joints, [DocumentBody]) of a FreeCAD document's visible solids."""
     messages = []
     assembly, bodies = document_bodies.assembly_from_document(doc, objects, messages)
     result, found = joints.joints_in_assembly(
         assembly, doc.Label, linear, angular, progress,
         face_name=lambda body, index: bodies[body].object_face_name(index), ground=ground,
-        clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids)
+        clearance_gap=clearance_gap, max_pairs=max_pairs, check_solids=check_solids, annotations=annotations)
     result.messages.extend(messages)
     return result, found, bodies

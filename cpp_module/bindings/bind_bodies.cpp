@@ -23,9 +23,9 @@ MassProperties mass_of(const Body& body) {
 
 void bind_bodies(py::module_& m) {
   py::class_<Body>(m, "Body", "A solid of the assembly with its global placement (mm).")
-      .def_readonly("name", &Body::name)
-      .def_readonly("path", &Body::path)
-      .def_property_readonly("brep", [](const Body& b) { return without_gil([&] { return shape_to_brep(b.shape); }); },
+      .def_readonly("name", &Body::name, "unique within the assembly")
+      .def_readonly("path", &Body::path, "assembly tree path, 'Root/Sub/Part' (STEP) or the caller's")
+      .def_property_readonly("brep", [](const Body& b) { return call_guarded([&] { return shape_to_brep(b.shape); }); },
                              "The located shape as BRep text (Part.Shape.importBrepFromString).")
       .def_property_readonly("volume", [](const Body& b) { return mass_of(b).volume; },
                              "Volume, mm^3 (computed on first use, then kept).")
@@ -34,11 +34,13 @@ void bind_bodies(py::module_& m) {
       .def("__repr__", [](const Body& b) { return "<Body '" + b.name + "' path='" + b.path + "'>"; });
 
   py::class_<Assembly>(m, "Assembly", "Bodies of an assembly, in mm, with the source file's unit.")
-      .def_readonly("bodies", &Assembly::bodies)
-      .def_readonly("units", &Assembly::units)
-      .def_readonly("source_unit_in_mm", &Assembly::source_unit_in_mm)
-      .def_readonly("messages", &Assembly::messages)
-      .def("to_brep", [](const Assembly& a) { return without_gil([&] { return shape_to_brep(assembly_compound(a)); }); },
+      .def_readonly("bodies", &Assembly::bodies, "[Body], in the file's order")
+      .def_readonly("units", &Assembly::units, "unit of the source file ('mm', 'inch', ...); shapes are always in mm")
+      .def_readonly("source_unit_in_mm", &Assembly::source_unit_in_mm,
+          "mm per unit of the source file (25.4 for an inch file)")
+      .def_readonly("messages", &Assembly::messages, "what was skipped and why (open shells, ...)")
+      .def_readonly("reader", &Assembly::reader, "STEP: 'products' (the fast read) or 'xde' (its fallback); else ''")
+      .def("to_brep", [](const Assembly& a) { return call_guarded([&] { return shape_to_brep(assembly_compound(a)); }); },
            "All bodies as one compound, BRep text.")
       .def(
           "compute_mass_properties",
@@ -55,24 +57,35 @@ void bind_bodies(py::module_& m) {
 
   m.def(
       "read_step",
-      [](const std::string& path, py::object progress) {
+      [](const std::string& path, py::object progress, const std::string& reader, std::size_t max_bodies) {
+        if (reader != "products" && reader != "xde")
+          raise_argument_error("reader must be 'products' or 'xde', not '" + reader + "'");
         std::unique_ptr<PythonProgress> reporter;
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         AssemblyResult result;
         const Status status = guarded([&] {
-          result = read_step(path, reporter.get());
+          result = read_step(path, reporter.get(), reader == "xde" ? StepReadMode::Xde : StepReadMode::Products,
+                             max_bodies);
           return result.status;
         });
         if (reporter) reporter->rethrow_if_raised();
         raise_if_failed(status);
         return result.assembly;
       },
-      py::arg("path"), py::arg("progress") = py::none(),
-      "Reads a STEP file through OCCT's XDE reader: product names, instances, units (shapes in mm). "
+      py::arg("path"), py::arg("progress") = py::none(), py::arg("reader") = "products",
+      py::arg("max_bodies") = std::size_t{1'000'000},
+      "Reads a STEP file: product names, instances, units (shapes in mm). reader='products' (the default) "
+      "transfers each product once and places its instances, falling back to OCCT's XDE reader (said in "
+      "Assembly.messages and by a progress stage 'read (XDE fallback)') on a product structure it does not "
+      "know; reader='xde' uses the XDE reader alone. Assembly.reader says which read the file. "
       "`progress(\"read\", fraction)` returning False cancels (raises contactcore.Cancelled), also "
-      "inside OCCT's transfer.");
+      "inside OCCT's transfer. An assembly expanding to more than `max_bodies` instances is refused "
+      "(InputError) before the transfer.");
 
-  m.def("unique_names", &unique_names, py::arg("names"),
+  m.def(
+      "unique_names",
+      [](const std::vector<std::string>& names) { return call_guarded([&] { return unique_names(names); }); },
+      py::arg("names"),
         "Names made unique by appending '.2', '.3', ... to repeats, in order (linear time).");
 
   m.def(

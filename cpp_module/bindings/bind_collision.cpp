@@ -13,9 +13,10 @@ RigidTransform to_transform(const py::object& placement) {
   if (placement.is_none()) return t;
   const auto pair = placement.cast<std::pair<std::vector<double>, std::vector<double>>>();
   if (pair.first.size() != 9 || pair.second.size() != 3)
-    throw py::value_error("a placement is ((9 rotation values, row-major), (tx, ty, tz))");
+    raise_argument_error("a placement is ((9 rotation values, row-major), (tx, ty, tz))");
   std::copy(pair.first.begin(), pair.first.end(), t.rotation.begin());
   std::copy(pair.second.begin(), pair.second.end(), t.translation.begin());
+  raise_if_failed(check_rigid_transform(t));  // ArgumentError: NaN, infinite, scaled or mirrored
   return t;
 }
 
@@ -23,7 +24,7 @@ QueryKind to_kind(const std::string& kind) {
   if (kind == "intersect") return QueryKind::Intersect;
   if (kind == "distance") return QueryKind::Distance;
   if (kind == "penetration") return QueryKind::Penetration;
-  throw py::value_error("query kind is 'intersect', 'distance' or 'penetration', not '" + kind + "'");
+  raise_argument_error("query kind is 'intersect', 'distance' or 'penetration', not '" + kind + "'");
 }
 
 }  // namespace
@@ -31,33 +32,37 @@ QueryKind to_kind(const std::string& kind) {
 void bind_collision(py::module_& m) {
   py::class_<CollisionModel, std::shared_ptr<CollisionModel>>(m, "CollisionModel",
                                                               "Per-partition BVHs of a tagged mesh (FCL)")
-      .def_property_readonly("partition_count", &CollisionModel::partition_count)
-      .def_property_readonly("triangle_count", &CollisionModel::triangle_count);
+      .def_property_readonly("partition_count", &CollisionModel::partition_count, "number of partitions (one BVH each)")
+      .def_property_readonly("triangle_count", &CollisionModel::triangle_count, "number of triangles");
 
   m.def(
       "build_collision_model",
       [](const TaggedMesh& mesh) {
-        CollisionModelResult result = build_collision_model(mesh);
-        raise_if_failed(result.status);
+        CollisionModelResult result;
+        raise_if_failed(guarded([&] {
+          result = build_collision_model(mesh);
+          return result.status;
+        }));
         return std::const_pointer_cast<CollisionModel>(result.model);
       },
       py::arg("mesh"));
 
   py::class_<QueryResult>(m, "QueryResult", "Intersection, distance, closest points, depth of a pair query")
-      .def_readonly("intersecting", &QueryResult::intersecting)
-      .def_readonly("distance", &QueryResult::distance)
-      .def_readonly("point_a", &QueryResult::point_a)
-      .def_readonly("point_b", &QueryResult::point_b)
-      .def_readonly("triangle_a", &QueryResult::triangle_a)
-      .def_readonly("triangle_b", &QueryResult::triangle_b)
-      .def_readonly("face_a", &QueryResult::face_a)
-      .def_readonly("face_b", &QueryResult::face_b)
-      .def_readonly("partition_a", &QueryResult::partition_a)
-      .def_readonly("partition_b", &QueryResult::partition_b)
-      .def_readonly("depth", &QueryResult::depth)
-      .def_readonly("direction", &QueryResult::direction)
-      .def_readonly("partitions_a", &QueryResult::partitions_a)
-      .def_readonly("partitions_b", &QueryResult::partitions_b)
+      .def_readonly("intersecting", &QueryResult::intersecting, "the two meshes intersect")
+      .def_readonly("distance", &QueryResult::distance, "mm >= 0; 0 when intersecting; infinity when not measured")
+      .def_readonly("point_a", &QueryResult::point_a, "(x, y, z) mm, world: closest (or touching) point of A")
+      .def_readonly("point_b", &QueryResult::point_b, "(x, y, z) mm, world: closest (or touching) point of B")
+      .def_readonly("triangle_a", &QueryResult::triangle_a, "index into A's triangles, -1: none")
+      .def_readonly("triangle_b", &QueryResult::triangle_b, "index into B's triangles, -1: none")
+      .def_readonly("face_a", &QueryResult::face_a, "1-based FaceN of triangle_a")
+      .def_readonly("face_b", &QueryResult::face_b, "1-based FaceN of triangle_b")
+      .def_readonly("partition_a", &QueryResult::partition_a, "partition of triangle_a, -1: none")
+      .def_readonly("partition_b", &QueryResult::partition_b, "partition of triangle_b, -1: none")
+      .def_readonly("depth", &QueryResult::depth, "mm: penetration depth (kind 'penetration'), 0 when not penetrating")
+      .def_readonly("direction", &QueryResult::direction,
+          "unit (x, y, z) in which A must move to reduce the penetration")
+      .def_readonly("partitions_a", &QueryResult::partitions_a, "A's partitions in the intersection, ascending")
+      .def_readonly("partitions_b", &QueryResult::partitions_b, "B's partitions in the intersection, ascending")
       .def("__repr__", [](const QueryResult& r) {
         return std::string("<QueryResult ") + (r.intersecting ? "intersecting" : "apart") +
                " distance=" + std::to_string(r.distance) + " depth=" + std::to_string(r.depth) + ">";
@@ -65,10 +70,13 @@ void bind_collision(py::module_& m) {
 
   py::class_<CollisionPair>(m, "CollisionPair", "Two models, their switched-off partitions, one query at a time")
       .def(py::init([](std::shared_ptr<CollisionModel> a, std::shared_ptr<CollisionModel> b) {
-             return std::make_unique<CollisionPair>(a, b);
+             return call_guarded([&] { return std::make_unique<CollisionPair>(a, b); });
            }),
            py::arg("a"), py::arg("b"))
-      .def("set_partition_enabled", &CollisionPair::set_partition_enabled, py::arg("side"), py::arg("partition"),
+      .def("set_partition_enabled",
+           [](CollisionPair& pair, int side, int partition, bool enabled) {
+             call_guarded([&] { pair.set_partition_enabled(side, partition, enabled); });
+           }, py::arg("side"), py::arg("partition"),
            py::arg("enabled"), "side 0: A, 1: B")
       .def("enable_all", &CollisionPair::enable_all)
       .def("partition_enabled", &CollisionPair::partition_enabled, py::arg("side"), py::arg("partition"))
@@ -87,12 +95,11 @@ void bind_collision(py::module_& m) {
           [](CollisionPair& pair, py::object place_a, py::object place_b, const std::string& kind) {
             const RigidTransform a = to_transform(place_a), b = to_transform(place_b);
             const QueryKind k = to_kind(kind);
-            QueryResult result;
-            {
-              py::gil_scoped_release release;
+            return call_guarded([&] {
+              QueryResult result;
               pair.query(a, b, k, result);
-            }
-            return result;
+              return result;
+            });
           },
           py::arg("place_a") = py::none(), py::arg("place_b") = py::none(), py::arg("kind") = "distance",
           "Placements: None or ((9 rotation values, row-major), (tx, ty, tz)); kind 'intersect', "

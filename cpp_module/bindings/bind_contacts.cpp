@@ -5,6 +5,7 @@
 #include <optional>
 #include <sstream>
 
+#include "contactcore/common/angles.h"
 #include "contactcore/contacts/contacts.h"
 
 namespace contactcore::bindings {
@@ -20,39 +21,72 @@ void bind_contacts(py::module_& m) {
       .value("TRF", ContactType::TRF);
 
   py::class_<Contact>(m, "Contact", "A functional contact between two bodies.")
-      .def_readonly("type", &Contact::type)
-      .def_property_readonly("type_name", [](const Contact& c) { return std::string(to_string(c.type)); })
-      .def_readonly("body_a", &Contact::body_a)
-      .def_readonly("body_b", &Contact::body_b)
-      .def_readonly("partition_a", &Contact::partition_a)
-      .def_readonly("partition_b", &Contact::partition_b)
-      .def_readonly("faces_a", &Contact::faces_a)
-      .def_readonly("faces_b", &Contact::faces_b)
-      .def_property_readonly("face_names_a", [](const Contact& c) { return face_names(c.faces_a); })
-      .def_property_readonly("face_names_b", [](const Contact& c) { return face_names(c.faces_b); })
-      .def_property_readonly("point", [](const Contact& c) { return to_tuple(c.point); })
-      .def_property_readonly("direction", [](const Contact& c) { return to_tuple(c.direction); })
-      .def_readonly("radius", &Contact::radius)
-      .def_readonly("half_angle", &Contact::half_angle)
-      .def_readonly("area", &Contact::area)
-      .def_readonly("partial", &Contact::partial)
-      .def_readonly("span", &Contact::span)
-      .def_readonly("tolerances", &Contact::tolerances)
+      .def_readonly("type", &Contact::type, "ContactType")
+      .def_property_readonly("type_name", [](const Contact& c) { return std::string(to_string(c.type)); },
+          "'PLF', 'CLJ', 'CJU', 'SPF', 'LAF', 'SPT' or 'TRF'")
+      .def_readonly("body_a", &Contact::body_a, "index into Assembly.bodies, body_a < body_b")
+      .def_readonly("body_b", &Contact::body_b, "index into Assembly.bodies")
+      .def_readonly("partition_a", &Contact::partition_a, "partition id within body_a")
+      .def_readonly("partition_b", &Contact::partition_b, "partition id within body_b")
+      .def_readonly("faces_a", &Contact::faces_a, "1-based FaceN indices of body_a's faces in contact")
+      .def_readonly("faces_b", &Contact::faces_b, "1-based FaceN indices of body_b's faces in contact")
+      .def_property_readonly("face_names_a", [](const Contact& c) { return face_names(c.faces_a); },
+          "['FaceN', ...] of body_a")
+      .def_property_readonly("face_names_b", [](const Contact& c) { return face_names(c.faces_b); },
+          "['FaceN', ...] of body_b")
+      .def_property_readonly("point", [](const Contact& c) { return to_tuple(c.point); },
+          "(x, y, z) mm: PLF a point of the common area; revolution: on the axis; sphere: centre")
+      .def_property_readonly("direction", [](const Contact& c) { return to_tuple(c.direction); },
+          "unit (x, y, z): PLF outward normal of body_a; revolution: axis")
+      .def_readonly("radius", &Contact::radius, "mm: CLJ, SPF, LAF, SPT (ball radius), TRF (minor radius); else 0")
+      .def_readonly("half_angle", &Contact::half_angle, "radians: CJU; else 0")
+      .def_readonly("area", &Contact::area, "mm^2, exact common area (LAF, SPT: 0, they touch along a circle)")
+      .def_readonly("partial", &Contact::partial, "a revolution contact spanning less than pi radians")
+      .def_readonly("span", &Contact::span, "radians: common angular span (revolution contacts)")
+      .def_readonly("tolerances", &Contact::tolerances, "Tolerances used")
+      .def_property_readonly("region_axis", [](const Contact& c) { return to_tuple(c.region_axis); },
+                             "SPF, LAF, SPT: middle of the directions from the centre to the common region")
+      .def_readonly("region_angle", &Contact::region_angle,
+                    "SPF, LAF, SPT: the common region lies within this angle of region_axis (pi: all around)")
       .def("__repr__", [](const Contact& c) {
         std::ostringstream out;
         out << "<Contact " << to_string(c.type) << " bodies " << c.body_a << "-" << c.body_b
             << " area=" << c.area;
         if (c.radius > 0) out << " r=" << c.radius;
-        if (c.partial) out << " partial span=" << c.span * 180.0 / M_PI << "deg";
+        if (c.partial) out << " partial span=" << c.span * 180.0 / kPi << "deg";
         out << ">";
         return out.str();
       });
 
+  py::class_<HigherPair>(m, "HigherPair", "A point or line contact (apart from the surface contacts).")
+      .def_property_readonly("type", [](const HigherPair& h) { return std::string(to_string(h.type)); })
+      .def_property_readonly("kind", [](const HigherPair& h) { return std::string(h.is_line() ? "line" : "point"); })
+      .def_readonly("body_a", &HigherPair::body_a)
+      .def_readonly("body_b", &HigherPair::body_b)
+      .def_readonly("partition_a", &HigherPair::partition_a)
+      .def_readonly("partition_b", &HigherPair::partition_b)
+      .def_readonly("faces_a", &HigherPair::faces_a)
+      .def_readonly("faces_b", &HigherPair::faces_b)
+      .def_property_readonly("face_names_a", [](const HigherPair& h) { return face_names(h.faces_a); })
+      .def_property_readonly("face_names_b", [](const HigherPair& h) { return face_names(h.faces_b); })
+      .def_property_readonly("point", [](const HigherPair& h) { return to_tuple(h.point); })
+      .def_property_readonly("normal", [](const HigherPair& h) { return to_tuple(h.normal); },
+                             "out of body a's material")
+      .def_property_readonly("start", [](const HigherPair& h) { return to_tuple(h.start); })
+      .def_property_readonly("end", [](const HigherPair& h) { return to_tuple(h.end); })
+      .def_readonly("length", &HigherPair::length)
+      .def("__repr__", [](const HigherPair& h) {
+        return std::string("<HigherPair ") + to_string(h.type) + " bodies " + std::to_string(h.body_a) + "-" +
+               std::to_string(h.body_b) + ">";
+      });
+
   py::class_<StageTimes>(m, "StageTimes", "Seconds spent in each stage.")
-      .def_readonly("partitions", &StageTimes::partitions)
-      .def_readonly("broad_phase", &StageTimes::broad_phase)
-      .def_readonly("candidates", &StageTimes::candidates)
-      .def_readonly("area", &StageTimes::area)
+      .def_readonly("partitions", &StageTimes::partitions, "seconds partitioning the bodies")
+      .def_readonly("broad_phase", &StageTimes::broad_phase, "seconds finding body pairs with meeting boxes")
+      .def_readonly("candidates", &StageTimes::candidates, "seconds finding candidate partition pairs")
+      .def_readonly("area", &StageTimes::area, "seconds testing candidates (common areas)")
+      .def_readonly("validity", &StageTimes::validity, "seconds of the solid checks")
+      .def_readonly("interferences", &StageTimes::interferences, "seconds of the interference pass")
       .def("__repr__", [](const StageTimes& t) {
         std::ostringstream out;
         out << "<StageTimes partitions=" << t.partitions << " broad_phase=" << t.broad_phase
@@ -61,21 +95,21 @@ void bind_contacts(py::module_& m) {
       });
 
   py::class_<SkippedPair>(m, "SkippedPair", "A candidate pair whose test failed: skipped, the rest kept.")
-      .def_readonly("body_a", &SkippedPair::body_a)
-      .def_readonly("body_b", &SkippedPair::body_b)
-      .def_readonly("partition_a", &SkippedPair::partition_a)
-      .def_readonly("partition_b", &SkippedPair::partition_b)
-      .def_readonly("faces_a", &SkippedPair::faces_a)
-      .def_readonly("faces_b", &SkippedPair::faces_b)
-      .def_readonly("message", &SkippedPair::message)
+      .def_readonly("body_a", &SkippedPair::body_a, "index into Assembly.bodies")
+      .def_readonly("body_b", &SkippedPair::body_b, "index into Assembly.bodies")
+      .def_readonly("partition_a", &SkippedPair::partition_a, "partition id within body_a")
+      .def_readonly("partition_b", &SkippedPair::partition_b, "partition id within body_b")
+      .def_readonly("faces_a", &SkippedPair::faces_a, "1-based FaceN of partition_a")
+      .def_readonly("faces_b", &SkippedPair::faces_b, "1-based FaceN of partition_b")
+      .def_readonly("message", &SkippedPair::message, "why the test failed (OCCT's message)")
       .def("__repr__", [](const SkippedPair& s) {
         return "<SkippedPair bodies " + std::to_string(s.body_a) + "-" + std::to_string(s.body_b) + ": " +
                s.message + ">";
       });
 
   py::class_<Interference>(m, "Interference", "Two bodies whose material overlaps (never a contact).")
-      .def_readonly("body_a", &Interference::body_a)
-      .def_readonly("body_b", &Interference::body_b)
+      .def_readonly("body_a", &Interference::body_a, "index into Assembly.bodies, body_a < body_b")
+      .def_readonly("body_b", &Interference::body_b, "index into Assembly.bodies")
       .def_readonly("volume", &Interference::volume, "common volume, mm^3")
       .def("__repr__", [](const Interference& i) {
         return "<Interference bodies " + std::to_string(i.body_a) + "-" + std::to_string(i.body_b) +
@@ -83,22 +117,23 @@ void bind_contacts(py::module_& m) {
       });
 
   py::class_<InvalidBody>(m, "InvalidBody", "A body whose solid is not valid (BRepCheck).")
-      .def_readonly("body", &InvalidBody::body)
+      .def_readonly("body", &InvalidBody::body, "index into Assembly.bodies")
       .def_readonly("faces", &InvalidBody::faces, "1-based FaceN where the fault lies")
-      .def_readonly("reason", &InvalidBody::reason);
+      .def_readonly("reason", &InvalidBody::reason, "what is wrong with the solid");
 
   py::class_<ContactsResult>(m, "ContactsResult", "Contacts of an assembly and what led to them.")
-      .def_readonly("interferences", &ContactsResult::interferences)
-      .def_readonly("invalid_bodies", &ContactsResult::invalid_bodies)
-      .def_readonly("tolerances", &ContactsResult::tolerances)
-      .def_readonly("partitions", &ContactsResult::partitions)
-      .def_readonly("body_pairs", &ContactsResult::body_pairs)
-      .def_readonly("candidates", &ContactsResult::candidates)
-      .def_readonly("contacts", &ContactsResult::contacts)
-      .def_readonly("skipped", &ContactsResult::skipped)
-      .def_readonly("messages", &ContactsResult::messages)
-      .def_readonly("clearances", &ContactsResult::clearances)
-      .def_readonly("times", &ContactsResult::times)
+      .def_readonly("interferences", &ContactsResult::interferences, "[Interference]: bodies whose material overlaps")
+      .def_readonly("invalid_bodies", &ContactsResult::invalid_bodies, "[InvalidBody]: solids that are not valid")
+      .def_readonly("tolerances", &ContactsResult::tolerances, "Tolerances used")
+      .def_readonly("partitions", &ContactsResult::partitions, "[BodyPartitions], one per body")
+      .def_readonly("body_pairs", &ContactsResult::body_pairs, "[(i, j)] with meeting boxes, i < j (broad phase)")
+      .def_readonly("candidates", &ContactsResult::candidates, "number of candidate partition pairs tested")
+      .def_readonly("contacts", &ContactsResult::contacts, "[Contact]")
+      .def_readonly("higher_pairs", &ContactsResult::higher_pairs, "[HigherPair]: point and line contacts, apart from the contacts")
+      .def_readonly("skipped", &ContactsResult::skipped, "[SkippedPair]: candidate pairs whose test failed")
+      .def_readonly("messages", &ContactsResult::messages, "warnings (OCCT's, bodies skipped)")
+      .def_readonly("clearances", &ContactsResult::clearances, "[Clearance] (with clearance_gap > 0)")
+      .def_readonly("times", &ContactsResult::times, "StageTimes")
       .def("__repr__", [](const ContactsResult& r) {
         return "<ContactsResult " + std::to_string(r.contacts.size()) + " contacts, " +
                std::to_string(r.body_pairs.size()) + " body pairs, " + std::to_string(r.candidates) +
@@ -112,8 +147,7 @@ void bind_contacts(py::module_& m) {
          double clearance_gap, const std::string& check_solids) {
         ContactOptions options;
         if (check_solids != "quick" && check_solids != "full")
-          raise_if_failed(Status::failure(StatusCode::InvalidArgument,
-                                          "check_solids must be 'quick' or 'full', not '" + check_solids + "'"));
+          raise_argument_error("check_solids must be 'quick' or 'full', not '" + check_solids + "'");
         options.solid_checks = check_solids == "full" ? SolidChecks::Full : SolidChecks::Quick;
         options.clearance_gap = clearance_gap;
         options.linear = linear;
@@ -156,7 +190,8 @@ void bind_contacts(py::module_& m) {
           }
           return out;
         };
-        return common_area(convert(a), convert(b), tol);
+        const std::vector<Polygon2> loops_a = convert(a), loops_b = convert(b);
+        return call_guarded([&] { return common_area(loops_a, loops_b, tol); });
       },
       py::arg("a"), py::arg("b"), py::arg("tol") = 1e-9,
       "Area common to two sets of 2D loops (outer counter-clockwise, holes clockwise).");

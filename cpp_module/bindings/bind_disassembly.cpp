@@ -6,16 +6,18 @@ namespace contactcore::bindings {
 
 void bind_disassembly(py::module_& m) {
   py::class_<DisassemblyStep>(m, "DisassemblyStep", "Parts moved together along one direction")
-      .def_readonly("parts", &DisassemblyStep::parts)
-      .def_readonly("direction", &DisassemblyStep::direction);
+      .def_readonly("parts", &DisassemblyStep::parts, "part indices moved together, ascending")
+      .def_readonly("direction", &DisassemblyStep::direction, "unit (x, y, z)");
 
   py::class_<DisassemblyResult>(m, "DisassemblyResult", "Removal order, blocking graphs, or why none exists")
-      .def_readonly("steps", &DisassemblyResult::steps)
-      .def_readonly("base", &DisassemblyResult::base)
-      .def_readonly("complete", &DisassemblyResult::complete)
-      .def_readonly("reason", &DisassemblyResult::reason)
-      .def_readonly("directions", &DisassemblyResult::directions)
-      .def_readonly("blocking", &DisassemblyResult::blocking, "blocking[d][i]: parts blocking part i along directions[d]");
+      .def_readonly("steps", &DisassemblyResult::steps, "[DisassemblyStep] in removal order (the base is not a step)")
+      .def_readonly("base", &DisassemblyResult::base, "the part left, -1 when the sequence stops early")
+      .def_readonly("complete", &DisassemblyResult::complete, "every part but the base removed")
+      .def_readonly("reason", &DisassemblyResult::reason, "why no sequence exists (when not complete)")
+      .def_readonly("messages", &DisassemblyResult::messages, "warnings (faces left out, invalid solids)")
+      .def_readonly("directions", &DisassemblyResult::directions, "[unit (x, y, z)]: every candidate direction used")
+      .def_readonly("blocking", &DisassemblyResult::blocking,
+          "blocking[d][i]: parts blocking part i along directions[d]");
 
   m.def(
       "disassemble",

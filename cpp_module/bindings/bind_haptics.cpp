@@ -4,9 +4,13 @@
 // methods exchange values with it through atomics and a snapshot.
 #include "common.h"
 
+#include <algorithm>
+#include <iterator>
 #include <memory>
 
+#include "contactcore/haptics/device_factory.h"
 #include "contactcore/haptics/hid_pid_device.h"
+#include "contactcore/haptics/hid_recording.h"
 #include "contactcore/haptics/joint_adapter.h"
 #include "contactcore/haptics/spacemouse.h"
 #include "contactcore/haptics/trial.h"
@@ -25,7 +29,7 @@ py::list vec(const Vec3& v) {
 
 Vec3 vec_from(const py::handle& value, const char* what) {
   auto seq = value.cast<std::vector<double>>();
-  if (seq.size() != 3) throw py::value_error(std::string(what) + ": three numbers expected");
+  if (seq.size() != 3) raise_argument_error(std::string(what) + ": three numbers expected");
   return {seq[0], seq[1], seq[2]};
 }
 
@@ -79,56 +83,74 @@ bool joint_of_pair(TrialScene& scene, const PairJoint& pair, JointState& joint) 
   return true;
 }
 
-// A device and the loop on its own thread, for the panel.
+py::object& device_unavailable_error() {
+  static py::object error;
+  return error;
+}
+
+py::list devices_seen_list(const std::vector<HidDeviceSeen>& seen) {
+  py::list out;
+  for (const HidDeviceSeen& s : seen) {
+    py::dict d;
+    d["path"] = s.path;
+    d["manufacturer"] = s.manufacturer;
+    d["product"] = s.product;
+    d["vendor"] = s.vendor;
+    d["product_id"] = s.product_id;
+    d["usage_page"] = s.usage_page;
+    d["usage"] = s.usage;
+    out.append(d);
+  }
+  return out;
+}
+
+// A failed device request as an exception: DeviceUnavailable carries the
+// HID devices seen (`devices`), others go through raise_if_failed.
+[[noreturn]] void raise_device_error(const DeviceResult& r) {
+  if (r.device_missing) {
+    py::object error = device_unavailable_error()(r.status.describe());
+    error.attr("devices") = devices_seen_list(r.seen);
+    error.attr("reason") = r.message;
+    PyErr_SetObject(device_unavailable_error().ptr(), error.ptr());
+    throw py::error_already_set();
+  }
+  raise_if_failed(r.status);
+  throw std::logic_error("raise_device_error on success");
+}
+
+HidRecording recording_from(const py::object& path) {
+  HidRecording recording;
+  const Status status = read_hid_recording(path.cast<std::string>(), recording);
+  raise_if_failed(status);
+  return recording;
+}
+
+// A device and the loop on its own thread, for the panel. The device comes
+// from the factory (device_factory.h); without the hardware asked for, the
+// simulated hand, and `message` says why.
 class HapticSession {
  public:
   HapticSession(TrialScene& scene, const std::string& device, const Vec3& translate, const Vec3& rotate_deg,
-                const ServoConfig& config, std::vector<RecordedReport> replay, std::uint16_t vendor,
-                std::uint16_t product)
+                const ServoConfig& config, HidRecording replay)
       : scene_(scene) {
     const Vec3 c = scene.centre();
     start_ = offset_pose(translate, Vec3(rad(rotate_deg.x()), rad(rotate_deg.y()), rad(rotate_deg.z())), c);
-    if (device == "spacemouse") {
-      auto mouse = std::make_unique<HidSpaceMouse>();
-      // The reader thread needs a moment for its first scan.
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-      if (mouse->connected()) {
-        message_ = mouse->description();
-        device_ = std::move(mouse);
-      } else {
-        message_ = "No SpaceMouse found (" + mouse->description() + "): using the simulated hand.";
-      }
-    } else if (device == "replay") {
-      const SpaceMouseModel* model = find_model(vendor, product);
-      device_ = std::make_unique<ReplayDevice>(model ? *model : generic_model(vendor, product), std::move(replay));
-      message_ = "Replaying recorded reports.";
-    } else if (device == "hid-ff") {
-      // The first HID device whose descriptor offers PID constant force.
-      const auto found = enumerate_hid_pid_devices();
-      std::string why = "no HID device offers force feedback (PID page)";
-      if (!found.empty()) {
-        auto transport = open_hidapi_transport(found.front().path, &why);
-        PidLayout layout;
-        const auto descriptor = hidraw_report_descriptor(found.front().path);
-        if (transport && find_pid_layout(descriptor.data(), descriptor.size(), layout, &why)) {
-          PidForceConfig pid;
-          pid.name = found.front().name;
-          const std::string path = found.front().path;
-          pid.reopen = [path] { return open_hidapi_transport(path, nullptr); };
-          device_ = std::make_unique<HidPidDevice>(std::move(transport), std::move(layout), pid);
-          message_ = found.front().name + " at " + path + " (HID force feedback)";
-        }
-      }
-      if (!device_) message_ = "No force-feedback device (" + why + "): using the simulated hand.";
-    } else if (device != "sim") {
-      throw py::value_error("unknown device '" + device + "' (sim, spacemouse, hid-ff, replay)");
+    DeviceRequest request;
+    request.kind = device;
+    request.centre = c;
+    request.start = start_;
+    request.replay = std::move(replay);
+    request.fall_back_to_simulated = true;
+    DeviceResult opened;
+    {
+      py::gil_scoped_release release;
+      opened = open_device(request);
     }
-    if (!device_) {
-      auto hand = std::make_unique<SimulatedHand>(HandScript{}, HandParameters{}, c, start_);
-      hand_ = hand.get();
-      device_ = std::move(hand);
-      if (message_.empty()) message_ = "Simulated hand (scripted, or replaying a recorded path).";
-    }
+    if (!opened.status.ok()) raise_device_error(opened);
+    device_ = std::move(opened.device);
+    hand_ = opened.hand;
+    message_ = opened.message;
+    if (device == "sim") message_ = "Simulated hand (scripted, or driven from the panel).";
     ServoConfig cfg = config;
     cfg.centre = c;
     loop_ = std::make_unique<ServoLoop>(*device_, cfg, start_);
@@ -172,6 +194,18 @@ class HapticSession {
     py::list with;
     for (int k = 0; s.engaged && k < s.joint.body_count; ++k) with.append(scene_.body_names()[s.joint.bodies[k]]);
     d["joint_with"] = with;
+    // The joint's one-sided stops (n . c <= limit on the reference point),
+    // active when the part is on them (within 1 um): the panel's readout.
+    py::list stops;
+    const Vec3 reference = s.proxy * c;
+    for (int k = 0; s.engaged && k < s.joint.stop_count; ++k) {
+      py::dict stop;
+      stop["normal"] = vec(s.joint.stops[k].normal);
+      stop["gap"] = s.joint.stops[k].limit - s.joint.stops[k].normal.dot(reference);
+      stop["active"] = s.joint.stops[k].limit - s.joint.stops[k].normal.dot(reference) < 1e-3;
+      stops.append(stop);
+    }
+    d["stops"] = stops;
     d["insertion_depth"] = s.insertion_depth;
     d["penetration"] = s.penetration;
     d["max_penetration"] = s.max_penetration;
@@ -190,6 +224,9 @@ class HapticSession {
     d["axes"] = axes;
     d["time"] = s.time;
     d["realtime_priority"] = loop_->got_realtime_priority();
+    d["late_wakeups"] = s.late_wakeups;
+    d["max_wake_latency_us"] = s.max_wake_latency_us;
+    d["memory_locked"] = s.memory_locked;
     return d;
   }
 
@@ -201,7 +238,19 @@ class HapticSession {
   std::string message_;
 };
 
+// The servo loop's keyword options, each checked by name: a misspelt one is
+// an ArgumentError naming it, never silently the default.
 ServoConfig config_from(const py::kwargs& kw) {
+  static const char* const kOptions[] = {"stiffness", "angular_stiffness", "damping", "angular_damping",
+                                         "max_speed", "breakaway_force",   "rate_hz", "realtime_priority"};
+  for (const auto& item : kw) {
+    const std::string key = py::str(item.first);
+    if (std::none_of(std::begin(kOptions), std::end(kOptions), [&](const char* option) { return key == option; })) {
+      std::string known;
+      for (const char* option : kOptions) known += (known.empty() ? "" : ", ") + std::string(option);
+      raise_argument_error("unknown keyword option '" + key + "' (the options: " + known + ")");
+    }
+  }
   ServoConfig c;
   if (kw.contains("stiffness")) c.stiffness = kw["stiffness"].cast<double>();
   if (kw.contains("angular_stiffness")) c.angular_stiffness = kw["angular_stiffness"].cast<double>();
@@ -211,6 +260,7 @@ ServoConfig config_from(const py::kwargs& kw) {
   if (kw.contains("breakaway_force")) c.breakaway_force = kw["breakaway_force"].cast<double>();
   if (kw.contains("rate_hz")) c.rate_hz = kw["rate_hz"].cast<double>();
   if (kw.contains("realtime_priority")) c.realtime_priority = kw["realtime_priority"].cast<int>();
+  if (kw.contains("lock_memory")) c.lock_memory = kw["lock_memory"].cast<bool>();
   return c;
 }
 
@@ -304,6 +354,62 @@ void bind_haptics(py::module_& root) {
 
   m.def("simulated_capabilities", [] { return capabilities_dict(simulated_capabilities()); });
 
+  device_unavailable_error() = py::reinterpret_borrow<py::object>(py::handle(PyErr_NewException(
+      "contactcore.haptics.DeviceUnavailable", root.attr("ContactsError").ptr(), nullptr)));
+  m.attr("DeviceUnavailable") = device_unavailable_error();
+
+  m.def("hid_devices_seen", [] {
+    std::vector<HidDeviceSeen> seen;
+    {
+      py::gil_scoped_release release;
+      seen = enumerate_hid_devices();
+    }
+    return devices_seen_list(seen);
+  }, "Every HID device hidapi lists now (path, manufacturer, product, vendor, product_id, usage_page, usage).");
+
+  m.def(
+      "read_hid_recording",
+      [](const std::string& path) {
+        const HidRecording r = recording_from(py::str(path));
+        py::dict d;
+        d["kind"] = r.kind;
+        d["vendor"] = r.vendor;
+        d["product"] = r.product;
+        d["name"] = r.name;
+        d["descriptor"] = py::bytes(reinterpret_cast<const char*>(r.descriptor.data()), r.descriptor.size());
+        py::list reports;
+        for (const RecordedReport& report : r.reports)
+          reports.append(py::make_tuple(report.time, py::bytes(reinterpret_cast<const char*>(report.bytes.data()),
+                                                               report.bytes.size())));
+        d["reports"] = reports;
+        return d;
+      },
+      py::arg("path"), "A HID recording (--record-hid): device kind, ids, descriptor and (arrival s, bytes) reports.");
+
+  m.def(
+      "write_hid_recording",
+      [](const std::string& path, const std::string& kind, int vendor, int product, const std::string& name,
+         const py::list& reports, const py::bytes& descriptor) {
+        HidRecording r;
+        r.kind = kind;
+        r.vendor = static_cast<std::uint16_t>(vendor);
+        r.product = static_cast<std::uint16_t>(product);
+        r.name = name;
+        const std::string desc = descriptor;
+        r.descriptor.assign(desc.begin(), desc.end());
+        for (const py::handle& item : reports) {
+          auto pair = item.cast<py::tuple>();
+          RecordedReport report;
+          report.time = pair[0].cast<double>();
+          const std::string b = pair[1].cast<py::bytes>();
+          report.bytes.assign(b.begin(), b.end());
+          r.reports.push_back(std::move(report));
+        }
+        raise_if_failed(write_hid_recording(r, path));
+      },
+      py::arg("path"), py::arg("kind"), py::arg("vendor"), py::arg("product"), py::arg("name"), py::arg("reports"),
+      py::arg("descriptor") = py::bytes(), "Writes a HID recording file (the format --record-hid writes).");
+
   py::class_<TrialScene>(m, "TrialScene", "Partitions, real-time contacts and collision models for one moving part.")
       .def(py::init([](const Assembly& assembly, const std::string& part, double capture_distance,
                        double capture_angle_deg, double deflection, py::object progress) {
@@ -379,20 +485,55 @@ void bind_haptics(py::module_& root) {
   m.def(
       "run_trial",
       [](TrialScene& scene, const py::dict& script, bool realtime, int record_every, double settle,
+         const std::string& device, py::object hid_file, py::object record_hid, py::object duration,
          const py::kwargs& kw) {
         TrialScript s;
         if (script.contains("start")) s.start = key_from(script["start"].cast<py::dict>(), false);
-        if (!script.contains("hand")) throw py::value_error("script: 'hand' (a list of keys) is missing");
-        for (const py::handle& k : script["hand"].cast<py::list>()) s.hand.push_back(key_from(k.cast<py::dict>(), true));
-        if (s.hand.empty()) throw py::value_error("script: 'hand' is empty");
+        const bool scripted_hand = device == "sim";
+        if (scripted_hand && !script.contains("hand")) raise_argument_error("script: 'hand' (a list of keys) is missing");
+        if (script.contains("hand"))
+          for (const py::handle& k : script["hand"].cast<py::list>()) s.hand.push_back(key_from(k.cast<py::dict>(), true));
+        if (scripted_hand && s.hand.empty()) raise_argument_error("script: 'hand' is empty");
         TrialOptions options;
         options.servo = config_from(kw);
         options.record_every = record_every;
         options.settle = settle;
-        TrialResult r;
-        {
-          py::gil_scoped_release release;
-          r = run_trial(scene, s, options, realtime);
+        // Any other device comes from the factory; the run lasts `duration`
+        // (a replay: its last report + settle; a live device: the script's
+        // keys + settle, or 10 s).
+        DeviceResult opened;
+        if (!scripted_hand) {
+          DeviceRequest request;
+          request.kind = device;
+          request.centre = scene.centre();
+          const ScriptKey& k = s.start;
+          request.start = offset_pose(k.translate, Vec3(rad(k.rotate_deg.x()), rad(k.rotate_deg.y()), rad(k.rotate_deg.z())),
+                                      scene.centre());
+          if (device == "replay") {
+            if (hid_file.is_none()) raise_argument_error("--device replay needs a recording (hid_file)");
+            request.replay = recording_from(hid_file);
+          }
+          request.record = !record_hid.is_none();
+          {
+            py::gil_scoped_release release;
+            opened = open_device(request);
+          }
+          if (!opened.status.ok()) raise_device_error(opened);
+          options.device = opened.device.get();
+          if (!duration.is_none()) options.duration = duration.cast<double>();
+          else if (device == "replay" && !request.replay.reports.empty())
+            options.duration = request.replay.reports.back().time + settle;
+          else options.duration = (s.hand.empty() ? 10.0 : s.hand.back().t + settle);
+          if (options.duration <= 0) raise_argument_error("duration must be > 0 s");
+          // Hardware runs on the wall clock; a replay is deterministic in lockstep.
+          if (device == "spacemouse" || device == "hid-ff") realtime = true;
+        } else if (!record_hid.is_none()) {
+          raise_argument_error("--record-hid records a HID device (spacemouse, hid-ff), not the simulated hand");
+        }
+        const TrialResult r = call_guarded([&] { return run_trial(scene, s, options, realtime); });
+        if (opened.recorder) {
+          opened.device.reset();  // the reader thread stops: the recording is complete
+          raise_if_failed(write_hid_recording(opened.recorder->recording(), record_hid.cast<std::string>()));
         }
         py::dict out;
         out["ticks"] = r.ticks;
@@ -403,6 +544,10 @@ void bind_haptics(py::module_& root) {
         step["max"] = r.step_max_us;
         out["step_us"] = step;
         out["overruns"] = r.overruns;
+        out["late_wakeups"] = r.late_wakeups;
+        out["memory_locked"] = r.memory_locked;
+        out["device"] = device;
+        out["device_message"] = opened.message.empty() ? std::string("Simulated hand.") : opened.message;
         py::list joints;
         for (const auto& j : r.joints_engaged) {
           py::dict d;
@@ -434,33 +579,44 @@ void bind_haptics(py::module_& root) {
         return out;
       },
       py::arg("scene"), py::arg("script"), py::arg("realtime") = false, py::arg("record_every") = 10,
-      py::arg("settle") = 1.5,
-      "Runs a scripted trial with the simulated hand (lockstep unless realtime). Keyword options: "
+      py::arg("settle") = 1.5, py::arg("device") = "sim", py::arg("hid_file") = py::none(),
+      py::arg("record_hid") = py::none(), py::arg("duration") = py::none(),
+      "Runs a trial: the scripted simulated hand (device 'sim', lockstep unless realtime), or a device from "
+      "the factory: 'spacemouse', 'hid-ff' (real time; record_hid=FILE keeps their raw reports), 'replay' "
+      "(hid_file=FILE, lockstep), 'sim-hid-ff'. Raises DeviceUnavailable (with .devices) when the hardware "
+      "is not there. Keyword options: "
       "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz, "
       "realtime_priority (SCHED_FIFO priority of the loop thread when permitted).");
 
   py::class_<HapticSession>(m, "HapticSession", "A device and the 1 kHz loop on its own thread.")
       .def(py::init([](TrialScene& scene, const std::string& device, const std::vector<double>& translate,
                        const std::vector<double>& rotate_deg, py::object replay, int vendor, int product,
-                       const py::kwargs& kw) {
-             std::vector<RecordedReport> reports;
-             if (!replay.is_none())
+                       py::object hid_file, const py::kwargs& kw) {
+             // A replay: a recording file, or (time, bytes) pairs of a SpaceMouse (vendor, product).
+             HidRecording recording;
+             if (!hid_file.is_none()) {
+               recording = recording_from(hid_file);
+             } else if (!replay.is_none()) {
+               recording.kind = "spacemouse";
+               recording.vendor = static_cast<std::uint16_t>(vendor);
+               recording.product = static_cast<std::uint16_t>(product);
                for (const py::handle& item : replay.cast<py::list>()) {
                  auto pair = item.cast<py::tuple>();
                  RecordedReport r;
                  r.time = pair[0].cast<double>();
                  const std::string b = pair[1].cast<py::bytes>();
                  r.bytes.assign(b.begin(), b.end());
-                 reports.push_back(std::move(r));
+                 recording.reports.push_back(std::move(r));
                }
+             }
              return std::make_unique<HapticSession>(scene, device, Vec3(translate[0], translate[1], translate[2]),
                                                     Vec3(rotate_deg[0], rotate_deg[1], rotate_deg[2]), config_from(kw),
-                                                    std::move(reports), static_cast<std::uint16_t>(vendor),
-                                                    static_cast<std::uint16_t>(product));
+                                                    std::move(recording));
            }),
            py::arg("scene"), py::arg("device") = "sim", py::arg("translate") = std::vector<double>{0, 0, 0},
            py::arg("rotate_deg") = std::vector<double>{0, 0, 0}, py::arg("replay") = py::none(),
-           py::arg("vendor") = 0x256f, py::arg("product") = 0xc635, py::keep_alive<1, 2>())
+           py::arg("vendor") = 0x256f, py::arg("product") = 0xc635, py::arg("hid_file") = py::none(),
+           py::keep_alive<1, 2>())
       .def_property_readonly("message", [](const HapticSession& s) { return s.message_; })
       .def_property_readonly("capabilities", [](const HapticSession& s) { return capabilities_dict(s.device_->capabilities()); })
       .def("start", [](HapticSession& s) { return s.loop_->start(); })
@@ -470,7 +626,7 @@ void bind_haptics(py::module_& root) {
       })
       .def_property_readonly("running", [](const HapticSession& s) { return s.loop_->running(); })
       .def("step", [](HapticSession& s, int ticks) {
-        if (s.loop_->running()) throw py::value_error("the loop is running on its thread");
+        if (s.loop_->running()) raise_argument_error("the loop is running on its thread");
         py::gil_scoped_release release;
         for (int i = 0; i < ticks; ++i) s.loop_->step_lockstep();
       }, py::arg("ticks"), "Lockstep ticks (with the thread stopped).")

@@ -9,6 +9,7 @@
 #include <BRepBndLib.hxx>
 #include <TopoDS_Shape.hxx>
 
+#include "contactcore/common/angles.h"
 #include "common.h"
 #include "contactcore/bodies/bodies.h"
 #include "contactcore/common/occt_guard.h"
@@ -18,7 +19,8 @@ namespace contactcore::bindings {
 
 namespace {
 
-constexpr double kDegreesPerRadian = 57.29577951308232;
+constexpr double kDegreesPerRadian = 180 / kPi;
+static_assert(kDegreesPerRadian == 57.29577951308232);
 
 std::string number(double value) {
   if (value == 0) value = 0;  // no "-0"
@@ -93,19 +95,21 @@ void bind_partitions(py::module_& m) {
   py::class_<Tolerances>(m, "Tolerances", "Linear (mm) and angular (rad) tolerances of partition merging")
       .def(py::init([](double linear, double angular) { return Tolerances{linear, angular}; }),
            py::arg("linear") = Tolerances{}.linear, py::arg("angular") = Tolerances{}.angular)
-      .def_readwrite("linear", &Tolerances::linear)
-      .def_readwrite("angular", &Tolerances::angular)
+      .def_readwrite("linear", &Tolerances::linear, "mm")
+      .def_readwrite("angular", &Tolerances::angular, "radians")
       .def("__repr__", [](const Tolerances& t) {
         return "<Tolerances linear=" + number(t.linear) + " angular=" + number(t.angular) + ">";
       });
 
   py::class_<SurfaceParams>(m, "SurfaceParams", "Analytic surface parameters in global coordinates (mm, rad)")
-      .def_readonly("kind", &SurfaceParams::kind)
-      .def_property_readonly("location", [](const SurfaceParams& s) { return to_tuple(s.location); })
-      .def_property_readonly("axis", [](const SurfaceParams& s) { return to_tuple(s.axis); })
-      .def_readonly("radius", &SurfaceParams::radius)
-      .def_readonly("minor_radius", &SurfaceParams::minor_radius)
-      .def_readonly("half_angle", &SurfaceParams::half_angle)
+      .def_readonly("kind", &SurfaceParams::kind, "SurfaceKind")
+      .def_property_readonly("location", [](const SurfaceParams& s) { return to_tuple(s.location); },
+          "(x, y, z) mm: plane: a point; cylinder: on the axis; cone: apex; sphere, torus: centre")
+      .def_property_readonly("axis", [](const SurfaceParams& s) { return to_tuple(s.axis); },
+          "unit (x, y, z): plane: outward normal; cone: from the apex into the opening; cylinder, torus: axis (compare as lines)")
+      .def_readonly("radius", &SurfaceParams::radius, "mm: cylinder, sphere; torus: major radius")
+      .def_readonly("minor_radius", &SurfaceParams::minor_radius, "mm: torus")
+      .def_readonly("half_angle", &SurfaceParams::half_angle, "radians: cone, in (0, pi/2)")
       .def("__repr__", [](const SurfaceParams& s) {
         return "<SurfaceParams " + describe(s) + " location=" +
                triple(s.location.X(), s.location.Y(), s.location.Z()) + " axis=" +
@@ -113,12 +117,16 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<Extent>(m, "Extent", "Where a face or partition lies on its surface")
-      .def_property_readonly("ref_dir", [](const Extent& e) { return to_tuple(e.ref_dir); })
-      .def_readonly("axial_min", &Extent::axial_min)
-      .def_readonly("axial_max", &Extent::axial_max)
+      .def_property_readonly("ref_dir", [](const Extent& e) { return to_tuple(e.ref_dir); },
+          "unit (x, y, z) perpendicular to the axis: where angles start; plane: the outline's x axis")
+      .def_readonly("axial_min", &Extent::axial_min,
+          "mm along the axis from the surface's location (revolution surfaces)")
+      .def_readonly("axial_max", &Extent::axial_max,
+          "mm along the axis from the surface's location (revolution surfaces)")
       .def_property_readonly("angular", &angular_list, "[(start, span)] in radians")
       .def_property_readonly("outline", &outline_list, "plane outline: [[(x, y)]], outer loops counter-clockwise")
-      .def_property_readonly("angular_span", &Extent::angular_span)
+      .def_property_readonly("angular_span", &Extent::angular_span,
+          "radians: the sum of the angular intervals, <= 2 pi")
       .def("__repr__", [](const Extent& e) {
         if (!e.outline.empty()) {
           std::size_t points = 0;
@@ -132,15 +140,18 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<FaceInfo>(m, "FaceInfo", "One typed face; index and name follow FreeCAD's Shape.Faces")
-      .def_readonly("index", &FaceInfo::index)
-      .def_property_readonly("name", [](const FaceInfo& f) { return face_name(f.index); })
-      .def_readonly("params", &FaceInfo::params)
-      .def_readonly("side", &FaceInfo::side)
-      .def_readonly("recognised", &FaceInfo::recognised)
-      .def_readonly("max_deviation", &FaceInfo::max_deviation)
-      .def_readonly("area", &FaceInfo::area)
-      .def_readonly("extent", &FaceInfo::extent)
-      .def_property_readonly("box", [](const FaceInfo& f) { return box_tuple(f.box); })
+      .def_readonly("index", &FaceInfo::index, "1-based, in FreeCAD's Shape.Faces order")
+      .def_property_readonly("name", [](const FaceInfo& f) { return face_name(f.index); },
+          "FreeCAD's sub-element name, 'FaceN'")
+      .def_readonly("params", &FaceInfo::params, "SurfaceParams of the face's surface, global")
+      .def_readonly("side", &FaceInfo::side, "MaterialSide: where the body's material lies")
+      .def_readonly("recognised", &FaceInfo::recognised, "stored as a free-form surface, typed by fitting")
+      .def_readonly("max_deviation", &FaceInfo::max_deviation,
+          "mm: of the fitted surface on samples (recognised faces)")
+      .def_readonly("area", &FaceInfo::area, "mm^2, exact (Green's theorem on the boundary)")
+      .def_readonly("extent", &FaceInfo::extent, "Extent: where the face lies on its surface")
+      .def_property_readonly("box", [](const FaceInfo& f) { return box_tuple(f.box); },
+          "(xmin, ymin, zmin, xmax, ymax, zmax) mm, or None")
       .def("__repr__", [](const FaceInfo& f) {
         std::string out = "<FaceInfo " + face_name(f.index) + " " + describe(f.params) +
                           side_suffix(f.params.kind, f.side);
@@ -149,14 +160,15 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<Partition>(m, "Partition", "A maximal set of adjacent faces on the same surface")
-      .def_readonly("id", &Partition::id)
-      .def_readonly("faces", &Partition::faces)
-      .def_property_readonly("face_names", [](const Partition& p) { return face_names(p.faces); })
-      .def_readonly("params", &Partition::params)
-      .def_readonly("side", &Partition::side)
-      .def_readonly("area", &Partition::area)
-      .def_readonly("extent", &Partition::extent)
-      .def_property_readonly("box", [](const Partition& p) { return box_tuple(p.box); })
+      .def_readonly("id", &Partition::id, "0-based within its body")
+      .def_readonly("faces", &Partition::faces, "1-based face indices, ascending")
+      .def_property_readonly("face_names", [](const Partition& p) { return face_names(p.faces); }, "['FaceN', ...]")
+      .def_readonly("params", &Partition::params, "SurfaceParams shared by its faces, global")
+      .def_readonly("side", &Partition::side, "MaterialSide")
+      .def_readonly("area", &Partition::area, "mm^2, the sum of its faces'")
+      .def_readonly("extent", &Partition::extent, "Extent: axial range and angular union; plane outlines of all faces")
+      .def_property_readonly("box", [](const Partition& p) { return box_tuple(p.box); },
+          "(xmin, ymin, zmin, xmax, ymax, zmax) mm, or None")
       .def("__repr__", [](const Partition& p) {
         std::string names;
         for (int index : p.faces) names += (names.empty() ? "" : ", ") + face_name(index);
@@ -165,11 +177,15 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<BodyPartitions>(m, "BodyPartitions", "Typed faces and maximal partitions of one body")
-      .def_readonly("faces", &BodyPartitions::faces)
-      .def_readonly("partitions", &BodyPartitions::partitions)
-      .def_property_readonly("ok", [](const BodyPartitions& b) { return b.status.ok(); })
-      .def_property_readonly("status", [](const BodyPartitions& b) { return b.status.describe(); })
-      .def_property_readonly("box", [](const BodyPartitions& b) { return box_tuple(b.box); })
+      .def_readonly("faces", &BodyPartitions::faces, "[FaceInfo], one per face in FaceN order")
+      .def_readonly("partitions", &BodyPartitions::partitions, "[Partition], by id")
+      .def_readonly("tolerances", &BodyPartitions::tolerances, "the tolerances this body was partitioned with")
+      .def_property_readonly("ok", [](const BodyPartitions& b) { return b.status.ok(); },
+          "True when the body was partitioned without error")
+      .def_property_readonly("status", [](const BodyPartitions& b) { return b.status.describe(); },
+          "why not, naming the face ('' when ok)")
+      .def_property_readonly("box", [](const BodyPartitions& b) { return box_tuple(b.box); },
+          "(xmin, ymin, zmin, xmax, ymax, zmax) mm, or None")
       .def("__repr__", [](const BodyPartitions& b) {
         return "<BodyPartitions faces=" + std::to_string(b.faces.size()) +
                " partitions=" + std::to_string(b.partitions.size()) + (b.status.ok() ? " ok" : " failed") + ">";
@@ -178,9 +194,11 @@ void bind_partitions(py::module_& m) {
   m.def(
       "default_tolerances",
       [](double xmin, double ymin, double zmin, double xmax, double ymax, double zmax) {
-        Bnd_Box box;
-        box.Update(xmin, ymin, zmin, xmax, ymax, zmax);
-        return default_tolerances(box);
+        return call_guarded([&] {
+          Bnd_Box box;
+          box.Update(xmin, ymin, zmin, xmax, ymax, zmax);
+          return default_tolerances(box);
+        });
       },
       py::arg("xmin"), py::arg("ymin"), py::arg("zmin"), py::arg("xmax"), py::arg("ymax"), py::arg("zmax"),
       "Tolerances scaled to a model box: linear 1e-5 of its diagonal (no floor or ceiling), angular 1e-4 rad");

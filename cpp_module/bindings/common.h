@@ -6,13 +6,14 @@
 #include <pybind11/stl.h>
 
 #include <exception>
+#include <optional>
+#include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <new>
 #include <string>
 #include <vector>
 
-#include <Standard_Failure.hxx>
-#include <Standard_OutOfMemory.hxx>
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
 
@@ -34,14 +35,6 @@ inline std::vector<std::string> face_names(const std::vector<int>& faces) {
   names.reserve(faces.size());
   for (int f : faces) names.push_back("Face" + std::to_string(f));
   return names;
-}
-
-// Runs `work` (which must not touch Python objects) without the GIL, so
-// FreeCAD's GUI and other Python threads go on meanwhile.
-template <class Work>
-auto without_gil(Work&& work) {
-  py::gil_scoped_release release;
-  return work();
 }
 
 // Calls a Python callable(stage, fraction) -> bool from the thread that called
@@ -77,29 +70,46 @@ class PythonProgress : public Progress {
   std::exception_ptr raised_;
 };
 
-// Raises contactcore.ContactsError (a RuntimeError) with Status::describe().
+// Raises the module's exception class of status.code (bind_errors.cpp; every
+// class a contactcore.ContactsError) with Status::describe().
 void raise_if_failed(const Status& status);
 
 // Runs `work` (returning a Status) with the GIL released and any OCCT or C++
-// exception turned into a Status, so nothing escapes into FreeCAD as a crash.
+// exception turned into a Status (status_of_current_exception: OCCT failures
+// GeometryError, out of memory OutOfMemory, anything else Internal), so
+// nothing escapes into FreeCAD as a crash. Every binding that runs core code
+// goes through here (or through call_guarded below).
 template <class Work>
 Status guarded(Work&& work) {
   py::gil_scoped_release release;
-  try {
-    return work();
-  } catch (const Standard_OutOfMemory&) {
-    return Status::failure(StatusCode::OutOfMemory, "out of memory");
-  } catch (const Standard_Failure& failure) {
-    // Some OCCT exceptions carry no message: name their type then.
-    const char* text = failure.GetMessageString();
-    return Status::failure(StatusCode::GeometryError, std::string("OCCT ") + failure.DynamicType()->Name() +
-                                                          (text && *text ? std::string(": ") + text : ""));
-  } catch (const std::bad_alloc&) {
-    return Status::failure(StatusCode::OutOfMemory, "out of memory");
-  } catch (const std::exception& error) {
-    return Status::failure(StatusCode::GeometryError,
-                           *error.what() ? error.what() : "C++ exception without a message");
+  return status_of(std::forward<Work>(work));
+}
+
+// Runs `work` (returning a value, not a Status; it must not touch Python
+// objects) through guarded(): its value, or the failure raised as the
+// module's exception.
+template <class Work>
+auto call_guarded(Work&& work) {
+  using Value = std::decay_t<decltype(work())>;
+  if constexpr (std::is_void_v<Value>) {
+    raise_if_failed(guarded([&] {
+      work();
+      return Status::success();
+    }));
+  } else {
+    std::optional<Value> value;
+    raise_if_failed(guarded([&] {
+      value.emplace(work());
+      return Status::success();
+    }));
+    return std::move(*value);
   }
+}
+
+// Raises ArgumentError (InvalidArgument): a bad value of a binding's argument.
+[[noreturn]] inline void raise_argument_error(const std::string& message) {
+  raise_if_failed(Status::failure(StatusCode::InvalidArgument, message));
+  throw std::logic_error("unreachable: raise_if_failed returned on a failure");
 }
 
 // Partitions one body and builds `out = build(shape, partitions)` (a result

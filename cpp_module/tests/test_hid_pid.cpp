@@ -129,6 +129,33 @@ Bytes pid_joystick_descriptor(bool device_allocates) {
   return d;
 }
 
+// The same joystick with conditions (PID 1.0 section 5.9): ET Damper added to
+// the Set Effect types (spring is 5, damper 6) and a Set Condition Report
+// (output 3): block, parameter block offset (the axis), CP offset and the two
+// coefficients (-10000..10000, 16 bits), the two saturations (0..10000, 16
+// bits), dead band (0..255, 8 bits): 14 bytes with the ID.
+Bytes pid_joystick_with_conditions() {
+  Bytes d = pid_joystick_descriptor(false);
+  const Bytes types = {0x09, 0x40, 0x15, 0x01, 0x25, 0x05};
+  auto at = std::search(d.begin(), d.end(), types.begin(), types.end());
+  EXPECT_NE(at, d.end());
+  const Bytes with_damper = {0x09, 0x40, 0x09, 0x41, 0x15, 0x01, 0x25, 0x06};
+  at = d.erase(at, at + static_cast<std::ptrdiff_t>(types.size()));
+  d.insert(at, with_damper.begin(), with_damper.end());
+  const Bytes condition = {
+      0x09, 0x5F, 0xA1, 0x02, 0x85, 0x03,                                // Set Condition Report (3)
+      0x09, 0x22, 0x15, 0x01, 0x25, 0x28, 0x75, 0x08, 0x95, 0x01, 0x91, 0x02,  // Effect Block Index
+      0x09, 0x23, 0x15, 0x00, 0x25, 0x01, 0x75, 0x08, 0x95, 0x01, 0x91, 0x02,  // Parameter Block Offset
+      0x09, 0x60, 0x09, 0x61, 0x09, 0x62,                                // CP Offset, +/- Coefficient
+      0x16, 0xF0, 0xD8, 0x26, 0x10, 0x27, 0x75, 0x10, 0x95, 0x03, 0x91, 0x02,
+      0x09, 0x63, 0x09, 0x64, 0x15, 0x00, 0x26, 0x10, 0x27, 0x75, 0x10, 0x95, 0x02, 0x91, 0x02,  // saturations
+      0x09, 0x65, 0x15, 0x00, 0x26, 0xFF, 0x00, 0x75, 0x08, 0x95, 0x01, 0x91, 0x02,              // Dead Band
+      0xC0,
+  };
+  d.insert(d.end() - 1, condition.begin(), condition.end());  // before End Collection (Application)
+  return d;
+}
+
 struct Sent {
   bool feature = false;
   Bytes bytes;
@@ -196,6 +223,7 @@ std::unique_ptr<HidPidDevice> make_device(const std::shared_ptr<FakeLog>& log, b
   config.name = "PID joystick";
   config.full_scale_force = 3.0;  // N at magnitude 10000
   config.start_thread = thread;
+  config.max_force_rate = 0;      // these tests check one update's bytes; the limit has its own test
   return std::make_unique<HidPidDevice>(std::make_unique<FakeTransport>(log),
                                         layout_of(pid_joystick_descriptor(device_allocates)), config);
 }
@@ -449,4 +477,155 @@ TEST(HidPid, WriterThread) {
   ASSERT_GE(out.size(), 2u);
   EXPECT_EQ(out[out.size() - 1], (Bytes{12, 2}));  // Disable Actuators
   EXPECT_EQ(out[out.size() - 2], kStopAll);
+}
+
+// ---- conditions (spring, damper), position devices, the force-rate limit
+
+namespace {
+
+struct FakeClock {
+  static double now;
+  static double read() { return now; }
+};
+double FakeClock::now = 0;
+
+Bytes condition(int block, int axis, int cp, int k, int saturation) {
+  auto le = [](int v) {
+    const auto u = static_cast<std::uint16_t>(static_cast<std::int16_t>(v));
+    return std::pair<std::uint8_t, std::uint8_t>(u & 0xFF, u >> 8);
+  };
+  const auto c = le(cp), kk = le(k), s = le(saturation);
+  return {3, static_cast<std::uint8_t>(block), static_cast<std::uint8_t>(axis), c.first, c.second, kk.first, kk.second,
+          kk.first, kk.second, s.first, s.second, s.first, s.second, 0};
+}
+
+}  // namespace
+
+TEST(HidPid, ConditionReportsByteForByte) {
+  const PidLayout layout = layout_of(pid_joystick_with_conditions());
+  ASSERT_TRUE(layout.has_conditions());
+  EXPECT_EQ(layout.set_condition.id, 3);
+  EXPECT_EQ(layout.set_condition.size, 14u);
+  EXPECT_EQ(layout.effect_type_spring.value, 5);
+  EXPECT_EQ(layout.effect_type_damper.value, 6);
+  EXPECT_FALSE(layout_of(pid_joystick_descriptor(false)).has_conditions());
+  // Spring on block 3, every axis: type 5, infinite, gain 255, axes X and Y.
+  EXPECT_EQ(pid_set_condition_effect_report(layout, 3, layout.effect_type_spring),
+            (Bytes{2, 3, 5, 0xFF, 0xFF, 0, 0, 0, 0, 0xFF, 0, 0b011, 0, 0}));
+  PidCondition c;
+  c.cp_offset = -2000;
+  c.positive_coefficient = c.negative_coefficient = 5000;
+  c.positive_saturation = c.negative_saturation = 10000;
+  EXPECT_EQ(pid_set_condition_report(layout, 3, 1, c), condition(3, 1, -2000, 5000, 10000));
+  EXPECT_EQ(condition(3, 1, -2000, 5000, 10000),
+            (Bytes{3, 3, 1, 0x30, 0xF8, 0x88, 0x13, 0x88, 0x13, 0x10, 0x27, 0x10, 0x27, 0}));
+  // Out of range values are clamped to the fields' logical ranges.
+  c.cp_offset = 20000;
+  c.positive_saturation = -5;
+  const Bytes clamped = pid_set_condition_report(layout, 3, 0, c);
+  EXPECT_EQ(clamped[3], 0x10);  // 10000
+  EXPECT_EQ(clamped[4], 0x27);
+  EXPECT_EQ(clamped[9], 0);
+  EXPECT_EQ(clamped[10], 0);
+}
+
+// A position device renders the loop's coupling as a spring centred where it
+// gives the loop's force at the device's last position (plus a damper), so
+// the stiffness holds between the device's updates.
+TEST(HidPid, PositionDeviceRendersTheCouplingAsSpringAndDamper) {
+  auto log = std::make_shared<FakeLog>();
+  PidForceConfig config;
+  config.full_scale_force = 3.0;
+  config.control = ControlMode::Position;
+  config.workspace_mm = 10;  // full deflection = 10 mm
+  config.max_force_rate = 0;
+  config.start_thread = false;
+  config.clock = FakeClock::read;
+  FakeClock::now = 1.0;
+  HidPidDevice device(std::make_unique<FakeTransport>(log), layout_of(pid_joystick_with_conditions()), config);
+  EXPECT_EQ(device.capabilities().control, ControlMode::Position);
+  EXPECT_EQ(device.capabilities().input_dof, 2);
+  device.service();  // set-up: constant forces on blocks 1, 2; spring 3, damper 4 (zero parameters)
+  ASSERT_TRUE(device.renders_conditions());
+  EXPECT_EQ(device.spring_block(), 3);
+  EXPECT_EQ(device.damper_block(), 4);
+  const auto setup = log->outputs();
+  ASSERT_EQ(setup.size(), 2u + 4u + 2u + 4u);
+  EXPECT_EQ(setup[6], (Bytes{2, 3, 5, 0xFF, 0xFF, 0, 0, 0, 0, 0xFF, 0, 0b011, 0, 0}));
+  EXPECT_EQ(setup[7], (Bytes{2, 4, 6, 0xFF, 0xFF, 0, 0, 0, 0, 0xFF, 0, 0b011, 0, 0}));
+  EXPECT_EQ(setup[8], condition(3, 0, 0, 0, 0));
+  EXPECT_EQ(setup[11], condition(4, 1, 0, 0, 0));
+
+  // The device at X = 16384 / 32767 of its range (5.0002 mm), Y = 0.
+  log->inputs.push_back(Bytes{1, 0x00, 0x40, 0x00, 0x00});
+  FakeClock::now = 1.004;
+  device.service();
+  const DeviceSample s = device.read(7.0);
+  EXPECT_NEAR(s.pose.translation().x(), 10.0 * 16384 / 32767, 1e-12);
+  EXPECT_DOUBLE_EQ(s.time, 7.0);  // the report arrived just now (clock unchanged since)
+  EXPECT_FALSE(s.at_rest);
+  log->sent.clear();
+  Wrench w;
+  w.force = Vec3(0.6, -0.3, 0);
+  w.stiffness = 0.15;  // N/mm: 0.15 x 10 mm / 3 N = half the coefficient's range, 5000
+  w.damping = 0.003;   // N s/mm: 0.01 of the range, 100
+  device.write(w);
+  device.service();
+  // Spring centres: x + F / k = 0.50002 + 0.2 / 0.5 -> 9000; 0 - 0.1 / 0.5 -> -2000.
+  Bytes damper_x = condition(4, 0, 0, 100, 10000), damper_y = condition(4, 1, 0, 100, 10000);
+  EXPECT_EQ(log->outputs(), (std::vector<Bytes>{kEnableActuators, condition(3, 0, 9000, 5000, 10000), damper_x,
+                                                condition(3, 1, -2000, 5000, 10000), damper_y, constant_force(1, 0),
+                                                start_effect(1), constant_force(2, 0), start_effect(2),
+                                                start_effect(3), start_effect(4)}));
+  // The device moved to X = 0 (0.01 s later): the damper term enters the
+  // centre, x + (F + b v) / k with v = -50 000 / 32767 ranges per second.
+  log->sent.clear();
+  log->inputs.push_back(Bytes{1, 0x00, 0x00, 0x00, 0x00});
+  FakeClock::now = 1.014;
+  device.service();
+  const double v = (0.0 - 16384.0 / 32767.0) / 0.01;
+  const int cp = static_cast<int>(std::lround((0.0 + (0.2 + 0.01 * v) / 0.5) * 10000));
+  EXPECT_EQ(log->outputs(), (std::vector<Bytes>{condition(3, 0, cp, 5000, 10000)}));
+  // Halt: Stop All once.
+  log->sent.clear();
+  device.halt();
+  device.service();
+  EXPECT_EQ(log->outputs(), (std::vector<Bytes>{kStopAll}));
+}
+
+// The rendered force moves towards the loop's at most max_force_rate N/s.
+TEST(HidPid, ForceRateLimit) {
+  auto log = std::make_shared<FakeLog>();
+  PidForceConfig config;
+  config.full_scale_force = 3.0;
+  config.max_force_rate = 100;  // N/s: 0.4 N per 4 ms update
+  config.start_thread = false;
+  config.clock = FakeClock::read;
+  FakeClock::now = 0;
+  HidPidDevice device(std::make_unique<FakeTransport>(log), layout_of(pid_joystick_descriptor(false)), config);
+  device.service();
+  Wrench w;
+  w.force = Vec3(1.5, 0, 0);
+  device.write(w);
+  std::vector<std::vector<Bytes>> passes;
+  for (int i = 1; i <= 5; ++i) {
+    log->sent.clear();
+    FakeClock::now = 0.004 * i;
+    device.service();
+    passes.push_back(log->outputs());
+  }
+  EXPECT_EQ(passes[0], (std::vector<Bytes>{kEnableActuators, constant_force(1, 1333), start_effect(1),
+                                           constant_force(2, 0), start_effect(2)}));  // 0.4 N
+  EXPECT_EQ(passes[1], (std::vector<Bytes>{constant_force(1, 2667)}));  // 0.8 N
+  EXPECT_EQ(passes[2], (std::vector<Bytes>{constant_force(1, 4000)}));  // 1.2 N
+  EXPECT_EQ(passes[3], (std::vector<Bytes>{constant_force(1, 5000)}));  // 1.5 N reached
+  EXPECT_TRUE(passes[4].empty());
+  EXPECT_NEAR(device.rendered_force(0), 1.5, 1e-12);
+  // Down again just as slowly, never a jump.
+  w.force = Vec3(-1.5, 0, 0);
+  device.write(w);
+  log->sent.clear();
+  FakeClock::now = 0.024;
+  device.service();
+  EXPECT_EQ(log->outputs(), (std::vector<Bytes>{constant_force(1, 3667)}));  // 1.1 N
 }

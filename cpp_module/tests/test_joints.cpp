@@ -183,10 +183,12 @@ TEST(Joints, TaperPinSeatedByItsHeadIsRevoluteExtractedAlongItsAxis) {
   ASSERT_EQ(j.rotations.size(), 1u);
   EXPECT_TRUE(parallel(j.rotations[0].direction, gp::DZ()));
   EXPECT_LT(line_distance(gp_Pnt(20, 20, 0), j.rotations[0].point, j.rotations[0].direction), 1e-6);
-  // The cone's normals are sampled every 30 degrees (JointOptions::cone_samples):
-  // the free cone is the 12-sided cone around the true one, its edges at
-  // atan(tan(half angle) / cos(15 deg)) from the axis.
-  const double edge_angle = std::atan((1.0 / 20.0) / std::cos(M_PI / 12));
+  // The free cone is the circular cone of the taper's half angle about +z,
+  // given as the 12-sided cone inscribed in it (JointOptions::cone_samples):
+  // its edges exactly on the true cone, at atan(1/20) from the axis, and no
+  // direction it allows is blocked (issue 22: it used to be the polygon
+  // around the true cone, edges at atan(tan(half angle) / cos 15 deg)).
+  const double edge_angle = std::atan(1.0 / 20.0);
   ASSERT_EQ(j.free_directions.size(), 12u);
   for (const gp_Dir& d : j.free_directions) EXPECT_NEAR(angle(d, gp::DZ()), edge_angle, 1e-9);
   // The generators surround the axis: their mean is along +z.
@@ -394,7 +396,7 @@ TEST(Clearances, PinInLargerBore) {
   ASSERT_EQ(r.clearances.size(), 1u);
   EXPECT_EQ(r.clearances[0].kind, SurfaceKind::Cylinder);
   EXPECT_NEAR(r.clearances[0].gap, 0.2, 1e-9);
-  EXPECT_TRUE(find_clearances(r.partitions, 0.1, r.tolerances).empty());
+  EXPECT_TRUE(find_clearances(r.partitions, 0.1).empty());
 }
 
 // Results of another assembly, or a ground out of range: a clear error, no crash.

@@ -1,5 +1,6 @@
 // Tests of stage 2 (partitions): face typing, recognition of free-form faces,
 // merging into maximal partitions, extents and the interval helpers.
+#include "contactcore/common/angles.h"
 #include "contactcore/partitions/partitions.h"
 
 #include <gtest/gtest.h>
@@ -61,7 +62,6 @@ using namespace contactcore;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 std::string shared_step(const std::string& name) {
   return std::string(CONTACTS_SHARED_DATA) + "/step/" + name;

@@ -7,6 +7,24 @@ import FreeCAD
 import FreeCADGui
 
 
+# Bodies a haptic trial is moving: (document name, object name). Their
+# Placement changes at display rate while the trial panel is open; the
+# overlays do not redraw their contacts for each frame (the panel asks for
+# one redraw when it closes: follow_body_again).
+moving_bodies = set()
+
+
+def follow_body_again(doc_name, obj_name):
+    """Ends a trial's pause on a body: its overlays redraw once."""
+    moving_bodies.discard((doc_name, obj_name))
+    for overlay in list(OverlayWatcher.overlays):
+        if overlay.doc_name == doc_name and obj_name in overlay.path_names:
+            method = overlay.on_body_changed
+            rebuild = method() if method is not None else None
+            if rebuild is not None:
+                rebuild()
+
+
 class OverlayWatcher:
     """The session's one selection and document observer: highlights the
     selected contacts and follows the bodies' Visibility, for every overlay
@@ -94,6 +112,8 @@ class OverlayWatcher:
             return
         try:
             doc_name = obj.Document.Name
+            if prop != "Visibility" and (doc_name, obj.Name) in moving_bodies:
+                return  # a haptic trial moves it at display rate: no redraw per frame
             for overlay in list(self.overlays):
                 if overlay.doc_name != doc_name or obj.Name not in overlay.path_names:
                     continue

@@ -2,8 +2,12 @@
 with a device (the simulated hand, or a SpaceMouse through hidapi) and insert
 or extract it. The C++ loop runs at 1 kHz on its own thread; this panel reads
 its snapshot at display rate (30 Hz), moves the part in the 3D view, shows the
-readouts, records or replays the path, and commits the final placement as one
-undoable transaction (or resets it)."""
+readouts (the active constraints: the joint held and its stops), records or
+replays the path (or a trial script, or a recording of raw HID reports), and
+commits the final placement as one undoable transaction (or resets it). The
+simulated hand can be driven from the panel, one slider per axis, so a trial
+needs no hardware. While the panel is open, the contact overlays do not redraw
+for each move of the part (only its placement changes)."""
 import time
 
 import FreeCAD
@@ -13,6 +17,11 @@ from contactwb import core
 
 DISPLAY_PERIOD_MS = 33
 active_panel = None  # the open panel (for scripts and tests)
+# The simulated hand's sliders: (key, label, range, unit); offsets from the
+# part's assembled placement, like a trial script's keys.
+HAND_AXES = [("x", "X", 100.0, "mm"), ("y", "Y", 100.0, "mm"), ("z", "Z", 100.0, "mm"),
+             ("rx", "Rx", 90.0, "deg"), ("ry", "Ry", 90.0, "deg"), ("rz", "Rz", 180.0, "deg")]
+SLIDER_STEPS_PER_UNIT = 10  # 0.1 mm, 0.1 degree
 
 
 def _body_to_move(bodies, picked):
@@ -92,7 +101,15 @@ class HapticTrialPanel:
         self.script = None        # (checked script, start time) played as hand targets
         self.recording = None     # list of samples while recording
         self.last = None
+        self.frame_times = []     # monotonic time of each display update (the panel's rate)
+        self.update_seconds = []  # time spent in each update (the panel's own cost per frame)
         self.form = self._build_form()
+        # The overlays must not redraw every contact each time the part moves.
+        try:
+            from contactwb.gui.overlay import watcher
+            watcher.moving_bodies.add((self.obj.Document.Name, self.obj.Name))
+        except ImportError:
+            pass
         self._start_session(device)
         from PySide2 import QtCore
         self.timer = QtCore.QTimer()
@@ -102,7 +119,7 @@ class HapticTrialPanel:
 
     # ---- form
     def _build_form(self):
-        from PySide2 import QtWidgets
+        from PySide2 import QtCore, QtWidgets
         form = QtWidgets.QWidget()
         form.setWindowTitle("Haptic trial")
         layout = QtWidgets.QVBoxLayout(form)
@@ -163,10 +180,32 @@ class HapticTrialPanel:
         self.damping_spin.valueChanged.connect(self._gains_changed)
         layout.addWidget(part_box)
 
+        hand_box = QtWidgets.QGroupBox("Simulated hand")
+        grid = QtWidgets.QGridLayout(hand_box)
+        self.hand_sliders = {}
+        self.hand_values = {}
+        for row, (key, label, extent, unit) in enumerate(HAND_AXES):
+            slider = QtWidgets.QSlider()
+            slider.setOrientation(QtCore.Qt.Horizontal)
+            steps = int(extent * SLIDER_STEPS_PER_UNIT)
+            slider.setRange(-steps, steps)
+            slider.setToolTip(f"The simulated hand's target {label}, {unit} from the part's assembled placement")
+            slider.valueChanged.connect(self._hand_moved)
+            value = QtWidgets.QLabel(f"0.0 {unit}")
+            value.setMinimumWidth(70)
+            grid.addWidget(QtWidgets.QLabel(label), row, 0)
+            grid.addWidget(slider, row, 1)
+            grid.addWidget(value, row, 2)
+            self.hand_sliders[key] = slider
+            self.hand_values[key] = value
+        self.hand_box = hand_box
+        layout.addWidget(hand_box)
+
         readout_box = QtWidgets.QGroupBox("Readouts")
         grid = QtWidgets.QGridLayout(readout_box)
         self.readouts = {}
-        for row, (key, label) in enumerate([("depth", "Depth"), ("force", "Force"), ("offset", "Offset"),
+        for row, (key, label) in enumerate([("constraints", "Constraints"), ("depth", "Depth"),
+                                            ("force", "Force"), ("offset", "Offset"),
                                             ("penetration", "Penetration"), ("rate", "Loop rate"),
                                             ("jitter", "Jitter"), ("watchdog", "Watchdog")]):
             grid.addWidget(QtWidgets.QLabel(label), row, 0)
@@ -191,14 +230,18 @@ class HapticTrialPanel:
         return form
 
     # ---- session
-    def _start_session(self, device, translate=(0, 0, 0), rotate_deg=(0, 0, 0)):
+    def _start_session(self, device, translate=(0, 0, 0), rotate_deg=(0, 0, 0), hid_file=None):
         if self.session is not None:
             self.session.stop()
         h = self.trial.haptics()
         # A real-time class for the loop thread when the system grants it (else it runs as it is).
-        self.session = h.HapticSession(self.scene, device, list(translate), list(rotate_deg), realtime_priority=80)
+        self.session = h.HapticSession(self.scene, device, list(translate), list(rotate_deg), hid_file=hid_file,
+                                       realtime_priority=80)
         caps = self.session.capabilities
         self.device_message.setText(self.session.message)
+        # The sliders drive the simulated hand (none with hardware), from where the part starts.
+        self.hand_box.setEnabled(caps["name"] == h.simulated_capabilities()["name"])
+        self.set_hand_sliders(list(translate) + list(rotate_deg), drive=False)
         # Gains within what the device renders (a rate device renders none: keep the defaults).
         k_max = caps["max_stiffness"] or 5.0
         b_max = caps["max_damping"] or 0.05
@@ -231,6 +274,32 @@ class HapticTrialPanel:
         else:
             self.session.hold_to_pair(self.joint_choices[self.chosen]["pair"])
 
+    # ---- the simulated hand's sliders
+    def hand_slider_values(self):
+        """The sliders' target: [x, y, z] mm and [rx, ry, rz] degrees."""
+        values = [self.hand_sliders[key].value() / SLIDER_STEPS_PER_UNIT for key, *_ in HAND_AXES]
+        return values[:3], values[3:]
+
+    def set_hand_sliders(self, values, drive=True):
+        """Moves the sliders (six values, mm and degrees) as the user would;
+        `drive`: the hand follows."""
+        for (key, _, _, unit), v in zip(HAND_AXES, values):
+            slider = self.hand_sliders[key]
+            slider.blockSignals(True)
+            slider.setValue(int(round(v * SLIDER_STEPS_PER_UNIT)))
+            slider.blockSignals(False)
+            self.hand_values[key].setText(f"{slider.value() / SLIDER_STEPS_PER_UNIT:.1f} {unit}")
+        if drive:
+            self._hand_moved()
+
+    def _hand_moved(self, *_):
+        translate, rotate = self.hand_slider_values()
+        for (key, _, _, unit), v in zip(HAND_AXES, translate + rotate):
+            self.hand_values[key].setText(f"{v:.1f} {unit}")
+        if self.session is not None:
+            self.script = None  # the user takes over from a playing script
+            self.session.set_hand_target(translate, rotate)
+
     def _device_changed(self, index):
         self._start_session(self.DEVICES[index][1])
 
@@ -247,8 +316,13 @@ class HapticTrialPanel:
             return
         if self.script is not None:
             self._drive_script()
+        began = time.monotonic()
         s = self.session.snapshot()
         self.last = s
+        self.frame_times.append(began)
+        if len(self.frame_times) > 2000:
+            del self.frame_times[:1000]
+            del self.update_seconds[:1000]
         self._show_placement(s["matrix"])
         self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s["axes"]))
         if s["engaged"]:
@@ -257,6 +331,7 @@ class HapticTrialPanel:
         else:
             self.joint_label.setText("free (stopped only by collisions)")
         r = self.readouts
+        r["constraints"].setText(self.constraints_text(s))
         r["depth"].setText(f"{s['insertion_depth']:.3f} mm" if s["engaged"] else "-")
         r["force"].setText(f"{s['force_n']:.2f} N")
         r["offset"].setText("[" + ", ".join(f"{v:.3f}" for v in s["translate"]) + "] mm")
@@ -264,9 +339,39 @@ class HapticTrialPanel:
         r["rate"].setText(f"{s['rate_hz']:.0f} Hz")
         r["jitter"].setText(f"{s['jitter_us']:.0f} us")
         r["watchdog"].setText(s["watchdog"] if s["watchdog"] != "none" else "ok")
+        self.update_seconds.append(time.monotonic() - began)
         if self.recording is not None:
             self.recording.append({"t": s["time"], "translate": s["translate"], "rotate_deg": s["rotate_deg"],
                                    "force": s["force"], "engaged": s["engaged"], "penetration": s["penetration"]})
+
+    @staticmethod
+    def constraints_text(s):
+        """The active constraints in words: the joint held (found or chosen)
+        with its bodies, and its one-sided stops (active: the part is on it)."""
+        if not s["engaged"]:
+            return "none: free, stopped only by collisions" + (" (blocked)" if s["blocked"] else "")
+        how = "chosen" if s["held"] else "found"
+        text = f"{s['joint']} joint with {', '.join(s['joint_with']) or '?'} ({how})"
+        stops = s.get("stops", [])
+        if stops:
+            active = [st for st in stops if st["active"]]
+            text += f"; stops: {len(active)} of {len(stops)} active"
+            for st in active:
+                n = st["normal"]
+                text += f" [n {n[0]:+.2f} {n[1]:+.2f} {n[2]:+.2f}]"
+        else:
+            text += "; no stops"
+        return text
+
+    def update_rate_hz(self, last_seconds=2.0):
+        """The panel's measured display rate over the last seconds (frames / time)."""
+        if len(self.frame_times) < 2:
+            return 0.0
+        end = self.frame_times[-1]
+        recent = [t for t in self.frame_times if t >= end - last_seconds]
+        if len(recent) < 2 or recent[-1] <= recent[0]:
+            return 0.0
+        return (len(recent) - 1) / (recent[-1] - recent[0])
 
     def _local_placement(self, rows):
         """The object's Placement for the loop's global displacement D (rows):
@@ -302,6 +407,7 @@ class HapticTrialPanel:
             key = keys[-1]
             self.script = None
             self.session.set_hand_target(key["translate"], key["rotate_deg"])
+            self.set_hand_sliders(key["translate"] + key["rotate_deg"], drive=False)  # where the hand is now
             return
         after = next(i for i, k in enumerate(keys) if k["t"] > t)
         a, b = keys[max(0, after - 1)], keys[after]
@@ -337,15 +443,43 @@ class HapticTrialPanel:
         self.play_script({"start": {"translate": hand[0]["translate"], "rotate_deg": hand[0]["rotate_deg"]},
                           "hand": hand})
 
+    def replay_file(self, path):
+        """Replays a file: a trial script (JSON with "hand", like the bundled
+        Resources/trials/*.json), a recorded path (CSV or a JSON list), or raw
+        HID reports (`contacts trial --record-hid`, played through the device's
+        parser)."""
+        import json
+        if path.lower().endswith((".hid", ".txt")):
+            self.script = None
+            self._start_session("replay", hid_file=path)
+            return
+        if path.lower().endswith(".json"):
+            with open(path, encoding="utf-8") as stream:
+                data = json.load(stream)
+            if isinstance(data, dict):
+                self.play_script(data)  # a trial script (checked there, with clear errors)
+                return
+            samples = data
+        else:
+            samples = self.trial.read_path(path)
+        if not samples:
+            raise core.ContactsError(f"'{path}': no samples to replay")
+        self.replay(samples)
+
     def _replay_clicked(self):
         from PySide2 import QtWidgets
-        path, _ = QtWidgets.QFileDialog.getOpenFileName(self.form, "Replay path", "", "Path (*.csv *.json)")
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(
+            self.form, "Replay", "", "Scripts and paths (*.json *.csv);;HID recordings (*.hid *.txt)")
         if path:
-            self.replay(self.trial.read_path(path))
+            try:
+                self.replay_file(path)
+            except (core.ContactsError, OSError, ValueError) as error:
+                _show_error(f"cannot replay '{path}': {error}")
 
     def reset(self):
         """Back to the placement the part had when the panel opened."""
         self.script = None
+        self.set_hand_sliders([0.0] * 6, drive=False)
         self._start_session(self.DEVICES[self.device_combo.currentIndex()][1])
         self.obj.Placement = self.original
 
@@ -357,6 +491,11 @@ class HapticTrialPanel:
             self.session.stop()
             self.session = None
         active_panel = None
+        try:
+            from contactwb.gui.overlay import watcher
+            watcher.follow_body_again(self.obj.Document.Name, self.obj.Name)
+        except ImportError:
+            pass
 
     def accept(self):
         final = FreeCAD.Placement(self.obj.Placement)

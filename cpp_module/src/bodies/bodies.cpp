@@ -2,6 +2,8 @@
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/out_of_memory.h"
 #include "bodies/step_check.h"
+#include "bodies/solid_harvest.h"
+#include "bodies/step_products.h"
 
 #include "contactcore/bodies/instances.h"
 #include "contactcore/common/parallel.h"
@@ -11,6 +13,7 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -44,6 +47,8 @@
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TDF_Label.hxx>
 #include <TDF_LabelSequence.hxx>
+#include <StepBasic_Product.hxx>
+#include <StepRepr_NextAssemblyUsageOccurrence.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
 #include <TopExp_Explorer.hxx>
@@ -70,58 +75,20 @@ std::string label_name(const TDF_Label& label) {
   return out;
 }
 
-// Solids of a shape, in explorer order. Closed shells that no solid holds are
-// turned into solids (some exporters write solids as shell-based models);
-// open shells and faces are counted so the caller can report them.
-struct SolidHarvest {
-  std::vector<TopoDS_Shape> solids;
-  int open_shells = 0;
-  int loose_faces = 0;
+// The file's own names where OCCT's reader put others (issue 25): an
+// occurrence named '' or '$' gets its id ("2") from OCCT, one named wholly
+// outside ASCII (\X2\ or \X4\ encoded: Cyrillic, emoji) too, and so does
+// a product named so: OCCT's name (the id) -> the file's name in UTF-8 (empty:
+// the occurrence takes its product's name).
+struct StepNames {
+  std::unordered_map<std::string, std::string> occurrence, product;
 };
-
-SolidHarvest harvest_solids(const TopoDS_Shape& shape) {
-  SolidHarvest out;
-  for (TopExp_Explorer it(shape, TopAbs_SOLID); it.More(); it.Next()) out.solids.push_back(it.Current());
-  for (TopExp_Explorer it(shape, TopAbs_SHELL, TopAbs_SOLID); it.More(); it.Next()) {
-    const TopoDS_Shell& shell = TopoDS::Shell(it.Current());
-    if (BRep_Tool::IsClosed(shell)) {
-      BRepBuilderAPI_MakeSolid make(shell);
-      if (make.IsDone()) {
-        out.solids.push_back(make.Solid());
-        continue;
-      }
-    }
-    ++out.open_shells;
-  }
-  for (TopExp_Explorer it(shape, TopAbs_FACE, TopAbs_SHELL); it.More(); it.Next()) ++out.loose_faces;
-  return out;
-}
-
-std::string skipped_message(const std::string& name, const SolidHarvest& h) {
-  std::ostringstream msg;
-  msg << "skipped in '" << name << "':";
-  if (h.open_shells) msg << ' ' << h.open_shells << " open shell(s)";
-  if (h.loose_faces) msg << ' ' << h.loose_faces << " face(s) outside any shell";
-  msg << " (surface model, not a solid)";
-  return msg.str();
-}
-
-// False for a shape with NaN or infinite coordinates (a broken placement).
-bool has_finite_box(const TopoDS_Shape& shape) {
-  Bnd_Box box;
-  BRepBndLib::Add(shape, box, false);
-  if (box.IsVoid()) return true;
-  double x0, y0, z0, x1, y1, z1;
-  box.Get(x0, y0, z0, x1, y1, z1);
-  for (double v : {x0, y0, z0, x1, y1, z1})
-    if (!std::isfinite(v) || std::abs(v) >= 1e100) return false;
-  return true;
-}
 
 class StepTreeWalker {
  public:
-  StepTreeWalker(Handle(XCAFDoc_ShapeTool) tool, Assembly& out, Progress* progress)
-      : tool_(std::move(tool)), out_(out), progress_(progress) {}
+  // `names`: the names OCCT put in place of the file's (step_names below).
+  StepTreeWalker(Handle(XCAFDoc_ShapeTool) tool, Assembly& out, Progress* progress, StepNames names = {})
+      : tool_(std::move(tool)), out_(out), progress_(progress), names_(std::move(names)) {}
 
   // `instance_name`: the name of the occurrence placing this shape (STEP's
   // NEXT_ASSEMBLY_USAGE_OCCURRENCE), which tells apart the instances of one
@@ -130,7 +97,12 @@ class StepTreeWalker {
             const std::string& instance_name = {}) {
     // OCCT's transfer reported 0.3 to 0.9: the walk is the rest of the read.
     if (progress_ && !progress_->report("read", 0.9)) return false;
-    std::string name = instance_name.empty() ? label_name(label) : instance_name;
+    std::string name = instance_name;
+    if (name.empty()) {
+      name = label_name(label);
+      const auto named = names_.product.find(name);
+      if (named != names_.product.end()) name = named->second;
+    }
     if (name.empty()) name = "Body";
     const std::string path = parent_path.empty() ? name : parent_path + "/" + name;
     if (XCAFDoc_ShapeTool::IsAssembly(label)) {
@@ -144,6 +116,8 @@ class StepTreeWalker {
         std::string instance = label_name(component);
         // OCCT names an unnamed occurrence after its reference ("=>[0:1:1:3]").
         if (instance.rfind("=>", 0) == 0) instance.clear();
+        const auto named = names_.occurrence.find(instance);
+        if (named != names_.occurrence.end()) instance = named->second;  // empty: the product's name
         if (!walk(referred, placed, path, instance)) return false;
       }
       return true;
@@ -166,7 +140,42 @@ class StepTreeWalker {
   Handle(XCAFDoc_ShapeTool) tool_;
   Assembly& out_;
   Progress* progress_;
+  StepNames names_;
 };
+
+// True when OCCT's reader takes this name for none: UsefullLength counts up
+// to the last ASCII graphic character, so a name wholly outside ASCII (decoded
+// from \X2\ or \X4\ to UTF-8) looks empty to it.
+bool looks_empty_to_occt(const Handle(TCollection_HAsciiString)& text) {
+  return text.IsNull() || text->UsefullLength() == 0;
+}
+
+bool has_graphic_text(const Handle(TCollection_HAsciiString)& text) {
+  if (text.IsNull()) return false;
+  for (const char c : std::string(text->ToCString()))
+    if (static_cast<unsigned char>(c) > 0x20 && c != 0x7f) return true;  // ASCII graphic or a UTF-8 byte
+  return false;
+}
+
+StepNames step_names(const Handle(StepData_StepModel)& model) {
+  StepNames names;
+  if (model.IsNull()) return names;
+  for (Standard_Integer num = 1; num <= model->NbEntities(); ++num) {
+    const Handle(Standard_Transient) entity = model->Value(num);
+    if (const auto usage = Handle(StepRepr_NextAssemblyUsageOccurrence)::DownCast(entity); !usage.IsNull()) {
+      // OCCT names an occurrence by its description, else its name, else its id.
+      if (usage->Id().IsNull() || (usage->HasDescription() && !looks_empty_to_occt(usage->Description()))) continue;
+      if (!looks_empty_to_occt(usage->Name())) continue;
+      names.occurrence[usage->Id()->ToCString()] = has_graphic_text(usage->Name()) ? usage->Name()->ToCString() : "";
+    } else if (const auto product = Handle(StepBasic_Product)::DownCast(entity); !product.IsNull()) {
+      // A product by its name, else its id.
+      if (product->Id().IsNull() || !looks_empty_to_occt(product->Name()) || !has_graphic_text(product->Name()))
+        continue;
+      names.product[product->Id()->ToCString()] = product->Name()->ToCString();
+    }
+  }
+  return names;
+}
 
 void read_units(STEPCAFControl_Reader& reader, Assembly& assembly) {
   TColStd_SequenceOfAsciiString length_units, angle_units, solid_angle_units;
@@ -344,7 +353,7 @@ void keep_reader_notes(const OcctGuard& guard, std::vector<std::string>& message
 
 }  // namespace
 
-AssemblyResult read_step(const std::string& path, Progress* progress) {
+AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMode mode, std::size_t max_bodies) {
   AssemblyResult result;
   const auto fail = [&result, &path](StatusCode code, const std::string& message) {
     result.status = Status::failure(code, message);
@@ -367,7 +376,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
     // Shapes come out in millimetres whatever the file's unit.
     Interface_Static::SetCVal("xstep.cascade.unit", "MM");
     app->NewDocument("MDTV-XCAF", doc);
-    STEPCAFControl_Reader reader;
+    StepReader reader;
     reader.SetNameMode(true);
     reader.SetColorMode(false);
     reader.SetLayerMode(false);
@@ -401,6 +410,17 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
       } else if (check.reference_depth > kMaxReferenceDepth) {
         fail(StatusCode::InvalidInput, "entities nested " + std::to_string(check.reference_depth) + " levels deep from " +
                                            check.deepest_entity + " (at most " + std::to_string(kMaxReferenceDepth) + ")");
+      } else if (check.assembly_instances > static_cast<double>(max_bodies)) {
+        char text[200];
+        std::snprintf(text, sizeof text, "the assembly expands to %.6g instances: more than the limit of %zu bodies "
+                                         "(CLI --max-bodies)", check.assembly_instances, max_bodies);
+        fail(StatusCode::InvalidInput, text);
+      } else if (check.largest_expansion > static_cast<double>(max_bodies)) {
+        char text[200];
+        std::snprintf(text, sizeof text, "%s expands to %.6g items through nested sets or mapped items: more than the "
+                                         "limit of %zu (CLI --max-bodies)", check.largest_container.c_str(),
+                      check.largest_expansion, max_bodies);
+        fail(StatusCode::InvalidInput, text);
       } else if (!check.non_finite.empty()) {
         fail(StatusCode::InvalidInput, "coordinates that are not finite numbers (NaN, infinite or unreadable) in " +
                                            describe_non_finite(check));
@@ -410,6 +430,57 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
         if (check.damaged_count)
           result.assembly.messages.push_back(std::to_string(check.damaged_count) +
                                              " damaged STEP entities ignored: " + describe_damaged(check));
+        // The fast product read first; the XDE read when it cannot serve the
+        // file, said where the user looks: the messages, and the progress (a
+        // stage of its own).
+        bool served = false;
+        StepReader* xde_reader = &reader;
+        std::unique_ptr<StepReader> reread;  // the products' transfer used the first reader's session
+        const auto fall_back = [&](const std::string& why) {
+          result.assembly.messages.push_back("STEP read: the fast product read cannot serve this file (" + why +
+                                             "): read through OCCT's XDE reader");
+          if (progress && !progress->report("read (XDE fallback)", 0.3)) fail(StatusCode::Cancelled, "cancelled");
+        };
+        if (mode == StepReadMode::Products) {
+          const ProductPlanResult plan = plan_products(reader);
+          if (!plan.plan) {
+            fall_back(plan.why_not);
+          } else {
+            result.assembly.reader = "products";
+            ProductRead outcome;
+            try {
+              OCC_CATCH_SIGNALS
+              outcome = read_products(*plan.plan, reader, result.assembly, progress, 0.3, 1.0);
+            } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
+              std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
+              if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
+              message += ")";
+              if (check.damaged_count) message += "; damaged entities: " + describe_damaged(check);
+              fail(StatusCode::ReadError, message);
+            }
+            if (result.status.ok() && outcome.outcome == ProductRead::Cancelled) fail(StatusCode::Cancelled, "cancelled");
+            if (result.status.ok() && outcome.outcome == ProductRead::NotServed) {
+              fall_back(outcome.why_not);
+              reread = std::make_unique<StepReader>();
+              reread->SetNameMode(true);
+              reread->SetColorMode(false);
+              reread->SetLayerMode(false);
+              reread->SetPropsMode(false);
+              if (result.status.ok() && reread->ReadFile(path.c_str()) != IFSelect_RetDone)
+                fail(StatusCode::ReadError, "not a readable STEP file (second read)");
+              xde_reader = reread.get();
+            } else if (result.status.ok()) {
+              served = true;
+              make_names_unique(result.assembly.bodies);
+              if (result.assembly.bodies.empty())
+                fail(StatusCode::InvalidInput, result.assembly.messages.empty()
+                                                   ? "no solid in the file"
+                                                   : "no solid in the file (" + result.assembly.messages.back() + ")");
+            }
+          }
+        }
+        if (result.status.ok() && !served) {
+        result.assembly.reader = "xde";
         bool transferred = false;
         // OCCT's transfer is most of the read (quadratic on some chains of
         // references): its progress is the read's from 0.3 to 0.9, and
@@ -418,7 +489,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
         try {
           OCC_CATCH_SIGNALS
           Handle(detail::OcctBreak) indicator = new detail::OcctBreak(watch, 0.3, 0.9);
-          transferred = reader.Transfer(doc, indicator->Start());
+          transferred = xde_reader->Transfer(doc, indicator->Start());
         } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
           std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
           if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
@@ -435,7 +506,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
           Handle(XCAFDoc_ShapeTool) tool = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
           TDF_LabelSequence roots;
           tool->GetFreeShapes(roots);
-          StepTreeWalker walker(tool, result.assembly, progress);
+          StepTreeWalker walker(tool, result.assembly, progress, step_names(reader.ChangeReader().StepModel()));
           for (Standard_Integer i = 1; i <= roots.Length(); ++i) {
             if (!walker.walk(roots.Value(i), TopLoc_Location(), "")) {
               result.status = Status::failure(StatusCode::Cancelled, "cancelled");
@@ -447,6 +518,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress) {
             fail(StatusCode::InvalidInput, result.assembly.messages.empty()
                                                ? "no solid in the file"
                                                : "no solid in the file (" + result.assembly.messages.back() + ")");
+        }
         }
       }
       keep_reader_notes(guard, result.assembly.messages);

@@ -13,8 +13,21 @@
 #include <Interface_ReportEntity.hxx>
 #include <StepBasic_ProductDefinition.hxx>
 #include <StepData_UndefinedEntity.hxx>
+#include <StepBasic_MeasureValueMember.hxx>
+#include <StepBasic_MeasureWithUnit.hxx>
 #include <StepGeom_CartesianPoint.hxx>
+#include <StepGeom_Circle.hxx>
+#include <StepGeom_ConicalSurface.hxx>
+#include <StepGeom_CylindricalSurface.hxx>
 #include <StepGeom_Direction.hxx>
+#include <StepGeom_Ellipse.hxx>
+#include <StepGeom_SphericalSurface.hxx>
+#include <StepGeom_ToroidalSurface.hxx>
+#include <StepGeom_Vector.hxx>
+#include <StepRepr_MappedItem.hxx>
+#include <StepRepr_Representation.hxx>
+#include <StepRepr_RepresentationMap.hxx>
+#include <StepShape_GeometricSet.hxx>
 #include <StepRepr_AssemblyComponentUsage.hxx>
 #include <TCollection_HAsciiString.hxx>
 
@@ -90,12 +103,46 @@ bool coordinates_unreadable(const Handle(StepData_StepModel)& model, Standard_In
   return false;
 }
 
+// The numbers of the other entities whose one number sizes a shape or a
+// unit (issue 25: VECTOR('',#116,1.E+400) and a length unit of infinite
+// factor made OCCT's transfer run for minutes): a type name for the message
+// when one is not usable, else nullptr.
+const char* unusable_measure(const Handle(Standard_Transient)& entity) {
+  if (const auto vector = Handle(StepGeom_Vector)::DownCast(entity); !vector.IsNull())
+    return usable(vector->Magnitude()) ? nullptr : "VECTOR";
+  if (const auto circle = Handle(StepGeom_Circle)::DownCast(entity); !circle.IsNull())
+    return usable(circle->Radius()) ? nullptr : "CIRCLE";
+  if (const auto ellipse = Handle(StepGeom_Ellipse)::DownCast(entity); !ellipse.IsNull())
+    return usable(ellipse->SemiAxis1()) && usable(ellipse->SemiAxis2()) ? nullptr : "ELLIPSE";
+  if (const auto cylinder = Handle(StepGeom_CylindricalSurface)::DownCast(entity); !cylinder.IsNull())
+    return usable(cylinder->Radius()) ? nullptr : "CYLINDRICAL_SURFACE";
+  if (const auto cone = Handle(StepGeom_ConicalSurface)::DownCast(entity); !cone.IsNull())
+    return usable(cone->Radius()) && usable(cone->SemiAngle()) ? nullptr : "CONICAL_SURFACE";
+  if (const auto sphere = Handle(StepGeom_SphericalSurface)::DownCast(entity); !sphere.IsNull())
+    return usable(sphere->Radius()) ? nullptr : "SPHERICAL_SURFACE";
+  if (const auto torus = Handle(StepGeom_ToroidalSurface)::DownCast(entity); !torus.IsNull())
+    return usable(torus->MajorRadius()) && usable(torus->MinorRadius()) ? nullptr : "TOROIDAL_SURFACE";
+  if (const auto measure = Handle(StepBasic_MeasureWithUnit)::DownCast(entity); !measure.IsNull()) {
+    if (measure->ValueComponentMember().IsNull()) return nullptr;
+    const double value = measure->ValueComponent();
+    // A unit's factor: finite, and neither zero nor beyond 1e100 either way.
+    return std::isfinite(value) && std::fabs(value) <= kMaxCoordinate &&
+                   (value == 0 || std::fabs(value) >= 1 / kMaxCoordinate)
+               ? nullptr
+               : "MEASURE_WITH_UNIT";
+  }
+  return nullptr;
+}
+
 void find_non_finite(const Handle(StepData_StepModel)& model, StepModelCheck& out) {
   for (Standard_Integer num = 1; num <= model->NbEntities(); ++num) {
     const Handle(Standard_Transient) entity = model->Value(num);
     const Handle(StepGeom_CartesianPoint) point = Handle(StepGeom_CartesianPoint)::DownCast(entity);
     const Handle(StepGeom_Direction) direction = Handle(StepGeom_Direction)::DownCast(entity);
-    if (point.IsNull() && direction.IsNull()) continue;
+    if (point.IsNull() && direction.IsNull()) {
+      if (const char* type = unusable_measure(entity)) out.non_finite.push_back(entity_label(model, entity) + " (" + type + ")");
+      continue;
+    }
     // A coordinate that failed to read leaves whatever was there (an unset
     // name, "$" as some writers put, is harmless).
     const bool bad = coordinates_unreadable(model, num) || (point.IsNull() ? !usable(direction) : !usable(point));
@@ -120,6 +167,7 @@ void check_assembly_graph(const Handle(StepData_StepModel)& model, StepModelChec
   enum Mark : char { Unseen = 0, Open, Done };
   std::unordered_map<int, char> mark;
   std::unordered_map<int, int> height;  // levels below a node, itself included
+  std::unordered_map<int, double> instances;  // leaf instances below a node (1 for a leaf part)
   struct Frame {
     int node;
     size_t next;
@@ -150,14 +198,33 @@ void check_assembly_graph(const Handle(StepData_StepModel)& model, StepModelChec
         continue;
       }
       int levels = 1;
+      double below = kids ? 0 : 1;
       if (kids)
-        for (int kid : *kids) levels = std::max(levels, 1 + height[kid]);
+        for (int kid : *kids) {
+          levels = std::max(levels, 1 + height[kid]);
+          const auto leaf = instances.find(kid);
+          below += leaf == instances.end() ? 1 : leaf->second;  // a kid with no kids: one part
+        }
       height[frame.node] = levels;
+      instances[frame.node] = below;
       mark[frame.node] = Done;
       out.assembly_depth = std::max(out.assembly_depth, levels);
       stack.pop_back();
     }
   }
+  std::unordered_set<int> used;
+  for (const auto& entry : children)
+    for (int kid : entry.second) used.insert(kid);
+  for (const auto& entry : children)
+    if (!used.count(entry.first)) out.assembly_instances += instances[entry.first];
+}
+
+// Entities OCCT's transfer expands once per reference: sets of geometry and
+// mapped items (with the representation map and representation they go through).
+bool expands_per_reference(const Handle(Standard_Transient)& entity) {
+  return entity->IsKind(STANDARD_TYPE(StepShape_GeometricSet)) || entity->IsKind(STANDARD_TYPE(StepRepr_MappedItem)) ||
+         entity->IsKind(STANDARD_TYPE(StepRepr_RepresentationMap)) ||
+         entity->IsKind(STANDARD_TYPE(StepRepr_Representation));
 }
 
 // Cycles and the longest chain of references between entities ("#10 refers to
@@ -178,6 +245,10 @@ void check_reference_graph(const Handle(StepData_StepModel)& model, const Interf
   enum Mark : char { Unseen = 0, Open, Done };
   std::vector<char> mark(refers.size(), Unseen);
   std::vector<int> height(refers.size(), 0);  // entities on the longest chain from here, itself included
+  // Items a container expands to (expands_per_reference; 0 for other entities).
+  std::vector<double> expansion(refers.size(), 0);
+  std::vector<char> container(refers.size(), 0);
+  for (Standard_Integer num = 1; num <= count; ++num) container[num] = expands_per_reference(graph.Entity(num));
   struct Frame {
     int node;
     size_t next;
@@ -211,6 +282,15 @@ void check_reference_graph(const Handle(StepData_StepModel)& model, const Interf
       for (int target : next) levels = std::max(levels, 1 + height[target]);
       height[frame.node] = levels;
       mark[frame.node] = Done;
+      if (container[frame.node]) {
+        double items = 0;
+        for (int target : next) items += container[target] ? expansion[target] : 1;
+        expansion[frame.node] = items;
+        if (items > out.largest_expansion) {
+          out.largest_expansion = items;
+          out.largest_container = entity_label(model, model->Value(frame.node));
+        }
+      }
       if (levels > out.reference_depth) {
         out.reference_depth = levels;
         out.deepest_entity = entity_label(model, model->Value(frame.node));

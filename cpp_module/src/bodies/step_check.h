@@ -3,6 +3,7 @@
 // reference never ends) and may crash on damaged entities.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -20,8 +21,22 @@ constexpr int kMaxAssemblyDepth = 200;
 // files have 11 to 16 levels; an assembly of mapped items adds 3 a level.
 constexpr int kMaxReferenceDepth = 1000;
 
+// Default limit of the instances an assembly may expand to (CLI --max-bodies):
+// counted on the parsed model before OCCT's transfer expands anything (an
+// assembly of 30 levels each using the level below twice is 2^30 instances).
+constexpr std::size_t kDefaultMaxBodies = 1'000'000;
+
 struct StepModelCheck {
   int assembly_depth = 0;             // longest chain of NEXT_ASSEMBLY_USAGE_OCCURRENCE
+  // Leaf instances the assembly tree expands to (each usage of a product
+  // counts its own instances; a DAG is measured in linear time, never walked
+  // path by path), summed over the root products; 0 without assemblies.
+  double assembly_instances = 0;
+  // The most items one container (GEOMETRIC_SET, MAPPED_ITEM, its
+  // REPRESENTATION_MAP and REPRESENTATION) expands to through nested
+  // containers, as OCCT's transfer expands them, and which entity that is.
+  double largest_expansion = 0;
+  std::string largest_container;
   std::string cycle;                  // "#5 -> #9 -> #5" when an assembly contains itself
   std::vector<std::string> damaged;   // "#12: unknown entity type NOT_A_TYPE" (first few)
   int damaged_count = 0;              // all damaged entities

@@ -11,6 +11,7 @@ const char* to_string(StatusCode code) {
     case StatusCode::Cancelled: return "cancelled";
     case StatusCode::InvalidArgument: return "invalid argument";
     case StatusCode::OutOfMemory: return "out of memory";
+    case StatusCode::Internal: return "internal error";
   }
   return "unknown";
 }

@@ -2,12 +2,14 @@
 
 #include <csignal>
 #include <mutex>
+#include <system_error>
 #include <vector>
 
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_Printer.hxx>
 #include <OSD.hxx>
+#include <Standard_OutOfMemory.hxx>
 
 namespace contactcore {
 
@@ -106,6 +108,30 @@ OcctGuard::~OcctGuard() {
 }
 
 std::vector<std::string> OcctGuard::messages() const { return state_->capture->lines; }
+
+Status status_of_current_exception() {
+  try {
+    throw;
+  } catch (const Standard_OutOfMemory&) {
+    return Status::failure(StatusCode::OutOfMemory, "out of memory");
+  } catch (const Standard_Failure& failure) {
+    // Some OCCT exceptions carry no message: name their type then.
+    const char* text = failure.GetMessageString();
+    return Status::failure(StatusCode::GeometryError, std::string("OCCT ") + failure.DynamicType()->Name() +
+                                                          (text && *text ? std::string(": ") + text : ""));
+  } catch (const std::bad_alloc&) {
+    return Status::failure(StatusCode::OutOfMemory, "out of memory");
+  } catch (const std::system_error& error) {
+    // A thread or a mapping the system could not give: memory, not a bug.
+    if (error.code() == std::errc::not_enough_memory || error.code() == std::errc::resource_unavailable_try_again)
+      return Status::failure(StatusCode::OutOfMemory, std::string("out of memory (") + error.what() + ")");
+    return Status::failure(StatusCode::Internal, error.what());
+  } catch (const std::exception& error) {
+    return Status::failure(StatusCode::Internal, *error.what() ? error.what() : "C++ exception without a message");
+  } catch (...) {
+    return Status::failure(StatusCode::Internal, "an exception that is not a C++ std::exception");
+  }
+}
 
 std::string occt_failure_text(const Standard_Failure& failure) {
   const char* text = failure.GetMessageString();

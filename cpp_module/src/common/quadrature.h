@@ -1,6 +1,7 @@
-// Common to the stages: Gauss quadrature on curve pieces, shared by the exact
-// face areas (partitions/face_typing.cpp), the plane outlines
-// (partitions/outlines.cpp) and the signed volumes (contacts/signed_volume.cpp).
+// Common to the stages: Gauss quadrature on curve pieces and the boundary
+// integral along a curve, shared by the exact face areas
+// (partitions/face_typing.cpp), the plane outlines (partitions/outlines.cpp)
+// and the signed volumes (contacts/signed_volume.cpp).
 #pragma once
 
 #include <algorithm>
@@ -9,19 +10,37 @@
 
 #include <GeomAbs_CurveType.hxx>
 #include <GeomAbs_Shape.hxx>
+#include "contactcore/common/angles.h"
 #include <TColStd_Array1OfReal.hxx>
+#include <gp_Pnt.hxx>
+#include <gp_Vec.hxx>
 
 namespace contactcore::detail {
+
+// The 8-point Gauss-Legendre rule on [-1, 1]: nodes +-kGaussNodes[i] with
+// weight kGaussWeights[i] (the project's only copy of the table).
+inline constexpr double kGaussNodes[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                                          0.9602898564975363};
+inline constexpr double kGaussWeights[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                                            0.1012285362903763};
 
 // 8-point Gauss-Legendre on [a, b].
 template <class Integrand>
 double gauss(double a, double b, Integrand f) {
-  static constexpr double x[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
-  static constexpr double w[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
   const double mid = (a + b) / 2, half = (b - a) / 2;
   double sum = 0;
-  for (int i = 0; i < 4; ++i) sum += w[i] * (f(mid - half * x[i]) + f(mid + half * x[i]));
+  for (int i = 0; i < 4; ++i) sum += kGaussWeights[i] * (f(mid - half * kGaussNodes[i]) + f(mid + half * kGaussNodes[i]));
   return sum * half;
+}
+
+// The same rule's nodes on [a, b], ascending, each with its weight scaled to
+// [a, b]: visit(t, weight). For integrands that are not a double (vectors),
+// whose caller sums weight * f(t) itself.
+template <class Visit>
+void gauss_nodes(double a, double b, Visit visit) {
+  const double mid = (a + b) / 2, half = (b - a) / 2;
+  for (int i = 3; i >= 0; --i) visit(mid - half * kGaussNodes[i], kGaussWeights[i] * half);
+  for (int i = 0; i < 4; ++i) visit(mid + half * kGaussNodes[i], kGaussWeights[i] * half);
 }
 
 // Break points of [first, last] such that 8-point Gauss is exact to round-off
@@ -30,7 +49,7 @@ double gauss(double a, double b, Integrand f) {
 // anything else in 16 pieces.
 template <class Curve>
 void integration_pieces(const Curve& curve, double first, double last, std::vector<double>& breaks) {
-  constexpr double kEighthTurn = 3.14159265358979323846 / 4;
+  constexpr double kEighthTurn = kPi / 4;
   breaks.clear();
   auto uniform = [&](double a, double b, int pieces) {
     for (int i = 0; i < pieces; ++i) breaks.push_back(a + (b - a) * i / pieces);
@@ -64,6 +83,24 @@ void integration_pieces(const Curve& curve, double first, double last, std::vect
     default: uniform(first, last, 16); break;
   }
   breaks.push_back(last);
+}
+
+// A boundary integral (Green, Stokes) along a whole 3D curve: the integral of
+// f(p, dp/dt) over the curve's parameter range, 8-point Gauss on each of its
+// integration_pieces (`breaks` is scratch space, kept to save allocations).
+template <class Curve, class Integrand>
+double curve_integral(const Curve& curve, std::vector<double>& breaks, Integrand f) {
+  integration_pieces(curve, curve.FirstParameter(), curve.LastParameter(), breaks);
+  double sum = 0;
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    sum += gauss(breaks[i], breaks[i + 1], [&](double t) {
+      gp_Pnt p;
+      gp_Vec d;
+      curve.D1(t, p, d);
+      return f(p.XYZ(), d.XYZ());
+    });
+  }
+  return sum;
 }
 
 }  // namespace contactcore::detail

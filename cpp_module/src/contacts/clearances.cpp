@@ -1,6 +1,7 @@
 // Clearance fits: a convex and a concave surface of the same type on the same
 // axis (or centre) whose radii differ by a gap smaller than the user's, e.g. a
 // nut on its bolt. Reported beside contacts, never as contacts.
+#include "contactcore/common/angles.h"
 #include "contactcore/contacts/clearances.h"
 
 #include "contacts/common_area.h"
@@ -28,7 +29,7 @@ double fit_gap(const Partition& a, const Partition& b, const Tolerances& tol) {
   const Partition& inner = a.side == MaterialSide::Convex ? a : b;
   const Partition& outer = a.side == MaterialSide::Convex ? b : a;
   if (pa.kind == SurfaceKind::Cylinder) {
-    if (pa.axis.Angle(pb.axis) > tol.angular && M_PI - pa.axis.Angle(pb.axis) > tol.angular) return -1;
+    if (pa.axis.Angle(pb.axis) > tol.angular && kPi - pa.axis.Angle(pb.axis) > tol.angular) return -1;
     if (distance_to_line(pb.location, pa.location, pa.axis) > tol.linear) return -1;
     // The two must overlap along the axis.
     const gp_Vec shift(pa.location, pb.location);
@@ -69,8 +70,7 @@ double plane_gap(const BodyPartitions& body_a, const Partition& a, const BodyPar
 
 }  // namespace
 
-std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap,
-                                       const Tolerances& tol) {
+std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap) {
   std::vector<Clearance> out;
   if (max_gap <= 0) return out;
   std::vector<Bnd_Box> boxes;
@@ -78,6 +78,7 @@ std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partit
   for (const auto& [i, j] : broad_phase(boxes, max_gap).pairs) {
     const int a = std::min(i, j), b = std::max(i, j);
     if (a < 0 || b >= static_cast<int>(partitions.size())) continue;
+    const Tolerances tol = pair_tolerances(partitions[a], partitions[b]);
     for (const Partition& pa : partitions[a].partitions) {
       if (pa.params.kind == SurfaceKind::Cone || pa.params.kind == SurfaceKind::Torus ||
           pa.params.kind == SurfaceKind::Other)

@@ -1,4 +1,5 @@
 #include "contacts/common_area.h"
+#include "contactcore/common/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,6 +7,8 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepClass_FaceClassifier.hxx>
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom_Surface.hxx>
@@ -20,8 +23,6 @@
 namespace contactcore {
 
 namespace {
-
-constexpr double kTwoPi = 2.0 * M_PI;
 
 // ---------------------------------------------------------------- 2D polygons
 
@@ -227,42 +228,6 @@ double distance_to_line(const gp_Pnt& p, const gp_Pnt& origin, const gp_Dir& axi
   return v.Crossed(gp_Vec(axis)).Magnitude();
 }
 
-// A point on a face (within tolerance of its surface and inside its
-// boundaries)? For samples of circle contacts. The projection gives
-// parameters in the surface's natural period; the face's own range may be
-// shifted by whole turns (u in [pi, 3 pi] is common in exported bearings), so
-// periodic parameters are brought into the face's range before classifying.
-class FaceProbe {
- public:
-  explicit FaceProbe(const FaceInfo& info)
-      : face_(info.face), surface_(BRep_Tool::Surface(info.face)), analysis_(surface_) {
-    BRepTools::UVBounds(face_, u_min_, u_max_, v_min_, v_max_);
-  }
-  bool contains(const gp_Pnt& p, double tol) {
-    const gp_Pnt2d uv = analysis_.ValueOfUV(p, tol);
-    if (analysis_.Gap() > tol) return false;
-    const double u = into_range(uv.X(), u_min_, u_max_, surface_->IsUPeriodic() ? surface_->UPeriod() : 0);
-    const double v = into_range(uv.Y(), v_min_, v_max_, surface_->IsVPeriodic() ? surface_->VPeriod() : 0);
-    BRepClass_FaceClassifier classifier(face_, gp_Pnt2d(u, v), Precision::PConfusion());
-    const TopAbs_State state = classifier.State();
-    return state == TopAbs_IN || state == TopAbs_ON;
-  }
-
-  // The value shifted by whole periods to lie in [low, high] when some shift
-  // does (else the one closest to the middle of the range).
-  static double into_range(double value, double low, double high, double period) {
-    if (period <= 0) return value;
-    const double middle = (low + high) / 2;
-    return value + period * std::round((middle - value) / period);
-  }
-
- private:
-  TopoDS_Face face_;
-  Handle(Geom_Surface) surface_;
-  ShapeAnalysis_Surface analysis_;
-  double u_min_ = 0, u_max_ = 0, v_min_ = 0, v_max_ = 0;
-};
-
 gp_Dir any_perpendicular(const gp_Dir& axis) {
   const gp_Dir trial = std::abs(axis.X()) < 0.9 ? gp_Dir(1, 0, 0) : gp_Dir(0, 1, 0);
   return gp_Dir(gp_Vec(axis).Crossed(gp_Vec(trial)));
@@ -286,6 +251,88 @@ std::vector<AngularInterval> circle_on_faces(const gp_Pnt& centre, const gp_Dir&
     if (on_all) hits.push_back({k * step, step});
   }
   return unite(hits);
+}
+
+// The end of a run of circle samples found on the faces, to the probes'
+// precision: bisection between an angle on all faces and one off them.
+double refine_circle_end(const gp_Pnt& centre, const gp_Dir& x, const gp_Dir& y, double radius,
+                         std::vector<FaceProbe*>& probes, double tol, double inside, double outside) {
+  for (int i = 0; i < 40 && std::abs(outside - inside) > 1e-12; ++i) {
+    const double middle = 0.5 * (inside + outside);
+    const gp_Pnt p = centre.Translated(gp_Vec(x) * (radius * std::cos(middle)) + gp_Vec(y) * (radius * std::sin(middle)));
+    bool on_all = true;
+    for (FaceProbe* probe : probes) on_all = on_all && probe->contains(p, tol);
+    (on_all ? inside : outside) = middle;
+  }
+  return inside;
+}
+
+// The smallest arc covering angular intervals of a circle (the complement
+// of their largest gap): its middle angle and half span; half span pi when
+// they go all around.
+void covering_arc(const std::vector<AngularInterval>& intervals, double& middle, double& half_span) {
+  std::vector<AngularInterval> sorted = unite(intervals);
+  middle = 0, half_span = kPi;
+  double covered = 0;
+  for (const AngularInterval& i : sorted) covered += i.span;
+  if (sorted.empty() || covered >= kTwoPi - 1e-9) return;
+  std::sort(sorted.begin(), sorted.end(), [](const AngularInterval& l, const AngularInterval& r) { return l.start < r.start; });
+  double best_gap = -1, arc_start = 0;
+  for (size_t k = 0; k < sorted.size(); ++k) {
+    const double end = sorted[k].start + sorted[k].span;
+    const double next = k + 1 < sorted.size() ? sorted[k + 1].start : sorted[0].start + kTwoPi;
+    const double gap = next - end;
+    if (gap > best_gap) best_gap = gap, arc_start = next;
+  }
+  half_span = 0.5 * (kTwoPi - best_gap);
+  middle = arc_start + half_span;
+}
+
+// A cap of the sphere (centre, radius) covering faces lying on it: its axis
+// through the region's centroid, its angle the largest angle from the axis
+// to the faces' boundaries (exactly sampled along circles; other edges get
+// the angle between samples added, so the cap always covers). pi when the
+// region goes all around (the point opposite the axis lies on a face).
+void covering_cap(const std::vector<FaceInfo>& pieces, const gp_Pnt& centre, double radius, double tol,
+                  gp_Dir& axis, double& angle) {
+  angle = kPi;
+  gp_XYZ moment(0, 0, 0);
+  double area = 0;
+  for (const FaceInfo& piece : pieces) {
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(piece.face, props);
+    moment += (props.CentreOfMass().XYZ() - centre.XYZ()) * props.Mass();
+    area += props.Mass();
+  }
+  if (area <= 0 || moment.Modulus() <= 1e-9 * radius * area) return;
+  axis = gp_Dir(moment);
+  const gp_Pnt opposite = centre.Translated(gp_Vec(axis) * -radius);
+  for (const FaceInfo& piece : pieces) {
+    FaceProbe probe(piece);
+    if (probe.contains(opposite, tol)) return;
+  }
+  constexpr int kSamples = 64;
+  double widest = 0;
+  for (const FaceInfo& piece : pieces) {
+    for (TopExp_Explorer edges(piece.face, TopAbs_EDGE); edges.More(); edges.Next()) {
+      const TopoDS_Edge& edge = TopoDS::Edge(edges.Current());
+      if (BRep_Tool::Degenerated(edge)) continue;
+      const BRepAdaptor_Curve curve(edge);
+      const double t0 = curve.FirstParameter(), t1 = curve.LastParameter();
+      double step_angle = 0;
+      gp_Vec previous;
+      for (int i = 0; i <= kSamples; ++i) {
+        const gp_Vec d(centre, curve.Value(t0 + (t1 - t0) * i / kSamples));
+        if (d.Magnitude() <= 0) continue;
+        widest = std::max(widest, d.Angle(gp_Vec(axis)));
+        if (i > 0) step_angle = std::max(step_angle, d.Angle(previous));
+        previous = d;
+      }
+      // Between samples, a curve other than a circle may reach further.
+      if (curve.GetType() != GeomAbs_Circle) widest += step_angle;
+    }
+  }
+  angle = std::min(kPi, widest);
 }
 
 // -------------------------------------------------------------- contacts
@@ -358,7 +405,10 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
 // piece typed as a face of its own: exact area (Green on its boundary) and
 // extent. Used where the boundary of a face is not made of iso-lines of the
 // shared parametrisation, and for spheres and tori.
-std::vector<FaceInfo> boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol) {
+// A failed Boolean or piece is a failed Status (the driver skips the pair).
+Status boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol,
+                      std::vector<FaceInfo>& pieces) {
+  pieces.clear();
   TopTools_ListOfShape arguments, tools;
   arguments.Append(a);
   tools.Append(b);
@@ -369,15 +419,14 @@ std::vector<FaceInfo> boolean_common(const TopoDS_Face& a, const TopoDS_Face& b,
   common.SetNonDestructive(Standard_True);
   common.SetRunParallel(Standard_False);
   common.Build();
-  if (!common.IsDone()) throw Standard_Failure("Boolean common of two faces failed");
-  std::vector<FaceInfo> pieces;
+  if (!common.IsDone()) return Status::failure(StatusCode::GeometryError, "OCCT: Boolean common of two faces failed");
   for (TopExp_Explorer faces(common.Shape(), TopAbs_FACE); faces.More(); faces.Next()) {
     FaceInfo piece;
     const Status typed = type_face(TopoDS::Face(faces.Current()), tol, piece);
-    if (!typed.ok()) throw Standard_Failure(typed.message.c_str());
+    if (!typed.ok()) return Status::failure(StatusCode::GeometryError, "OCCT: " + typed.message);
     pieces.push_back(std::move(piece));
   }
-  return pieces;
+  return Status::success();
 }
 
 // Is the face a rectangle in (angle, axial) about the axis: every edge either
@@ -417,19 +466,19 @@ bool is_angle_axial_rectangle(const TopoDS_Face& face, const gp_Pnt& origin, con
 // faces bounded by parallels and meridians meet in the product of their axial
 // ranges and angular spans; any other pair (oblique ends, cross holes,
 // trimmed faces) by the exact common region of the two faces.
-void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out) {
+Status revolution_fit(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
   const bool cone = pa.kind == SurfaceKind::Cone;
   if (cone) {
-    if (pa.axis.Dot(pb.axis) < std::cos(ctx.tol.angular)) return;
-    if (std::abs(pa.half_angle - pb.half_angle) > ctx.tol.angular) return;
-    if (pa.location.Distance(pb.location) > ctx.tol.linear) return;
+    if (pa.axis.Dot(pb.axis) < std::cos(ctx.tol.angular)) return Status::success();
+    if (std::abs(pa.half_angle - pb.half_angle) > ctx.tol.angular) return Status::success();
+    if (pa.location.Distance(pb.location) > ctx.tol.linear) return Status::success();
   } else {
-    if (!parallel(pa.axis, pb.axis, ctx.tol.angular)) return;
-    if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return;
-    if (distance_to_line(pb.location, pa.location, pa.axis) > ctx.tol.linear) return;
+    if (!parallel(pa.axis, pb.axis, ctx.tol.angular)) return Status::success();
+    if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return Status::success();
+    if (distance_to_line(pb.location, pa.location, pa.axis) > ctx.tol.linear) return Status::success();
   }
   Contact c;
   c.type = cone ? ContactType::CJU : ContactType::CLJ;
@@ -466,7 +515,10 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
                              : pa.radius * angle * (z1 - z0));
       } else {
         common.clear();
-        for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) {
+        std::vector<FaceInfo> pieces;
+        const Status found = boolean_common(face_a.face, face_b.face, ctx.tol, pieces);
+        if (!found.ok()) return found;
+        for (const FaceInfo& piece : pieces) {
           area += piece.area;
           const Extent seen = revolution_extent_in(piece, pa.location, pa.axis, ref, ctx.tol.linear);
           common.insert(common.end(), seen.angular.begin(), seen.angular.end());
@@ -479,48 +531,56 @@ void revolution_fit(int ia, const Partition& a, int ib, const Partition& b, cons
       c.faces_b.push_back(fb);
     }
   }
-  if (!area_counts(c.area, a, b, ctx)) return;
+  if (!area_counts(c.area, a, b, ctx)) return Status::success();
   c.span = 0;
   for (const AngularInterval& i : unite(common_angles)) c.span += i.span;
-  c.partial = c.span < M_PI - ctx.tol.angular;
+  c.partial = c.span < kPi - ctx.tol.angular;
   c.partition_a = a.id, c.partition_b = b.id;
   record(c, ctx, out);
+  return Status::success();
 }
 
 // Spheres (SPF) and tori (TRF) with the same parameters: the exact common
 // region of each face pair (the same whichever body comes first).
-void closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& b,
-                           const PairContext& ctx, std::vector<Contact>& out) {
+Status closed_revolution_fit(int ia, const Partition& a, int ib, const Partition& b,
+                             const PairContext& ctx, std::vector<Contact>& out) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
   const bool torus = pa.kind == SurfaceKind::Torus;
-  if (pa.location.Distance(pb.location) > ctx.tol.linear) return;
-  if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return;
+  if (pa.location.Distance(pb.location) > ctx.tol.linear) return Status::success();
+  if (std::abs(pa.radius - pb.radius) > ctx.tol.linear) return Status::success();
   if (torus && (std::abs(pa.minor_radius - pb.minor_radius) > ctx.tol.linear ||
                 !parallel(pa.axis, pb.axis, ctx.tol.angular)))
-    return;
+    return Status::success();
   Contact c;
   c.type = torus ? ContactType::TRF : ContactType::SPF;
   c.point = pa.location;
   c.direction = pa.axis;
   c.radius = torus ? pa.minor_radius : pa.radius;
+  std::vector<FaceInfo> pieces;  // the common region (spheres: where the cup holds the ball)
   for (int fa : a.faces) {
     const FaceInfo& face_a = face_of(ctx.parts[ia], fa);
     for (int fb : b.faces) {
       const FaceInfo& face_b = face_of(ctx.parts[ib], fb);
       if (!boxes_meet(face_a.box, face_b.box, ctx.tol.linear)) continue;
+      std::vector<FaceInfo> found;
+      const Status common = boolean_common(face_a.face, face_b.face, ctx.tol, found);
+      if (!common.ok()) return common;
       double area = 0;
-      for (const FaceInfo& piece : boolean_common(face_a.face, face_b.face, ctx.tol)) area += piece.area;
+      for (const FaceInfo& piece : found) area += piece.area;
       if (area <= ctx.tol.linear * ctx.tol.linear) continue;
       c.area += area;
       c.faces_a.push_back(fa);
       c.faces_b.push_back(fb);
+      for (FaceInfo& piece : found) pieces.push_back(std::move(piece));
     }
   }
-  if (!area_counts(c.area, a, b, ctx)) return;
+  if (!area_counts(c.area, a, b, ctx)) return Status::success();
+  if (!torus) covering_cap(pieces, pa.location, pa.radius, ctx.tol.linear, c.region_axis, c.region_angle);
   c.span = kTwoPi;  // not a revolution-about-an-axis contact: never partial
   c.partition_a = a.id, c.partition_b = b.id;
   record(c, ctx, out);
+  return Status::success();
 }
 
 // A ball touching a bore (LAF) or a torus groove (SPT) of its radius: the
@@ -553,14 +613,28 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   // The circle lies on the seat within the mismatches allowed above (radius,
   // height, distance to the tube-centre circle or the axis).
   const double probe_tol = 3 * ctx.tol.linear;
+  constexpr int kCircleSamples = 72;
+  const gp_Dir x = any_perpendicular(circle_axis);  // circle_on_faces' frame
+  const gp_Dir y = circle_axis.Crossed(x);
   std::vector<AngularInterval> on_both;
   for (int fs : ball.faces) {
     FaceProbe ball_probe(face_of(ctx.parts[i_ball], fs));
     for (int fc : seat.faces) {
       FaceProbe seat_probe(face_of(ctx.parts[i_seat], fc));
-      const auto hits = circle_on_faces(ps.location, circle_axis, ps.radius, {&ball_probe, &seat_probe},
-                                        probe_tol);
+      std::vector<FaceProbe*> probes{&ball_probe, &seat_probe};
+      auto hits = circle_on_faces(ps.location, circle_axis, ps.radius, probes, probe_tol, kCircleSamples);
       if (hits.empty()) continue;
+      // The runs' ends to the probes' precision (the samples are 5 degrees
+      // apart): the arc's ends bound the ball's one-sided directions.
+      const double half_step = kPi / kCircleSamples;
+      for (AngularInterval& run : hits) {
+        if (run.span >= kTwoPi - 1e-9) continue;
+        const double start = refine_circle_end(ps.location, x, y, ps.radius, probes, probe_tol,
+                                               run.start + half_step, run.start - half_step);
+        const double end = refine_circle_end(ps.location, x, y, ps.radius, probes, probe_tol,
+                                             run.start + run.span - half_step, run.start + run.span + half_step);
+        run = {start, end - start};
+      }
       on_both.insert(on_both.end(), hits.begin(), hits.end());
       c.faces_a.push_back(fs);
       c.faces_b.push_back(fc);
@@ -569,15 +643,14 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   if (on_both.empty()) return;
   c.span = 0;
   for (const AngularInterval& i : unite(on_both)) c.span += i.span;
-  c.partial = c.span < M_PI - ctx.tol.angular;
+  c.partial = c.span < kPi - ctx.tol.angular;
+  double middle = 0, half_span = kPi;
+  covering_arc(on_both, middle, half_span);
+  c.region_angle = half_span;
+  if (half_span < kPi) c.region_axis = gp_Dir(gp_Vec(x) * std::cos(middle) + gp_Vec(y) * std::sin(middle));
   c.partition_a = ball.id, c.partition_b = seat.id;
   record(c, ctx, out);
 }
-bool opposite_sides(const Partition& a, const Partition& b) {
-  return (a.side == MaterialSide::Convex && b.side == MaterialSide::Concave) ||
-         (a.side == MaterialSide::Concave && b.side == MaterialSide::Convex);
-}
-
 void swap_sides(Contact& c) {
   std::swap(c.partition_a, c.partition_b);
   std::swap(c.faces_a, c.faces_b);
@@ -587,8 +660,8 @@ void swap_sides(Contact& c) {
 
 // Dispatches one candidate pair to its test (a from body ia, b from body ib,
 // ia < ib); every test records its first argument as side a.
-void test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out) {
+Status test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out) {
   const SurfaceKind ka = a.params.kind, kb = b.params.kind;
   const auto is_ball = [](const Partition& p) {
     return p.params.kind == SurfaceKind::Sphere && p.side == MaterialSide::Convex;
@@ -599,22 +672,28 @@ void test_candidate(int ia, const Partition& a, int ib, const Partition& b, cons
   };
   const size_t before = out.size();
   bool swapped = false;
+  Status status;
   if (ka == SurfaceKind::Plane && kb == SurfaceKind::Plane) {
     planar_fit(ia, a, ib, b, ctx, out);
   } else if (ka == kb && (ka == SurfaceKind::Cylinder || ka == SurfaceKind::Cone)) {
-    if (opposite_sides(a, b)) revolution_fit(ia, a, ib, b, ctx, out);
+    if (convex_against_concave(a.side, b.side)) status = revolution_fit(ia, a, ib, b, ctx, out);
   } else if (ka == kb && (ka == SurfaceKind::Sphere || ka == SurfaceKind::Torus)) {
-    if (opposite_sides(a, b)) closed_revolution_fit(ia, a, ib, b, ctx, out);
+    if (convex_against_concave(a.side, b.side)) status = closed_revolution_fit(ia, a, ib, b, ctx, out);
   } else if (is_ball(a) && is_seat(b)) {
     ball_fit(ia, a, ib, b, ctx, out);
   } else if (is_ball(b) && is_seat(a)) {
     ball_fit(ib, b, ia, a, ctx, out);
     swapped = true;
   }
+  if (!status.ok()) {
+    out.resize(before);  // nothing half-done from a failed test
+    return status;
+  }
   for (size_t k = before; k < out.size(); ++k) {
     if (swapped) swap_sides(out[k]);
     out[k].body_a = ia, out[k].body_b = ib;
   }
+  return status;
 }
 
 CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol) {

@@ -6,7 +6,14 @@
 
 #include <vector>
 
+#include <BRepClass_FaceClassifier.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <Geom_Surface.hxx>
+#include <Precision.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <cmath>
 
 #include "contactcore/contacts/contacts.h"
 
@@ -27,6 +34,42 @@ inline bool boxes_meet(const Bnd_Box& a, const Bnd_Box& b, double gap) {
   return !grown.IsOut(b);
 }
 
+// A point on a face (within tolerance of its surface and inside its
+// boundaries)? For samples of circle contacts. The projection gives
+// parameters in the surface's natural period; the face's own range may be
+// shifted by whole turns (u in [pi, 3 pi] is common in exported bearings), so
+// periodic parameters are brought into the face's range before classifying.
+class FaceProbe {
+ public:
+  explicit FaceProbe(const FaceInfo& info)
+      : face_(info.face), surface_(BRep_Tool::Surface(info.face)), analysis_(surface_) {
+    BRepTools::UVBounds(face_, u_min_, u_max_, v_min_, v_max_);
+  }
+  bool contains(const gp_Pnt& p, double tol) {
+    const gp_Pnt2d uv = analysis_.ValueOfUV(p, tol);
+    if (analysis_.Gap() > tol) return false;
+    const double u = into_range(uv.X(), u_min_, u_max_, surface_->IsUPeriodic() ? surface_->UPeriod() : 0);
+    const double v = into_range(uv.Y(), v_min_, v_max_, surface_->IsVPeriodic() ? surface_->VPeriod() : 0);
+    BRepClass_FaceClassifier classifier(face_, gp_Pnt2d(u, v), Precision::PConfusion());
+    const TopAbs_State state = classifier.State();
+    return state == TopAbs_IN || state == TopAbs_ON;
+  }
+
+  // The value shifted by whole periods to lie in [low, high] when some shift
+  // does (else the one closest to the middle of the range).
+  static double into_range(double value, double low, double high, double period) {
+    if (period <= 0) return value;
+    const double middle = (low + high) / 2;
+    return value + period * std::round((middle - value) / period);
+  }
+
+ private:
+  TopoDS_Face face_;
+  Handle(Geom_Surface) surface_;
+  ShapeAnalysis_Surface analysis_;
+  double u_min_ = 0, u_max_ = 0, v_min_ = 0, v_max_ = 0;
+};
+
 // The region two plane outlines (in one frame) have in common: its area
 // (exact on arcs, by the chords' bulges) and the length of its boundary.
 struct CommonRegion {
@@ -37,8 +80,11 @@ CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Pol
 
 // Tests one candidate pair (a from body ia, b from body ib, ia < ib) and
 // appends the contact it makes, if any, to `out` (side a = body ia).
-// May throw Standard_Failure from OCCT: the caller decides what to skip.
-void test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
-                    std::vector<Contact>& out);
+// A failed test (OCCT's Boolean common of two faces, or typing a piece of it)
+// is a failed Status and appends nothing: the caller decides what to skip.
+// OCCT may still throw from inside (or raise a signal): the caller runs it
+// under run_guarded.
+Status test_candidate(int ia, const Partition& a, int ib, const Partition& b, const PairContext& ctx,
+                      std::vector<Contact>& out);
 
 }  // namespace contactcore

@@ -4,6 +4,7 @@
 
 #include "contacts/common_area.h"
 #include "contactcore/bodies/instances.h"
+#include "contacts/higher_pairs.h"
 #include "contacts/interferences.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/parallel.h"
@@ -172,6 +173,11 @@ std::size_t overlapping_along(std::vector<Span>& spans, int axis) {
 }  // namespace
 
 BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_t max_pairs, Progress* progress) {
+  return broad_phase(boxes, std::vector<double>(boxes.size(), gap), max_pairs, progress);
+}
+
+BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, const std::vector<double>& gaps, std::size_t max_pairs,
+                       Progress* progress) {
   BroadPhase out;
   std::vector<Span> spans;
   spans.reserve(boxes.size());
@@ -179,6 +185,7 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
     if (boxes[i].IsVoid()) continue;
     double x0, y0, z0, x1, y1, z1;
     boxes[i].Get(x0, y0, z0, x1, y1, z1);  // includes the box's own gap
+    const double gap = gaps[i];  // spans grown by each body's own gap: a superset of the pairs below
     spans.push_back({{x0 - gap, y0 - gap, z0 - gap}, {x1 + gap, y1 + gap, z1 + gap}, static_cast<int>(i)});
   }
   // Sweep along the axis on which the fewest spans overlap: an assembly
@@ -202,7 +209,8 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap, std::size_
     }
     for (std::size_t j = i + 1; j < spans.size() && spans[j].lo[axis] <= spans[i].hi[axis]; ++j) {
       const int a = std::min(spans[i].body, spans[j].body), b = std::max(spans[i].body, spans[j].body);
-      if (!boxes_meet(boxes[a], boxes[b], gap)) continue;  // in index order: boxes' own gaps differ
+      // In index order (boxes' own gaps differ); a pair's gap is the coarser of its two.
+      if (!boxes_meet(boxes[a], boxes[b], std::max(gaps[a], gaps[b]))) continue;
       out.pairs.emplace_back(a, b);
       if (out.pairs.size() > max_pairs) {
         std::ostringstream message;
@@ -261,11 +269,31 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       if (source != static_cast<int>(i) && !boxes[source].IsVoid())
         boxes[i] = boxes[source].Transformed(relative_motion(assembly.bodies[source], assembly.bodies[i]));
     }
+    // A value the caller gives is checked against the whole model (as
+    // before); the defaults are each body's own (body_tolerances: a part far
+    // away or a huge one changes nothing about the others), instances taking
+    // their source's. A body pair is compared with the coarser of its two.
     Bnd_Box model_box;
     for (const Bnd_Box& box : boxes) model_box.Add(box);
-    result.tolerances = resolve_tolerances(model_box, options.linear, options.angular);
-    result.status = check_tolerances(model_box, result.tolerances);
+    const Tolerances requested{options.linear.value_or(Tolerances{}.linear),
+                               options.angular.value_or(Tolerances{}.angular)};
+    result.status = check_tolerances(options.linear ? model_box : Bnd_Box(), requested);
     if (!result.status.ok()) return result;
+    std::vector<Tolerances> body_tol(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Status status = body_tolerances(boxes[sources[i]], options.linear, options.angular, body_tol[i]);
+      if (!status.ok()) {
+        result.status = status;
+        result.status.body = assembly.bodies[i].name;
+        return result;
+      }
+    }
+    // Reported: the caller's value, or the coarsest body's.
+    result.tolerances = requested;
+    if (!options.linear && n > 0) {
+      result.tolerances.linear = 0;
+      for (const Tolerances& t : body_tol) result.tolerances.linear = std::max(result.tolerances.linear, t.linear);
+    }
 
     // Each distinct shape partitioned once (partition_shape only reads the
     // shapes, so bodies sharing TShapes through instancing can run
@@ -273,7 +301,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     const auto partition_body = [&](std::size_t i) {
       BodyPartitions& body = result.partitions[i];
       std::string failure;
-      if (!run_guarded([&] { body = partition_shape(assembly.bodies[i].shape, result.tolerances); }, failure, "OCCT: "))
+      if (!run_guarded([&] { body = partition_shape(assembly.bodies[i].shape, body_tol[i]); }, failure, "OCCT: "))
         body.status = Status::failure(StatusCode::GeometryError, failure);
     };
     result.partitions.resize(n);
@@ -316,7 +344,9 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
 
     start = Clock::now();
     for (std::size_t i = 0; i < n; ++i) boxes[i] = result.partitions[i].box;
-    BroadPhase broad = broad_phase(boxes, result.tolerances.linear, options.max_body_pairs, progress);
+    std::vector<double> gaps(n);
+    for (std::size_t i = 0; i < n; ++i) gaps[i] = body_tol[i].linear;
+    BroadPhase broad = broad_phase(boxes, gaps, options.max_body_pairs, progress);
     if (!broad.status.ok()) {
       result.status = broad.status;
       return result;
@@ -337,7 +367,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
         if (!options.reuse_instances) continue;
         const auto [ia, ib] = pairs[k];
         const PairKey key = pair_key(sources[ia], sources[ib], assembly.bodies[ia], assembly.bodies[ib],
-                                     result.tolerances.linear);
+                                     std::max(body_tol[ia].linear, body_tol[ib].linear));
         representative[k] = first.try_emplace(key, k).first->second;
       }
     }
@@ -348,37 +378,50 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     std::vector<std::vector<Candidate>> pair_candidates_of(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "candidates", [&](std::size_t t) {
           const auto [ia, ib] = pairs[tested[t]];
-          pair_candidates(ia, ib, keys, result.partitions, result.tolerances, pair_candidates_of[tested[t]]);
+          pair_candidates(ia, ib, keys, result.partitions, pair_tolerances(result.partitions[ia], result.partitions[ib]),
+                          pair_candidates_of[tested[t]]);
         }, 64))
       return cancelled();
     for (std::size_t k = 0; k < pairs.size(); ++k) result.candidates += pair_candidates_of[representative[k]].size();
     result.times.candidates = seconds_since(start);
 
-    // The tests; a pair whose test throws is skipped and recorded, the rest kept.
+    // The tests; a pair whose test fails is skipped and recorded, the rest kept.
     start = Clock::now();
-    const PairContext ctx{result.partitions, result.tolerances, options.min_area_ratio};
     std::vector<std::vector<Contact>> pair_contacts(pairs.size());
     std::vector<std::vector<SkippedPair>> pair_skipped(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "contacts", [&](std::size_t t) {
           const std::size_t k = tested[t];
+          const Tolerances pair_tol = pair_tolerances(result.partitions[pairs[k].first], result.partitions[pairs[k].second]);
+          const PairContext ctx{result.partitions, pair_tol, options.min_area_ratio};
           std::vector<Contact>& out = pair_contacts[k];
           const auto test = [&](const Candidate& c) {
             if (options.candidate_hook) options.candidate_hook(c.body_a, c.partition_a, c.body_b, c.partition_b);
-            test_candidate(c.body_a, result.partitions[c.body_a].partitions[c.partition_a], c.body_b,
-                           result.partitions[c.body_b].partitions[c.partition_b], ctx, out);
+            return test_candidate(c.body_a, result.partitions[c.body_a].partitions[c.partition_a], c.body_b,
+                                  result.partitions[c.body_b].partitions[c.partition_b], ctx, out);
           };
           // One signal guard for the body pair (a setjmp per candidate costs
-          // 0.1-0.2 us, as much as a quick test); when a test fails, the
-          // pair's candidates are tested again one by one to skip only it.
+          // 0.1-0.2 us, as much as a quick test); when a test fails (a failed
+          // Status, an OCCT exception or a signal), the pair's candidates are
+          // tested again one by one to skip only it.
           std::string failure;
-          if (run_guarded([&] { for (const Candidate& c : pair_candidates_of[k]) test(c); }, failure, "OCCT: ")) {
+          bool all_passed = true;
+          if (run_guarded([&] {
+                for (const Candidate& c : pair_candidates_of[k])
+                  if (!test(c).ok()) {
+                    all_passed = false;
+                    return;
+                  }
+              }, failure, "OCCT: ") && all_passed) {
             std::vector<Candidate>().swap(pair_candidates_of[k]);
             return;
           }
           out.clear();
           for (const Candidate& c : pair_candidates_of[k]) {
             const std::size_t before = out.size();
-            if (!run_guarded([&] { test(c); }, failure, "OCCT: ")) {
+            Status tested;
+            const bool returned = run_guarded([&] { tested = test(c); }, failure, "OCCT: ");
+            if (returned && !tested.ok()) failure = tested.message;
+            if (!returned || !tested.ok()) {
               out.resize(before);  // nothing half-done from the failed pair
               const Partition& pa = result.partitions[c.body_a].partitions[c.partition_a];
               const Partition& pb = result.partitions[c.body_b].partitions[c.partition_b];
@@ -415,13 +458,36 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       return std::tie(l.body_a, l.body_b, l.partition_a, l.partition_b) <
              std::tie(r.body_a, r.body_b, r.partition_a, r.partition_b);
     });
+    // Point and line contacts, apart from the surface contacts: every body
+    // pair (a pair that fails is skipped with a message, like a candidate).
+    {
+      std::vector<std::vector<HigherPair>> higher(pairs.size());
+      std::vector<std::string> higher_failures(pairs.size());
+      if (!parallel_for(pairs.size(), threads, progress, "contacts", [&](std::size_t k) {
+            const auto [ia, ib] = pairs[k];
+            run_guarded([&] { higher[k] = find_higher_pairs(ia, result.partitions[ia], ib, result.partitions[ib],
+                                                            result.tolerances); },
+                        higher_failures[k], "OCCT: ");
+          }, 16))
+        return cancelled();
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        if (!higher_failures[k].empty())
+          result.messages.push_back("skipped the point and line contacts of '" + assembly.bodies[pairs[k].first].name +
+                                    "' and '" + assembly.bodies[pairs[k].second].name + "': " + higher_failures[k]);
+        for (HigherPair& pair : higher[k]) result.higher_pairs.push_back(std::move(pair));
+      }
+    }
     result.times.area = seconds_since(start);
+    start = Clock::now();
     const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks);
+    result.times.validity = seconds_since(start);
     if (!checked.ok()) {
       result.status = checked;
       return result;
     }
+    start = Clock::now();
     const Status interferences = find_interferences(assembly, result, progress, threads);
+    result.times.interferences = seconds_since(start);
     if (!interferences.ok()) {
       result.status = interferences;
       return result;
@@ -433,7 +499,7 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
   } catch (const Standard_Failure& failure) {
     result.status = Status::failure(StatusCode::GeometryError, "OCCT: " + occt_failure_text(failure));
   }
-  if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap, result.tolerances);
+  if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap);
   if (progress) progress->report("contacts", 1.0);
   return result;
 }

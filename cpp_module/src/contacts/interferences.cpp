@@ -21,6 +21,7 @@
 #include <gp_Ax1.hxx>
 
 #include "contacts/boundary_crossing.h"
+#include "contactcore/common/angles.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/parallel.h"
 #include "contactcore/common/out_of_memory.h"
@@ -116,8 +117,8 @@ bool press_fits(const BodyPartitions& a, const BodyPartitions& b, const Toleranc
       const double low = std::max(shaft.extent.axial_min, std::min(b0, b1));
       const double high = std::min(shaft.extent.axial_max, std::max(b0, b1));
       if (high - low <= tol.linear) continue;
-      double span = 2 * M_PI;
-      if (shaft.extent.angular_span() < 2 * M_PI - tol.angular || bore.extent.angular_span() < 2 * M_PI - tol.angular)
+      double span = 2 * kPi;
+      if (shaft.extent.angular_span() < 2 * kPi - tol.angular || bore.extent.angular_span() < 2 * kPi - tol.angular)
         span = overlap(shaft.extent.angular, bore_angles_in(b, bore, shaft, tol.linear));
       if (span <= tol.angular) continue;
       const double rs = shaft.params.radius, rb = bore.params.radius;
@@ -200,9 +201,9 @@ struct PairOutcome {
 };
 
 PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, int a, int b) {
-  const Tolerances& tol = result.tolerances;
   const BodyPartitions& pa = result.partitions[a];
   const BodyPartitions& pb = result.partitions[b];
+  const Tolerances tol = pair_tolerances(pa, pb);
   PairOutcome out;
   double volume = 0;
   const bool shaft_in_b = press_fits(pa, pb, tol, volume);
@@ -251,12 +252,11 @@ double press_fit_volume(const BodyPartitions& a, const BodyPartitions& b, const 
 
 Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads) {
   const size_t n = assembly.bodies.size();
-  const Tolerances& tol = result.tolerances;
   std::vector<char> dropped(n, 0);  // zero-volume bodies and second copies: no contacts of their own
 
   for (size_t i = 0; i < n; ++i) {
     // A solid thinner than the tolerance holds no material (a zero-height box).
-    if (box_thickness(result.partitions[i].box) <= tol.linear) {
+    if (box_thickness(result.partitions[i].box) <= result.partitions[i].tolerances.linear) {
       dropped[i] = 1;
       result.messages.push_back("body '" + assembly.bodies[i].name +
                                 "' has no volume (thinner than the tolerance): its contacts are not counted");
@@ -272,8 +272,9 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
     if (dropped[a] || dropped[b]) continue;
     const BodyPartitions& pa = result.partitions[a];
     const BodyPartitions& pb = result.partitions[b];
-    if (box_overlap(pa.box, pb.box) <= tol.linear) continue;
-    if (duplicates(pa, pb, tol.linear)) {
+    const double linear = pair_tolerances(pa, pb).linear;
+    if (box_overlap(pa.box, pb.box) <= linear) continue;
+    if (duplicates(pa, pb, linear)) {
       dropped[b] = 1;
       copies.push_back({a, b, -1});
       result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
@@ -314,30 +315,30 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
                               "' could not be computed: " + copy_failures[k]);
   }
 
-  std::vector<std::pair<int, int>> overlapping;  // general overlaps: their contacts are not contacts
   for (const Interference& copy : copies) result.interferences.push_back(copy);
   for (std::size_t k = 0; k < deep.size(); ++k) {
     const PairOutcome& o = outcomes[k];
     if (o.kind == PairOutcome::Failed) result.messages.push_back(o.message);
     if (o.kind != PairOutcome::PressFit && o.kind != PairOutcome::Overlap) continue;
     result.interferences.push_back({deep[k].first, deep[k].second, o.volume});
-    if (o.kind == PairOutcome::Overlap) overlapping.push_back(deep[k]);
   }
   std::sort(result.interferences.begin(), result.interferences.end(),
             [](const Interference& l, const Interference& r) {
               return std::tie(l.body_a, l.body_b) < std::tie(r.body_a, r.body_b);
             });
 
-  // Empty bodies, second copies and bodies overlapping in a general way have
-  // no contacts there. A press-fitted pair keeps its real ones (a shoulder
-  // on its seat: the R08 press's 8 PLF + 7 CLJ).
+  // Empty bodies and second copies have no contacts of their own. A pair
+  // whose material overlaps keeps every contact it has (a press-fitted
+  // tongue on its slot's floor, a shoulder on its seat: the R08 press's 8
+  // PLF + 7 CLJ): faces that touch with opposite normals are real contacts
+  // however much the bodies overlap elsewhere; the interference is reported
+  // beside them.
   result.contacts.erase(std::remove_if(result.contacts.begin(), result.contacts.end(),
-                                       [&](const Contact& c) {
-                                         return dropped[c.body_a] || dropped[c.body_b] ||
-                                                std::binary_search(overlapping.begin(), overlapping.end(),
-                                                                   std::make_pair(c.body_a, c.body_b));
-                                       }),
+                                       [&](const Contact& c) { return dropped[c.body_a] || dropped[c.body_b]; }),
                         result.contacts.end());
+  result.higher_pairs.erase(std::remove_if(result.higher_pairs.begin(), result.higher_pairs.end(),
+                                           [&](const HigherPair& h) { return dropped[h.body_a] || dropped[h.body_b]; }),
+                            result.higher_pairs.end());
   return Status::success();
 }
 

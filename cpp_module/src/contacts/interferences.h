@@ -11,10 +11,10 @@ namespace contactcore {
 // On a result whose contacts are found (partitions, body_pairs, tolerances,
 // instance_of filled): fills `interferences` with the body pairs whose
 // material overlaps, with the common volume, notes zero-volume bodies and
-// duplicates in `messages`, and drops the contacts of empty bodies, of second
-// copies (they repeat the first copy's) and of pairs overlapping in a
-// general way. A press-fitted pair keeps its real contacts (a shoulder on its
-// seat). Only pairs whose boxes overlap deeper than the tolerance are looked
+// duplicates in `messages`, and drops the contacts of empty bodies and of
+// second copies (they repeat the first copy's). An overlapping pair keeps
+// every contact it has (a press-fitted tongue seated on its slot's floor, a
+// shoulder on its seat); the interference is reported beside them. Only pairs whose boxes overlap deeper than the tolerance are looked
 // at, on `threads` threads (0: all cores; the result is the same), each by:
 //  1. the same solid twice at one place: its volume;
 //  2. a coaxial press fit (a shaft larger than its bore by at most 5 % of the

@@ -1,4 +1,5 @@
 #include "contacts/separation.h"
+#include "contactcore/common/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -169,12 +170,12 @@ Shadow crossing_cylinder_shadow(const Partition& p, const SeparationAxis& axis, 
 void trig_range(double v0, double v1, double shift, double& low, double& high) {
   low = std::min(std::cos(v0 - shift), std::cos(v1 - shift));
   high = std::max(std::cos(v0 - shift), std::cos(v1 - shift));
-  if (v1 - v0 >= 2 * M_PI) {
+  if (v1 - v0 >= 2 * kPi) {
     low = -1, high = 1;
     return;
   }
   for (int k = -4; k <= 4; ++k) {
-    const double at = shift + k * M_PI;  // cos(v - shift) is +-1 there
+    const double at = shift + k * kPi;  // cos(v - shift) is +-1 there
     if (at > v0 && at < v1) (k % 2 == 0 ? high : low) = (k % 2 == 0 ? 1.0 : -1.0);
   }
 }
@@ -197,7 +198,7 @@ Shadow torus_tube_shadow(const Partition& p, const BodyPartitions& body, const S
     BRepTools::UVBounds(info.face, u0, u1, v0, v1);
     double c_low, c_high, s_low, s_high;
     trig_range(v0, v1, 0, c_low, c_high);
-    trig_range(v0, v1, M_PI / 2, s_low, s_high);
+    trig_range(v0, v1, kPi / 2, s_low, s_high);
     const double rho = torus.MinorRadius(), major = torus.MajorRadius();
     s.r0 = std::min(s.r0, major + rho * c_low);
     s.r1 = std::max(s.r1, major + rho * c_high);

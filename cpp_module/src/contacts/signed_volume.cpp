@@ -18,12 +18,6 @@ namespace contactcore::detail {
 
 namespace {
 
-// The 8-point Gauss-Legendre rule of quadrature.h, for vectors.
-constexpr double kGaussNodes[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
-                                   0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
-constexpr double kGaussWeights[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
-                                     0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-
 // Vector area of a face, the integral of its outward normal over it, by
 // Stokes: half the boundary integral of p x dp (edges in the face's
 // orientation; seams cancel, degenerated edges add nothing). Exact to
@@ -38,14 +32,13 @@ gp_XYZ vector_area(const TopoDS_Face& face, const gp_XYZ& centre) {
     integration_pieces(curve, curve.FirstParameter(), curve.LastParameter(), breaks);
     gp_XYZ sum(0, 0, 0);
     for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-      // gauss() on each component, the curve evaluated once per node
-      const double mid = (breaks[i] + breaks[i + 1]) / 2, half = (breaks[i + 1] - breaks[i]) / 2;
-      for (int k = 0; k < 8; ++k) {
+      // Gauss on each component, the curve evaluated once per node
+      gauss_nodes(breaks[i], breaks[i + 1], [&](double t, double weight) {
         gp_Pnt p;
         gp_Vec d;
-        curve.D1(mid + half * kGaussNodes[k], p, d);
-        sum += ((p.XYZ() - centre) ^ d.XYZ()) * (kGaussWeights[k] * half);
-      }
+        curve.D1(t, p, d);
+        sum += ((p.XYZ() - centre) ^ d.XYZ()) * weight;
+      });
     }
     total += edge.Orientation() == TopAbs_REVERSED ? sum.Reversed() : sum;
   }

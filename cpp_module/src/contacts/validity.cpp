@@ -387,7 +387,7 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
         if (source_of(i) != i || watch.cancelled()) return;
         std::string failure;
         if (!run_guarded(
-                [&] { verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.tolerances, checks, watch); },
+                [&] { verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.partitions[i].tolerances, checks, watch); },
                 failure))
           failures[i] = "its check failed: " + failure;
       }) ||
@@ -407,6 +407,19 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
     result.invalid_bodies.push_back(std::move(invalid));
   }
   return Status::success();
+}
+
+Status find_invalid_solids(const Assembly& assembly, const std::vector<BodyPartitions>& partitions,
+                           std::vector<InvalidBody>& invalid, SolidChecks checks) {
+  if (partitions.size() != assembly.bodies.size())
+    return Status::failure(StatusCode::InvalidArgument, "one BodyPartitions per body expected");
+  ContactsResult result;
+  result.partitions = partitions;
+  result.instance_of.resize(partitions.size());
+  for (std::size_t i = 0; i < partitions.size(); ++i) result.instance_of[i] = static_cast<int>(i);
+  const Status status = check_solids(assembly, result, nullptr, 1, checks);
+  invalid = std::move(result.invalid_bodies);
+  return status;
 }
 
 }  // namespace contactcore

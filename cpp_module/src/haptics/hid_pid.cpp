@@ -139,6 +139,20 @@ bool find_pid_layout(const std::uint8_t* data, std::size_t size, PidLayout& layo
   layout.load_block = find_element(d, layout.block_load, pid_usage(pid::kEffectBlockIndex));
   layout.load_success = find_selector(d, layout.block_load, pid::kBlockLoadStatus, pid::kBlockLoadSuccess);
 
+  layout.set_condition = find_report(d, K::Output, pid::kSetConditionReport);
+  layout.effect_type_spring = find_selector(d, layout.set_effect, pid::kEffectType, pid::kEtSpring);
+  layout.effect_type_damper = find_selector(d, layout.set_effect, pid::kEffectType, pid::kEtDamper);
+  layout.create_spring = find_selector(d, layout.create_new_effect, pid::kEffectType, pid::kEtSpring);
+  layout.create_damper = find_selector(d, layout.create_new_effect, pid::kEffectType, pid::kEtDamper);
+  layout.condition_block = find_element(d, layout.set_condition, pid_usage(pid::kEffectBlockIndex));
+  layout.parameter_offset = find_element(d, layout.set_condition, pid_usage(pid::kParameterBlockOffset));
+  layout.cp_offset = find_element(d, layout.set_condition, pid_usage(pid::kCpOffset));
+  layout.positive_coefficient = find_element(d, layout.set_condition, pid_usage(pid::kPositiveCoefficient));
+  layout.negative_coefficient = find_element(d, layout.set_condition, pid_usage(pid::kNegativeCoefficient));
+  layout.positive_saturation = find_element(d, layout.set_condition, pid_usage(pid::kPositiveSaturation));
+  layout.negative_saturation = find_element(d, layout.set_condition, pid_usage(pid::kNegativeSaturation));
+  layout.dead_band = find_element(d, layout.set_condition, pid_usage(pid::kDeadBand));
+
   for (std::size_t k = 0; k < d.fields.size(); ++k) {
     const HidField& f = d.fields[k];
     if (f.kind != K::Input || f.constant() || !f.variable()) continue;
@@ -220,6 +234,71 @@ std::vector<std::uint8_t> pid_create_effect_report(const PidLayout& layout) {
   auto r = blank(layout, layout.create_new_effect);
   put(layout, r, layout.create_constant);
   return r;
+}
+
+std::vector<std::uint8_t> pid_create_effect_report(const PidLayout& layout, const HidSelector& type) {
+  auto r = blank(layout, layout.create_new_effect);
+  put(layout, r, type);
+  return r;
+}
+
+std::vector<std::uint8_t> pid_set_condition_effect_report(const PidLayout& layout, int block, const HidSelector& type) {
+  auto r = blank(layout, layout.set_effect);
+  put(layout, r, layout.effect_block, block);
+  put(layout, r, type);
+  put(layout, r, layout.duration, -1, false);  // infinite (the null value)
+  put(layout, r, layout.trigger_button, 0, false);
+  put(layout, r, layout.trigger_repeat, 0);
+  put(layout, r, layout.sample_period, 0);
+  put(layout, r, layout.start_delay, 0);
+  put(layout, r, layout.gain, field_max(layout, layout.gain));
+  // Every axis, no direction: one Set Condition parameter block per axis.
+  for (int a = 0; a < layout.axis_count(); ++a) put(layout, r, layout.axes_enable[a], 1);
+  put(layout, r, layout.direction_enable, 0);
+  for (const HidFieldRef& ref : layout.direction) put(layout, r, ref, 0);
+  return r;
+}
+
+std::vector<std::uint8_t> pid_set_condition_report(const PidLayout& layout, int block, int axis,
+                                                   const PidCondition& c) {
+  auto r = blank(layout, layout.set_condition);
+  put(layout, r, layout.condition_block, block);
+  put(layout, r, layout.parameter_offset, axis);
+  put(layout, r, layout.cp_offset, c.cp_offset);
+  put(layout, r, layout.positive_coefficient, c.positive_coefficient);
+  put(layout, r, layout.negative_coefficient, c.negative_coefficient);
+  put(layout, r, layout.positive_saturation, c.positive_saturation);
+  put(layout, r, layout.negative_saturation, c.negative_saturation);
+  put(layout, r, layout.dead_band, c.dead_band);
+  return r;
+}
+
+std::int32_t pid_scaled(const PidLayout& layout, const HidFieldRef& ref, double fraction) {
+  if (!ref.found()) return 0;
+  const HidField& f = layout.field(ref);
+  const double top = std::max(std::abs(static_cast<double>(f.logical_max)), std::abs(static_cast<double>(f.logical_min)));
+  const double value = std::clamp(fraction * top, static_cast<double>(f.logical_min), static_cast<double>(f.logical_max));
+  return static_cast<std::int32_t>(std::lround(value));
+}
+
+bool parse_pid_input(const PidLayout& layout, const std::uint8_t* report, std::size_t size, Vec6& axes) {
+  if (!report || size == 0) return false;
+  const bool with_id = layout.descriptor.uses_report_ids;
+  bool any = false;
+  for (int a = 0; a < 6; ++a) {
+    const HidFieldRef& ref = layout.input_axes[a];
+    if (!ref.found()) continue;
+    const HidField& f = layout.field(ref);
+    if (with_id && report[0] != f.report_id) continue;
+    const std::size_t needed = (with_id ? 1 : 0) + (f.bit_offset + f.bit_size * (ref.index + 1) + 7) / 8;
+    if (size < needed) continue;
+    const double v = get_field(report, size, with_id, f, ref.index);
+    const double mid = 0.5 * (f.logical_min + static_cast<double>(f.logical_max));
+    const double half = 0.5 * (static_cast<double>(f.logical_max) - f.logical_min);
+    axes[a] = half > 0 ? std::clamp((v - mid) / half, -1.0, 1.0) : 0.0;
+    any = true;
+  }
+  return any;
 }
 
 std::int32_t pid_magnitude(const PidLayout& layout, double force, double full_scale) {

@@ -7,6 +7,7 @@ namespace contactcore::haptics {
 
 namespace {
 
+using Vec2 = Eigen::Vector2d;
 constexpr int kMaxLive = 256;
 
 Vec3 to_vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
@@ -30,10 +31,6 @@ Eigen::AlignedBox3d transformed(const Eigen::AlignedBox3d& box, const Pose& pose
   return out;
 }
 
-bool opposite_sides(MaterialSide a, MaterialSide b) {
-  return (a == MaterialSide::Convex && b == MaterialSide::Concave) ||
-         (a == MaterialSide::Concave && b == MaterialSide::Convex);
-}
 
 double line_distance(const Vec3& p, const Vec3& origin, const Vec3& axis) {
   const Vec3 r = p - origin;
@@ -63,7 +60,59 @@ void radial_band(const std::vector<std::vector<Vec3>>& loops, const Pose& pose, 
   if (std::abs(winding) > kPi) r_min = 0;
 }
 
+// Point-in-region by the even-odd rule over every loop (outer and holes),
+// in the 2D frame (x, y) of a plane through `origin`.
+bool inside(const Vec2& q, const std::vector<std::vector<Vec3>>& loops, const Pose& pose, const Vec3& origin,
+            const Vec3& x, const Vec3& y) noexcept {
+  bool in = false;
+  for (const auto& loop : loops) {
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      const Vec3 pi = pose * loop[i] - origin, pj = pose * loop[j] - origin;
+      const double xi = pi.dot(x), yi = pi.dot(y), xj = pj.dot(x), yj = pj.dot(y);
+      if ((yi > q.y()) != (yj > q.y()) && q.x() < (xj - xi) * (q.y() - yi) / (yj - yi) + xi) in = !in;
+    }
+  }
+  return in;
+}
+
+// Proper crossing of segments ab and cd (2D).
+bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) noexcept {
+  auto orient = [](const Vec2& p, const Vec2& q, const Vec2& r) {
+    return (q.x() - p.x()) * (r.y() - p.y()) - (q.y() - p.y()) * (r.x() - p.x());
+  };
+  const double d1 = orient(c, d, a), d2 = orient(c, d, b), d3 = orient(a, b, c), d4 = orient(a, b, d);
+  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+}
+
 }  // namespace
+
+bool outlines_overlap(const SurfaceProxy& m, const Pose& pose, const SurfaceProxy& o) noexcept {
+  if (m.loops.empty() || o.loops.empty()) return true;  // no outline known: the boxes decided
+  const Vec3 x = o.axis.unitOrthogonal(), y = o.axis.cross(x), origin = o.location;
+  const Pose identity = Pose::Identity();
+  auto flat = [&](const Vec3& p) { return Vec2((p - origin).dot(x), (p - origin).dot(y)); };
+  // A vertex of one strictly inside the other: the regions share area near it.
+  for (const auto& loop : m.loops)
+    for (const Vec3& p : loop)
+      if (inside(flat(pose * p), o.loops, identity, origin, x, y)) return true;
+  for (const auto& loop : o.loops)
+    for (const Vec3& p : loop)
+      if (inside(flat(p), m.loops, pose, origin, x, y)) return true;
+  // Boundaries crossing (two overlapping rectangles in a cross).
+  for (const auto& lm : m.loops)
+    for (std::size_t i = 0; i < lm.size(); ++i) {
+      const Vec2 a = flat(pose * lm[i]), b = flat(pose * lm[(i + 1) % lm.size()]);
+      for (const auto& lo : o.loops)
+        for (std::size_t j = 0; j < lo.size(); ++j)
+          if (segments_cross(a, b, flat(lo[j]), flat(lo[(j + 1) % lo.size()]))) return true;
+    }
+  return false;
+}
+
+bool cone_bands_overlap(const SurfaceProxy& a, const SurfaceProxy& b) noexcept {
+  return std::min(a.axial_max, b.axial_max) - std::max(a.axial_min, b.axial_min) > 1e-3;
+}
 
 RealtimeContacts::RealtimeContacts(const std::vector<BodyPartitions>& partitions, int moving,
                                    const CaptureTolerances& tolerances)
@@ -117,36 +166,45 @@ int RealtimeContacts::near_bodies(const Pose& pose, int* out, int capacity) cons
   return n;
 }
 
-bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& o, LiveContact& c) const noexcept {
+bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, const Pose& pose, const SurfaceProxy& o,
+                             LiveContact& c) const noexcept {
   const double cos_tol = std::cos(tolerances_.angle);
   switch (m.kind) {
     case SurfaceKind::Cylinder: {
-      if (!opposite_sides(m.side, o.side) || std::abs(m.radius - o.radius) > tolerances_.radius) return false;
+      if (!contactcore::convex_against_concave(m.side, o.side)) return false;
+      // A shaft (convex) in a bore (concave): line to line within the radius
+      // tolerance, or a clearance fit up to `clearance` larger.
+      const double gap = m.side == MaterialSide::Convex ? o.radius - m.radius : m.radius - o.radius;
+      if (gap < -tolerances_.radius || gap > tolerances_.radius + tolerances_.clearance) return false;
+      const double clearance = std::max(0.0, gap);
       const double dot = std::abs(m.axis.dot(o.axis));
       if (dot < cos_tol) return false;
       const Vec3 p1 = m.location + m.axial_min * m.axis, p2 = m.location + m.axial_max * m.axis;
       const double d = std::max(line_distance(p1, o.location, o.axis), line_distance(p2, o.location, o.axis));
-      if (d > tolerances_.distance) return false;
+      if (d > tolerances_.distance + clearance) return false;
       const double s1 = (p1 - o.location).dot(o.axis), s2 = (p2 - o.location).dot(o.axis);
       const double lo = std::max(std::min(s1, s2), o.axial_min), hi = std::min(std::max(s1, s2), o.axial_max);
       if (hi - lo < 1e-3) return false;
       c.type = ContactType::CLJ;
       c.distance = d;
       c.angle = std::acos(std::min(1.0, dot));
+      c.clearance = clearance;
       return true;
     }
     case SurfaceKind::Cone: {
-      if (!opposite_sides(m.side, o.side) || std::abs(m.half_angle - o.half_angle) > tolerances_.angle) return false;
+      if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(m.half_angle - o.half_angle) > tolerances_.angle) return false;
       const double dot = m.axis.dot(o.axis);
       const double d = (m.location - o.location).norm();
       if (dot < cos_tol || d > tolerances_.distance) return false;
+      // One surface, not two chamfers of one angle: their bands must meet.
+      if (!cone_bands_overlap(m, o)) return false;
       c.type = ContactType::CJU;
       c.distance = d;
       c.angle = std::acos(std::min(1.0, dot));
       return true;
     }
     case SurfaceKind::Sphere: {
-      if (!opposite_sides(m.side, o.side) || std::abs(m.radius - o.radius) > tolerances_.radius) return false;
+      if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(m.radius - o.radius) > tolerances_.radius) return false;
       const double d = (m.location - o.location).norm();
       if (d > tolerances_.distance) return false;
       c.type = ContactType::SPF;
@@ -164,6 +222,9 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& o, LiveC
       box.min() -= pad;
       box.max() += pad;
       if (!box.intersects(o.box)) return false;
+      // The real outlines must share area, not just their boxes (an L-shaped
+      // face's box covers what lies beside it).
+      if (!outlines_overlap(local, pose, o)) return false;
       c.type = ContactType::PLF;
       c.distance = d;
       c.angle = std::acos(std::min(1.0, -dot));
@@ -202,16 +263,16 @@ int RealtimeContacts::update(const Pose& pose, LiveContact* out, int capacity) c
       }
       const std::vector<int>& list = body.by_radius[kind_index(m.kind)];
       auto first = list.begin();
+      // Radii that may match: the tolerance, and for cylinders a clearance fit either way.
+      const double slack = tolerances_.radius + (m.kind == SurfaceKind::Cylinder ? tolerances_.clearance : 0.0);
       if (m.kind != SurfaceKind::Plane && m.kind != SurfaceKind::Cone)
-        first = std::lower_bound(list.begin(), list.end(), m.radius - tolerances_.radius,
+        first = std::lower_bound(list.begin(), list.end(), m.radius - slack,
                                  [&](int i, double r) { return body.surfaces[i].radius < r; });
       for (auto it = first; it != list.end(); ++it) {
         const SurfaceProxy& o = body.surfaces[*it];
-        if (m.kind != SurfaceKind::Plane && m.kind != SurfaceKind::Cone &&
-            o.radius > m.radius + tolerances_.radius)
-          break;
+        if (m.kind != SurfaceKind::Plane && m.kind != SurfaceKind::Cone && o.radius > m.radius + slack) break;
         LiveContact c;
-        if (!match(m, o, c)) continue;
+        if (!match(m, local, pose, o, c)) continue;
         if (n >= capacity) return n;
         c.body = near[k];
         c.moving_partition = local.partition;
@@ -308,13 +369,16 @@ bool ContactJointFinder::cone_seat(const Pose& pose, JointState& joint, const Jo
       const auto& others = contacts_.surfaces(near[k]);
       for (int oi = 0; oi < static_cast<int>(others.size()); ++oi) {
         const SurfaceProxy& o = others[oi];
-        if (o.kind != SurfaceKind::Cone || !opposite_sides(m.side, o.side)) continue;
+        if (o.kind != SurfaceKind::Cone || !contactcore::convex_against_concave(m.side, o.side)) continue;
         if (std::abs(m.half_angle - o.half_angle) > tol.angle || axis.dot(o.axis) < cos_tol) continue;
         const double lateral = line_distance(apex, o.location, o.axis);
         const double axial = sign * (apex - o.location).dot(o.axis);
         // Within reach: near the axis, not past the seat, not beyond the other cone's length.
         if (lateral > tol.distance || axial < -tol.distance || axial > o.axial_max - o.axial_min + tol.distance)
           continue;
+        // Seated (apexes met), the two cones must share a band of surface:
+        // two chamfers of one angle at different radii are no seat.
+        if (!cone_bands_overlap(m, o)) continue;
         if (same && (std::abs(o.axis.dot(same->axis)) < cos_tol ||
                      line_distance(o.location, same->point, same->axis) > tol.distance))
           continue;
@@ -456,9 +520,9 @@ CollisionGroups collision_groups(const RealtimeContacts& contacts) {
       for (const SurfaceProxy& o : contacts.surfaces(b)) {
         if (o.kind != m.kind) continue;
         if (m.kind == SurfaceKind::Cylinder || m.kind == SurfaceKind::Sphere) {
-          if (!opposite_sides(m.side, o.side) || std::abs(o.radius - m.radius) > rtol) continue;
+          if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(o.radius - m.radius) > rtol) continue;
         } else if (m.kind == SurfaceKind::Cone) {
-          if (!opposite_sides(m.side, o.side) || std::abs(o.half_angle - m.half_angle) > contacts.tolerances().angle ||
+          if (!contactcore::convex_against_concave(m.side, o.side) || std::abs(o.half_angle - m.half_angle) > contacts.tolerances().angle ||
               m.axis.dot(o.axis) < cos_tol || (m.location - o.location).norm() > contacts.tolerances().distance)
             continue;
         } else if (m.kind == SurfaceKind::Plane) {

@@ -4,8 +4,17 @@
 #include <chrono>
 #include <cmath>
 
+#include <cerrno>
+#include <fstream>
+#include <mutex>
+#include <string>
+
 #include <pthread.h>
 #include <sched.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "contactcore/haptics/spacemouse.h"
 
@@ -45,6 +54,76 @@ constexpr double kBinUs = 0.25;
 constexpr std::size_t kMaxEvents = 256;
 
 double limited(double value, double limit) { return limit > 0 ? std::min(value, limit) : value; }
+
+// ---- real-time hygiene helpers (thread set-up and the sleep; never inside a tick)
+
+double seconds_of(const timespec& t) { return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec); }
+
+timespec monotonic_now() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return t;
+}
+
+void advance(timespec& t, long long ns) {
+  const long long total = static_cast<long long>(t.tv_nsec) + ns;
+  t.tv_sec += static_cast<time_t>(total / 1000000000LL);
+  t.tv_nsec = static_cast<long>(total % 1000000000LL);
+}
+
+bool earlier(const timespec& a, const timespec& b) {
+  return a.tv_sec < b.tv_sec || (a.tv_sec == b.tv_sec && a.tv_nsec < b.tv_nsec);
+}
+
+// Whether mlockall(MCL_FUTURE) is safe: with CAP_IPC_LOCK or an unlimited
+// RLIMIT_MEMLOCK no later allocation can fail for being locked.
+bool may_lock_all_memory() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_MEMLOCK, &limit) == 0 && limit.rlim_cur == RLIM_INFINITY) return true;
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("CapEff:", 0) == 0) {
+      const unsigned long long caps = std::stoull(line.substr(7), nullptr, 16);
+      return (caps >> 14) & 1ULL;  // CAP_IPC_LOCK
+    }
+  return false;
+}
+
+// mlockall is per process: counted, so the last loop to stop unlocks.
+std::mutex g_lock_mutex;
+int g_lock_users = 0;
+bool g_locked = false;
+
+bool lock_process_memory() {
+  std::lock_guard<std::mutex> lock(g_lock_mutex);
+  if (g_lock_users == 0) {
+    int flags = MCL_CURRENT | MCL_FUTURE;
+#ifdef MCL_ONFAULT
+    // Lock pages as they are touched, not every reserved mapping of a large
+    // process (FreeCAD's) up front; the loop touches its own memory first.
+    flags |= MCL_ONFAULT;
+#endif
+    g_locked = may_lock_all_memory() && mlockall(flags) == 0;
+  }
+  if (!g_locked) return false;
+  ++g_lock_users;
+  return true;
+}
+
+void unlock_process_memory() {
+  std::lock_guard<std::mutex> lock(g_lock_mutex);
+  if (g_lock_users > 0 && --g_lock_users == 0 && g_locked) {
+    munlockall();
+    g_locked = false;
+  }
+}
+
+// Touches the stack the loop will use, so its pages are present (and locked).
+void prefault_stack() {
+  volatile unsigned char stack[64 * 1024];
+  for (std::size_t i = 0; i < sizeof stack; i += 4096) stack[i] = 0;
+}
 }  // namespace
 
 ServoLoop::ServoLoop(Device& device, const ServoConfig& config, const Pose& initial_pose)
@@ -167,7 +246,7 @@ Pose ServoLoop::limit_and_constrain(const Pose& target, double dt) {
   return candidate;
 }
 
-void ServoLoop::tick(double now) {
+void ServoLoop::tick(double now, bool wall_clock) {
   const double started = steady_seconds();
   const double dt = period_;
   const Vec3 c = config_.centre;
@@ -185,7 +264,7 @@ void ServoLoop::tick(double now) {
   const bool enabled = enabled_.load(std::memory_order_relaxed);
   if (!enabled) reason = Watchdog::Disabled;
   else if (!sample.connected) reason = Watchdog::Unplugged;
-  else if (now - sample.time > config_.stale_after) reason = Watchdog::Stale;
+  else if (!sample.at_rest && now - sample.time > config_.stale_after) reason = Watchdog::Stale;
   else if (overrun_pending_) reason = Watchdog::Overrun;
   overrun_pending_ = false;
 
@@ -264,7 +343,11 @@ void ServoLoop::tick(double now) {
     proxy_velocity_.setZero();
   }
 
-  const Wrench rendered = reason == Watchdog::None ? clamp_to_device(coupling, caps_) : Wrench{};
+  Wrench rendered = reason == Watchdog::None ? clamp_to_device(coupling, caps_) : Wrench{};
+  if (reason == Watchdog::None) {
+    rendered.stiffness = k;
+    rendered.damping = b;
+  }
   if (reason == Watchdog::None) device_.write(rendered);
   else device_.halt();
 
@@ -280,7 +363,7 @@ void ServoLoop::tick(double now) {
   ++step_histogram_[std::min<std::size_t>(static_cast<std::size_t>(step_us / kBinUs), kHistogramBins - 1)];
   if (step_us > period_ * 1e6) {
     ++overruns_;
-    overrun_pending_ = !config_.lockstep;
+    overrun_pending_ = wall_clock && !config_.lockstep;
   }
 
   last_.proxy = proxy_;
@@ -305,14 +388,19 @@ void ServoLoop::tick(double now) {
   last_.max_force = max_force_;
   last_.engagements = engagements_;
   last_.axes = sample.axes;
+  last_.late_wakeups = late_wakeups_;
+  last_.max_wake_latency_us = wake_latency_max_us_;
+  last_.memory_locked = memory_locked_.load(std::memory_order_relaxed);
+  last_.realtime_priority = got_priority_.load(std::memory_order_relaxed);
   snapshots_.write(last_);
 }
 
-void ServoLoop::step_lockstep() { tick(static_cast<double>(ticks_) * period_); }
+void ServoLoop::step_lockstep() { tick(static_cast<double>(ticks_) * period_, false); }
 
 bool ServoLoop::start() {
   if (thread_.joinable()) return false;
   stop_ = false;
+  memory_locked_ = config_.lock_memory && lock_process_memory();
   thread_ = std::thread([this] { run(); });
   return true;
 }
@@ -320,22 +408,35 @@ bool ServoLoop::start() {
 void ServoLoop::stop() {
   stop_ = true;
   if (thread_.joinable()) thread_.join();
+  if (memory_locked_.exchange(false)) unlock_process_memory();
 }
 
 void ServoLoop::run() {
-  using clock = std::chrono::steady_clock;
   if (config_.realtime_priority > 0) {
     // A haptic loop wants a real-time class; without the privilege it runs as it is.
     sched_param param{};
     param.sched_priority = config_.realtime_priority;
     got_priority_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
   }
-  const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(period_));
-  const double origin = steady_seconds();
+  prefault_stack();
+  // Absolute deadlines on CLOCK_MONOTONIC (the clock steady_seconds reads):
+  // a relative sleep accumulates each tick's duration and wake-up latency,
+  // and CLOCK_REALTIME jumps with the wall clock.
+  const long long period_ns = std::llround(period_ * 1e9);
+  timespec deadline = monotonic_now();
+  const double origin = seconds_of(deadline);
   start_time_ = 0;
-  auto next = clock::now();
+  bool slept = false;
   while (!stop_.load(std::memory_order_relaxed)) {
-    const double now = steady_seconds() - origin;
+    const timespec woke = monotonic_now();
+    if (slept) {
+      const double latency_us = (seconds_of(woke) - seconds_of(deadline)) * 1e6;
+      ++wake_count_;
+      wake_latency_sum_us_ += latency_us;
+      wake_latency_max_us_ = std::max(wake_latency_max_us_, latency_us);
+      if (latency_us > config_.late_wakeup_us) ++late_wakeups_;
+    }
+    const double now = seconds_of(woke) - origin;
     if (ticks_ > 0) {
       // Welford's running mean and variance of the tick period.
       const double p = now - last_tick_start_;
@@ -345,11 +446,16 @@ void ServoLoop::run() {
       period_m2_ += delta * (p - period_mean_);
     }
     last_tick_start_ = now;
-    tick(now);
-    next += period;
-    const auto after = clock::now();
-    if (after >= next) next = after;  // behind: no burst of catch-up ticks
-    else std::this_thread::sleep_until(next);
+    tick(now, true);
+    advance(deadline, period_ns);
+    const timespec after = monotonic_now();
+    slept = earlier(after, deadline);
+    if (!slept) {
+      deadline = after;  // behind (an overrun, counted by the tick): no burst of catch-up ticks
+    } else {
+      while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+      }
+    }
   }
   device_.halt();
 }

@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstring>
 
+#include <time.h>
+
 #include <hidapi/hidapi.h>
 
 namespace contactcore::haptics {
@@ -150,8 +152,9 @@ bool descriptor_has_pid_page(const std::uint8_t* d, std::size_t size) {
 }
 
 double steady_seconds() {
-  using namespace std::chrono;
-  return duration<double>(steady_clock::now().time_since_epoch()).count();
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);  // the clock the loop's absolute deadlines use
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 DeviceCapabilities spacemouse_capabilities(const std::string& name) {
@@ -186,7 +189,8 @@ std::vector<HidSpaceMouse::Found> HidSpaceMouse::enumerate() {
   return found;
 }
 
-HidSpaceMouse::HidSpaceMouse() : caps_(spacemouse_capabilities("SpaceMouse (hidapi)")) {
+HidSpaceMouse::HidSpaceMouse(std::shared_ptr<HidRecorder> recorder)
+    : caps_(spacemouse_capabilities("SpaceMouse (hidapi)")), recorder_(std::move(recorder)) {
   description_ = "no 3Dconnexion 6-DOF device found";
   reader_ = std::thread([this] { run(); });
 }
@@ -209,11 +213,11 @@ void HidSpaceMouse::run() {
   SpaceMouseState state;
   std::uint8_t buffer[64];
   auto publish = [&](double t) {
-    sequence_.fetch_add(1, std::memory_order_acq_rel);  // odd: writing
-    for (int i = 0; i < 6; ++i) axes_[i].store(state.axes[i], std::memory_order_relaxed);
-    buttons_.store(state.buttons, std::memory_order_relaxed);
-    last_report_.store(t, std::memory_order_relaxed);
-    sequence_.fetch_add(1, std::memory_order_acq_rel);
+    Reading r;
+    r.axes = state.axes;
+    r.buttons = state.buttons;
+    r.arrival = t;
+    readings_.write(r);
   };
   while (!stop_) {
     if (!handle) {
@@ -234,6 +238,7 @@ void HidSpaceMouse::run() {
       const SpaceMouseModel* known = find_model(found.front().vendor, found.front().product);
       model = known ? *known : generic_model(found.front().vendor, found.front().product);
       state = SpaceMouseState{};
+      if (recorder_) recorder_->set_device("spacemouse", model.vendor, model.product, model.name, {});
       {
         std::lock_guard<std::mutex> lock(description_mutex_);
         description_ = std::string(model.name) + " at " + found.front().path;
@@ -243,6 +248,7 @@ void HidSpaceMouse::run() {
     }
     const int n = hid_read_timeout(handle, buffer, sizeof buffer, 50);
     if (n < 0) {  // unplugged
+      if (recorder_) recorder_->unplugged(steady_seconds());
       hid_close(handle);
       handle = nullptr;
       connected_ = false;
@@ -252,7 +258,11 @@ void HidSpaceMouse::run() {
       description_ = "device unplugged; waiting for it";
       continue;
     }
-    if (n > 0 && parse_report(buffer, static_cast<std::size_t>(n), model, state)) publish(steady_seconds());
+    if (n > 0) {
+      const double arrival = steady_seconds();
+      if (recorder_) recorder_->report(arrival, buffer, static_cast<std::size_t>(n));
+      if (parse_report(buffer, static_cast<std::size_t>(n), model, state)) publish(arrival);
+    }
   }
   if (handle) hid_close(handle);
   hid_exit();
@@ -260,19 +270,14 @@ void HidSpaceMouse::run() {
 
 DeviceSample HidSpaceMouse::read(double now) noexcept {
   DeviceSample s;
-  for (;;) {
-    const std::uint32_t before = sequence_.load(std::memory_order_acquire);
-    if (before & 1) continue;
-    for (int i = 0; i < 6; ++i) s.axes[i] = axes_[i].load(std::memory_order_relaxed);
-    s.buttons = buttons_.load(std::memory_order_relaxed);
-    s.time = last_report_.load(std::memory_order_relaxed);
-    std::atomic_thread_fence(std::memory_order_acquire);
-    if (sequence_.load(std::memory_order_acquire) == before) break;
-  }
-  s.connected = connected_.load();
-  // A SpaceMouse sends nothing while it rests: its last sample stays valid
-  // as long as the device is there.
-  s.time = now;
+  const Reading& r = readings_.read();  // wait-free: no retry on the loop's thread
+  s.axes = r.axes;
+  s.buttons = r.buttons;
+  s.connected = connected_.load(std::memory_order_acquire);
+  // The report's arrival on the loop's clock (its age is what the watchdog judges).
+  s.time = now - std::max(0.0, steady_seconds() - r.arrival);
+  // A SpaceMouse sends reports while deflected and falls silent at rest.
+  s.at_rest = s.axes.isZero(0.0);
   return s;
 }
 
@@ -283,12 +288,39 @@ ReplayDevice::ReplayDevice(SpaceMouseModel model, std::vector<RecordedReport> re
       model_(model),
       reports_(std::move(reports)) {}
 
+ReplayDevice::ReplayDevice(PidLayout layout, const PidForceConfig& config, std::vector<RecordedReport> reports)
+    : model_(generic_model(0, 0)),
+      pid_(true),
+      layout_(std::move(layout)),
+      pid_config_(config),
+      reports_(std::move(reports)) {
+  caps_.name = "replay of " + config.name;
+  caps_.control = config.control;
+  caps_.input_dof = 0;
+  for (int a = 0; a < (config.control == ControlMode::Position ? 3 : 6); ++a)
+    caps_.input_dof += layout_.input_axes[a].found() ? 1 : 0;
+  caps_.workspace_radius = config.control == ControlMode::Position ? config.workspace_mm : 0;
+}
+
 DeviceSample ReplayDevice::read(double now) noexcept {
   while (next_ < reports_.size() && reports_[next_].time <= now) {
     const auto& r = reports_[next_++];
     if (r.bytes.empty()) {
       connected_ = !connected_;
-      if (!connected_) state_ = SpaceMouseState{};
+      if (!connected_) {
+        state_ = SpaceMouseState{};
+        pid_axes_.setZero();
+        pid_velocity_.setZero();
+        reported_ = false;
+      }
+    } else if (connected_ && pid_) {
+      Vec6 axes = pid_axes_;
+      if (parse_pid_input(layout_, r.bytes.data(), r.bytes.size(), axes)) {
+        const double dt = r.time - last_report_;
+        if (reported_ && dt > 1e-6) pid_velocity_ = (axes - pid_axes_) / dt;
+        pid_axes_ = axes;
+        reported_ = true;
+      }
     } else if (connected_) {
       parse_report(r.bytes.data(), r.bytes.size(), model_, state_);
     }
@@ -296,9 +328,17 @@ DeviceSample ReplayDevice::read(double now) noexcept {
   }
   DeviceSample s;
   s.connected = connected_;
-  s.axes = state_.axes;
+  s.time = last_report_;  // arrival, as recorded: the watchdog sees the recorded gaps
+  if (pid_ && pid_config_.control == ControlMode::Position) {
+    for (int a = 0; a < 3; ++a) {
+      s.pose.translation() += pid_axes_[a] * pid_config_.workspace_mm * pid_config_.axis_directions[a];
+      s.velocity.head<3>() += pid_velocity_[a] * pid_config_.workspace_mm * pid_config_.axis_directions[a];
+    }
+    return s;
+  }
+  s.axes = pid_ ? pid_axes_ : state_.axes;
   s.buttons = state_.buttons;
-  s.time = connected_ ? now : last_report_;
+  s.at_rest = s.axes.isZero(0.0);
   return s;
 }
 

@@ -5,7 +5,6 @@
 #include <set>
 #include <thread>
 
-#include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
 
 #include "contactcore/common/occt_guard.h"
@@ -34,14 +33,17 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
   // build naming the body. The servo loop and the queries run no OCCT.
   const OcctGuard guard;
   try {
-    // Partitions with the same tolerances the contact stage uses.
-    Bnd_Box model_box;
-    for (const Body& b : assembly.bodies) BRepBndLib::Add(b.shape, model_box, false);
+    // Partitions with the same tolerances the contact stage uses: each body's own.
     const ContactOptions defaults;
-    const Tolerances tol = resolve_tolerances(model_box, defaults.linear, defaults.angular);
     const std::size_t n = assembly.bodies.size();
     for (std::size_t i = 0; i < n; ++i) {
       std::string failure;
+      Tolerances tol;
+      status = body_tolerances(assembly.bodies[i].shape, defaults.linear, defaults.angular, tol);
+      if (!status.ok()) {
+        status.body = assembly.bodies[i].name;
+        return nullptr;
+      }
       scene->partitions_.emplace_back();
       if (!run_guarded([&] { scene->partitions_.back() = partition_shape(assembly.bodies[i].shape, tol); }, failure,
                        "OCCT: ")) {
@@ -150,11 +152,11 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
   ServoConfig config = options.servo;
   config.centre = c;
   config.lockstep = !realtime;
-  ServoLoop loop(hand, config, start);
+  ServoLoop loop(options.device ? *options.device : static_cast<Device&>(hand), config, start);
   loop.set_joint_finder(&scene.finder());
   loop.set_collision(&scene.collision());
 
-  const double duration = (keys.empty() ? 0.0 : keys.back().t) + options.settle;
+  const double duration = options.device ? options.duration : (keys.empty() ? 0.0 : keys.back().t) + options.settle;
   const auto total = static_cast<std::uint64_t>(duration * config.rate_hz + 0.5);
   // Joints as they engage, and the further bodies the part enters on the same
   // joint (a shaft reaching its second bearing): real-time contacts at the
@@ -203,6 +205,7 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
     }
   } else {
     loop.start();
+    result.memory_locked = loop.memory_locked();
     const auto period = std::chrono::duration<double>(options.record_every > 0 ? options.record_every / config.rate_hz : 0.01);
     while (loop.snapshot().ticks < total) {
       std::this_thread::sleep_for(period);
@@ -219,6 +222,7 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
   result.step_p99_us = loop.step_percentile_us(99);
   result.step_max_us = loop.step_max_us();
   result.overruns = loop.overruns();
+  result.late_wakeups = loop.late_wakeups();
   Vec3 r;
   offset_of(last.proxy, c, result.final_translate, r);
   result.final_rotate_deg = Vec3(deg(r.x()), deg(r.y()), deg(r.z()));

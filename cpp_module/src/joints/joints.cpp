@@ -1,6 +1,7 @@
 // Joints per body pair: each contact's constraint wrenches, stacked, give the
 // free twists as their null space; unilateral contacts give one-sided stops
 // and the cone of directions in which one body can leave the other.
+#include "contactcore/common/angles.h"
 #include "contactcore/joints/joints.h"
 
 #include <algorithm>
@@ -13,9 +14,29 @@ namespace contactcore {
 
 using namespace detail;
 
-namespace {
+const char* to_string(ContactIntent intent) {
+  switch (intent) {
+    case ContactIntent::Unspecified: return "";
+    case ContactIntent::Clearance: return "clearance";
+    case ContactIntent::Transition: return "transition";
+    case ContactIntent::Interference: return "interference";
+    case ContactIntent::Bonded: return "bonded";
+    case ContactIntent::Ignored: return "ignored";
+  }
+  return "";
+}
 
-constexpr double kTwoPi = 2 * M_PI;
+bool parse_intent(const std::string& text, ContactIntent& intent) {
+  for (ContactIntent candidate : {ContactIntent::Clearance, ContactIntent::Transition, ContactIntent::Interference,
+                                  ContactIntent::Bonded, ContactIntent::Ignored})
+    if (text == to_string(candidate)) {
+      intent = candidate;
+      return true;
+    }
+  return false;
+}
+
+namespace {
 
 const Partition& partition_of(const ContactsResult& r, int body, int id) {
   return r.partitions[body].partitions[id];
@@ -60,12 +81,39 @@ std::vector<AngularInterval> common_angles(const Partition& a, const Partition& 
   return common;
 }
 
+// A circular cone of stop normals (all normals within `angle` of `axis`
+// around a full turn: a full cone contact, a ball in a cup): its free
+// directions are the circular cone about `axis` of half angle pi/2 - angle.
+struct CircularStops {
+  Vec3 axis;
+  double angle = 0;
+};
+
 // Constraint rows and stop data of one contact.
 struct ContactConstraints {
   std::vector<Vec6> rows;            // bilateral wrenches (local)
   std::vector<Vec3> bilateral_forces;  // directions of translation they forbid
   std::vector<OneSidedStop> stops;
+  // When set, the free directions come from this exact cone, not from the
+  // sampled stop normals (whose polygon would reach outside the true cone).
+  std::vector<CircularStops> circles;
 };
+
+// Stops whose normals are sign * u for the directions u (from a ball's
+// centre) within `angle` of `axis`: the cap's centre and `samples` around
+// its rim, for the servo loop; the free-direction cone from the exact circle.
+void add_cap_stops(int index, const Vec3& centre, double radius, const Vec3& axis, double angle, double sign,
+                   int samples, ContactConstraints& out) {
+  Vec3 u, v;
+  perpendiculars(axis, u, v);
+  out.stops.push_back({index, pnt(centre + radius * axis), dir(sign * axis)});
+  for (int i = 0; i < samples; ++i) {
+    const double theta = kTwoPi * i / samples;
+    const Vec3 d = std::cos(angle) * axis + std::sin(angle) * (std::cos(theta) * u + std::sin(theta) * v);
+    out.stops.push_back({index, pnt(centre + radius * d), dir(sign * d)});
+  }
+  out.circles.push_back({sign * axis, angle});
+}
 
 void add_axis_forces(const Frame& frame, const Vec3& p, const Vec3& axis, ContactConstraints& out) {
   Vec3 u, v;
@@ -96,6 +144,13 @@ std::vector<double> stop_angles(const std::vector<AngularInterval>& common, doub
     angles.push_back(in.start + in.span);
   }
   return angles;
+}
+
+// A ball's region angle, a half turn within the angular tolerance taken as
+// exactly one (a hemispherical cup, a half-open groove: the probes find the
+// region's edges within the edges' own tolerance, 1e-7 rad beyond them).
+double region_angle_of(const Contact& c) {
+  return std::abs(c.region_angle - kPi / 2) <= c.tolerances.angular ? kPi / 2 : c.region_angle;
 }
 
 ContactConstraints constraints_of(const ContactsResult& result, int index, const Frame& frame,
@@ -139,13 +194,25 @@ ContactConstraints constraints_of(const ContactsResult& result, int index, const
         const Vec3 at = fa.origin + fa.axis * mid + radial * radius;
         out.stops.push_back({index, pnt(at), dir(normal)});
       }
+      // A full cone's normals make a circular cone about -sign sin(alpha)
+      // axis, at pi/2 - alpha from it: its free directions are exact.
+      if (cone && !c.partial && c.span >= kTwoPi - 1e-6 && std::abs(std::sin(alpha)) > 1e-12)
+        out.circles.push_back({-sign * (std::sin(alpha) > 0 ? 1.0 : -1.0) * fa.axis, kPi / 2 - std::abs(alpha)});
       break;
     }
     case ContactType::SPF: {
-      for (const Vec3& e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())}) {
+      for (const Vec3& e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())})
         out.rows.push_back(frame.force_row(p, e));
-        out.bilateral_forces.push_back(e);
+      if (c.region_angle >= kPi - 1e-9) {  // held all around
+        for (const Vec3& e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY()), Vec3(Vec3::UnitZ())})
+          out.bilateral_forces.push_back(e);
+        break;
       }
+      // A cup: a's normals over the cap of the common region (out of a's
+      // material: towards the centre when a is the cup, away when the ball).
+      const Partition& pa = partition_of(result, c.body_a, c.partition_a);
+      const double sign = pa.side == MaterialSide::Convex ? 1.0 : -1.0;
+      add_cap_stops(index, p, c.radius, vec(c.region_axis), region_angle_of(c), sign, options.cone_samples, out);
       break;
     }
     case ContactType::LAF:
@@ -153,8 +220,21 @@ ContactConstraints constraints_of(const ContactsResult& result, int index, const
       add_axis_forces(frame, p, d, out);
       Vec3 u, v;
       perpendiculars(d, u, v);
-      out.bilateral_forces.push_back(u);
-      out.bilateral_forces.push_back(v);
+      if (c.region_angle >= kPi - 1e-9) {
+        out.bilateral_forces.push_back(u);
+        out.bilateral_forces.push_back(v);
+        break;
+      }
+      // An open bore or groove: the arc's normals, in the plane across d,
+      // are spanned by its ends and its middle (exact: a plane cone).
+      const Partition& pa = partition_of(result, c.body_a, c.partition_a);
+      const double sign = pa.side == MaterialSide::Convex ? 1.0 : -1.0;
+      const Vec3 w = vec(c.region_axis), side = d.cross(w);
+      const double half = region_angle_of(c);
+      for (double phi : {-half, 0.0, half}) {
+        const Vec3 r = std::cos(phi) * w + std::sin(phi) * side;
+        out.stops.push_back({index, pnt(p + c.radius * r), dir(sign * r)});
+      }
       break;
     }
     case ContactType::TRF: {
@@ -172,7 +252,59 @@ ContactConstraints constraints_of(const ContactsResult& result, int index, const
   return out;
 }
 
+// A point contact: one force along the normal, one-sided; a line contact:
+// that force at both ends of the line (it also holds the rotation across the
+// line in the tangent plane).
+ContactConstraints constraints_of_higher(const ContactsResult& result, int index, const Frame& frame) {
+  const HigherPair& h = result.higher_pairs[index];
+  ContactConstraints out;
+  const Vec3 n = vec(h.normal);
+  std::vector<gp_Pnt> points{h.start};
+  if (h.is_line()) points.push_back(h.end);
+  for (const gp_Pnt& at : points) {
+    out.rows.push_back(frame.force_row(vec(at), n));
+    OneSidedStop stop;
+    stop.higher_pair = index;
+    stop.point = at;
+    stop.normal = h.normal;
+    out.stops.push_back(stop);
+  }
+  return out;
+}
+
 // Generators of {d in R^3 : f . d = 0 for bilateral f, n . d >= 0 for stop n}.
+// A circular cone of normals as what the polyhedral computation below takes:
+// the free cone about `axis` of half angle beta = pi/2 - angle, replaced by
+// the polygon inscribed in it (its `samples` edges exactly on the cone, every
+// direction it allows free: the safe side) as the half-spaces of its faces;
+// a ray when beta is 0 (a hemispherical cup), nothing when beta < 0.
+void add_circle(const CircularStops& circle, int samples, std::vector<Vec3>& bilateral, std::vector<Vec3>& normals) {
+  constexpr double kFlat = 1e-7;  // radians
+  const Vec3 m = circle.axis.normalized();
+  const double beta = kPi / 2 - circle.angle;
+  Vec3 u, v;
+  perpendiculars(m, u, v);
+  if (beta < -kFlat) {
+    bilateral.insert(bilateral.end(), {m, u, v});
+    return;
+  }
+  if (beta <= kFlat) {
+    bilateral.insert(bilateral.end(), {u, v});
+    normals.push_back(m);
+    return;
+  }
+  std::vector<Vec3> edges;
+  for (int i = 0; i < samples; ++i) {
+    const double theta = kTwoPi * i / samples;
+    edges.push_back(std::cos(beta) * m + std::sin(beta) * (std::cos(theta) * u + std::sin(theta) * v));
+  }
+  for (int i = 0; i < samples; ++i) {
+    Vec3 n = edges[i].cross(edges[(i + 1) % samples]);
+    if (n.dot(m) < 0) n = -n;
+    normals.push_back(n.normalized());
+  }
+}
+
 std::vector<gp_Dir> free_direction_cone(const std::vector<Vec3>& bilateral, const std::vector<Vec3>& normals) {
   constexpr double tol = 1e-7;
   Eigen::MatrixXd f(bilateral.size(), 3);
@@ -240,21 +372,29 @@ std::vector<gp_Dir> free_direction_cone(const std::vector<Vec3>& bilateral, cons
 }  // namespace
 
 PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
-                        const std::vector<int>& contact_indices, const JointOptions& options) {
+                        const std::vector<int>& contact_indices, const JointOptions& options,
+                        const std::vector<int>& higher_pair_indices) {
   PairJoint joint;
   joint.body_a = body_a;
   joint.body_b = body_b;
   joint.contacts = contact_indices;
+  joint.higher_pairs = higher_pair_indices;
 
   // The frame: centre of the contact points, size of their spread and patches.
   Frame frame;
   Vec3 sum = Vec3::Zero();
   for (int i : contact_indices) sum += vec(result.contacts[i].point);
-  if (!contact_indices.empty()) frame.centre = sum / static_cast<double>(contact_indices.size());
+  for (int i : higher_pair_indices) sum += vec(result.higher_pairs[i].point);
+  const size_t count = contact_indices.size() + higher_pair_indices.size();
+  if (count) frame.centre = sum / static_cast<double>(count);
   double length = 0;
   for (int i : contact_indices) {
     const Contact& c = result.contacts[i];
     length = std::max(length, (vec(c.point) - frame.centre).norm() + c.radius + std::sqrt(std::max(0.0, c.area)));
+  }
+  for (int i : higher_pair_indices) {
+    const HigherPair& h = result.higher_pairs[i];
+    length = std::max(length, (vec(h.point) - frame.centre).norm() + 0.5 * h.length);
   }
   frame.length = length > 1e-9 ? length : 1.0;
   joint.frame_centre = pnt(frame.centre);
@@ -266,6 +406,16 @@ PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
     ContactConstraints cc = constraints_of(result, i, frame, options);
     rows.insert(rows.end(), cc.rows.begin(), cc.rows.end());
     bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
+    if (cc.circles.empty()) {
+      for (const OneSidedStop& s : cc.stops) normals.push_back(vec(s.normal));
+    } else {
+      for (const CircularStops& circle : cc.circles) add_circle(circle, options.cone_samples, bilateral, normals);
+    }
+    joint.stops.insert(joint.stops.end(), cc.stops.begin(), cc.stops.end());
+  }
+  for (int i : higher_pair_indices) {
+    const ContactConstraints cc = constraints_of_higher(result, i, frame);
+    rows.insert(rows.end(), cc.rows.begin(), cc.rows.end());
     for (const OneSidedStop& s : cc.stops) normals.push_back(vec(s.normal));
     joint.stops.insert(joint.stops.end(), cc.stops.begin(), cc.stops.end());
   }
@@ -280,6 +430,25 @@ PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
   joint.translations = space.translations;
   joint.pitch = space.pitch;
   joint.free_directions = free_direction_cone(bilateral, normals);
+  // A press fit or a bond among the pair's contacts: rigid, whatever the
+  // surfaces would allow.
+  const auto intent_of = [](const std::vector<ContactIntent>& intents, int i) {
+    return i < static_cast<int>(intents.size()) ? intents[i] : ContactIntent::Unspecified;
+  };
+  bool rigid = false;
+  for (int i : contact_indices) rigid = rigid || holds_rigid(intent_of(options.contact_intents, i));
+  for (int i : higher_pair_indices) rigid = rigid || holds_rigid(intent_of(options.higher_pair_intents, i));
+  if (rigid) {
+    joint.annotated_rigid = true;
+    joint.type = JointType::Rigid;
+    joint.dof = 0;
+    joint.free_twists.clear();
+    joint.rotations.clear();
+    joint.translations.clear();
+    joint.pitch = 0;
+    joint.stops.clear();
+    joint.free_directions.clear();
+  }
   return joint;
 }
 
@@ -289,13 +458,24 @@ std::vector<gp_Dir> body_free_directions(const ContactsResult& contacts, const J
   const Frame frame;  // only the force directions are used
   for (const PairJoint& joint : joints.joints) {
     if (joint.body_a != body && joint.body_b != body) continue;
+    if (joint.annotated_rigid) return {};  // held by a press fit or a bond
     // Stops are written for b moving away from a: a moves away along -n.
     const double sign = joint.body_b == body ? 1.0 : -1.0;
     for (int i : joint.contacts) {
       const ContactConstraints cc = constraints_of(contacts, i, frame, options);
       bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
-      for (const OneSidedStop& stop : cc.stops) normals.push_back(sign * vec(stop.normal));
+      if (cc.circles.empty()) {
+        for (const OneSidedStop& stop : cc.stops) normals.push_back(sign * vec(stop.normal));
+      } else {
+        for (CircularStops circle : cc.circles) {
+          circle.axis *= sign;
+          add_circle(circle, options.cone_samples, bilateral, normals);
+        }
+      }
     }
+    for (int i : joint.higher_pairs)
+      for (const OneSidedStop& stop : constraints_of_higher(contacts, i, frame).stops)
+        normals.push_back(sign * vec(stop.normal));
   }
   return free_direction_cone(bilateral, normals);
 }
@@ -309,14 +489,24 @@ JointsResult find_joints(const Assembly& assembly, const ContactsResult& contact
                                      std::to_string(assembly.bodies.size()) + ")");
     return out;
   }
-  std::map<std::pair<int, int>, std::vector<int>> by_pair;
+  // Per body pair: its surface contacts, then its point and line contacts.
+  std::map<std::pair<int, int>, std::pair<std::vector<int>, std::vector<int>>> by_pair;
+  const auto ignored = [](const std::vector<ContactIntent>& intents, size_t i) {
+    return i < intents.size() && intents[i] == ContactIntent::Ignored;
+  };
   for (size_t i = 0; i < contacts.contacts.size(); ++i) {
+    if (ignored(options.contact_intents, i)) continue;
     const Contact& c = contacts.contacts[i];
-    by_pair[{std::min(c.body_a, c.body_b), std::max(c.body_a, c.body_b)}].push_back(static_cast<int>(i));
+    by_pair[{std::min(c.body_a, c.body_b), std::max(c.body_a, c.body_b)}].first.push_back(static_cast<int>(i));
+  }
+  for (size_t i = 0; i < contacts.higher_pairs.size(); ++i) {
+    if (ignored(options.higher_pair_intents, i)) continue;
+    const HigherPair& h = contacts.higher_pairs[i];
+    by_pair[{std::min(h.body_a, h.body_b), std::max(h.body_a, h.body_b)}].second.push_back(static_cast<int>(i));
   }
   out.joints.reserve(by_pair.size());
   for (const auto& [pair, indices] : by_pair) {
-    PairJoint joint = joint_of_pair(contacts, pair.first, pair.second, indices, options);
+    PairJoint joint = joint_of_pair(contacts, pair.first, pair.second, indices.first, options, indices.second);
     out.joints.push_back(std::move(joint));
   }
   return out;

@@ -18,6 +18,7 @@
 
 #include "contactcore/joints/joints.h"
 #include "contactcore/common/occt_guard.h"
+#include "common/union_find.h"
 #include "joints/twist_math.h"
 
 namespace contactcore {
@@ -55,15 +56,6 @@ Eigen::MatrixXd concat(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) {
   out << a, b;
   return out;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-};
 
 // Mass, centre and inertia (about the centre) of a body's solids. Placed
 // copies of one part share their TShape: computed once per TShape at the
@@ -260,7 +252,7 @@ struct Solver {
     if (relative.cols() > 0 && rank_of(concat(spins_both, relative), 1e-6) > rank_of(spins_both, 1e-6))
       return false;
     ambiguity[g] = intersect(ambiguity[g], moved(ambiguity[h], h, g), 1e-6);
-    groups.parent[h] = g;
+    groups.attach(h, g);
     return true;
   }
 
@@ -484,7 +476,7 @@ MobilityResult assembly_mobility(const Assembly& assembly, const ContactsResult&
 
   // Connected components of the contact graph.
   UnionFind parts(n);
-  for (const Edge& e : s.edges) parts.parent[parts.find(e.a)] = parts.find(e.b);
+  for (const Edge& e : s.edges) parts.attach(e.a, e.b);
   std::unordered_map<int, int> component_of;
   for (int i = 0; i < n; ++i) {
     const int r = parts.find(i);

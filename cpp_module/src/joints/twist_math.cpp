@@ -1,6 +1,7 @@
 // Null spaces and the naming of twist spaces (ISO 3952 kinematic pairs).
 #include "joints/twist_math.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace contactcore {
@@ -16,6 +17,7 @@ const char* to_string(JointType type) {
     case JointType::Planar: return "planar";
     case JointType::SphereCylinder: return "sphere_cylinder";
     case JointType::SpherePlane: return "sphere_plane";
+    case JointType::CylinderPlane: return "cylinder_plane";
     case JointType::General: return "general";
   }
   return "general";
@@ -30,26 +32,29 @@ void perpendiculars(const Vec3& axis, Vec3& u, Vec3& v) {
   v = a.cross(u);
 }
 
-Eigen::MatrixXd null_space(const Eigen::MatrixXd& a, double tol) {
+Eigen::Index numerical_rank(Eigen::JacobiSVD<Eigen::MatrixXd>& svd, double relative, double absolute) {
+  const auto& s = svd.singularValues();
+  const double top = s.size() ? s(0) : 0.0;
+  // All noise (a matrix of round-off, 5e-30): rank 0, whatever its shape.
+  if (!(top > absolute)) return 0;
+  // Eigen's threshold is relative to the largest singular value: the larger
+  // of the two ratios makes it absolute-and-relative.
+  svd.setThreshold(std::max(relative, absolute / top));
+  return svd.rank();
+}
+
+Eigen::MatrixXd null_space(const Eigen::MatrixXd& a, double tol, double absolute) {
   const Eigen::Index n = a.cols();
   if (a.rows() == 0) return Eigen::MatrixXd::Identity(n, n);
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
-  const auto& s = svd.singularValues();
-  const double top = s.size() ? s(0) : 0.0;
-  Eigen::Index rank = 0;
-  for (Eigen::Index i = 0; i < s.size(); ++i)
-    if (top > 0 && s(i) > tol * top) ++rank;
+  const Eigen::Index rank = numerical_rank(svd, tol, absolute);
   return svd.matrixV().rightCols(n - rank);
 }
 
-Eigen::MatrixXd range_space(const Eigen::MatrixXd& a, double tol) {
+Eigen::MatrixXd range_space(const Eigen::MatrixXd& a, double tol, double absolute) {
   if (a.cols() == 0) return Eigen::MatrixXd(a.rows(), 0);
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullU);
-  const auto& s = svd.singularValues();
-  const double top = s.size() ? s(0) : 0.0;
-  Eigen::Index rank = 0;
-  for (Eigen::Index i = 0; i < s.size(); ++i)
-    if (top > 0 && s(i) > tol * top) ++rank;
+  const Eigen::Index rank = numerical_rank(svd, tol, absolute);
   return svd.matrixU().leftCols(rank);
 }
 
@@ -87,12 +92,13 @@ TwistSpace classify_local(const Eigen::MatrixXd& twists, const Frame& frame, dou
 
   // Rotational directions, and the pure translations (omega = 0).
   const Eigen::MatrixXd omega = basis.topRows(3);
+  // The basis is orthonormal, so the omega parts are O(1) or round-off: the
+  // rank threshold is absolute (1e-3) as well as relative, else a pure
+  // translation's omega (5e-30) would count as one rotation and hide it.
+  constexpr double kOmegaRank = 1e-3;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(omega, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const auto& s = svd.singularValues();
-  int r = 0;
-  for (Eigen::Index i = 0; i < s.size(); ++i)
-    if (s(i) > 1e-3) ++r;  // basis is orthonormal: omega parts are O(1) or noise
-  const Eigen::MatrixXd trans_coeffs = null_space(omega, 1e-3);
+  const int r = static_cast<int>(numerical_rank(svd, kOmegaRank, kOmegaRank));
+  const Eigen::MatrixXd trans_coeffs = svd.matrixV().rightCols(omega.cols() - r);
   Eigen::MatrixXd translations = range_space((basis * trans_coeffs).bottomRows(3), tol);
   const int t = static_cast<int>(translations.cols());
 
@@ -137,6 +143,8 @@ TwistSpace classify_local(const Eigen::MatrixXd& twists, const Frame& frame, dou
     type = JointType::Planar;
   } else if (k == 4 && r == 3 && t == 1 && concurrent) {
     type = JointType::SphereCylinder;
+  } else if (k == 4 && r == 2 && t == 2 && no_pitch) {
+    type = JointType::CylinderPlane;
   } else if (k == 5 && r == 3 && t == 2 && concurrent) {
     type = JointType::SpherePlane;
   }

@@ -64,11 +64,15 @@ struct Frame {
 // Two unit vectors completing `axis` to an orthonormal frame.
 void perpendiculars(const Vec3& axis, Vec3& u, Vec3& v);
 
+// Numerical rank of a decomposed matrix: singular values above both
+// `relative` times the largest and `absolute` (Eigen's setThreshold/rank()).
+Eigen::Index numerical_rank(Eigen::JacobiSVD<Eigen::MatrixXd>& svd, double relative, double absolute);
 // Orthonormal basis of the null space of the rows of `a` (rows x n):
-// columns of the result (n x k). Singular values below tol * max count as 0.
-Eigen::MatrixXd null_space(const Eigen::MatrixXd& a, double tol);
-// Orthonormal basis of the column space of `a`.
-Eigen::MatrixXd range_space(const Eigen::MatrixXd& a, double tol);
+// columns of the result (n x k). Singular values below tol * max, or below
+// `absolute`, count as 0 (rows here are scaled to O(1)).
+Eigen::MatrixXd null_space(const Eigen::MatrixXd& a, double tol, double absolute = 1e-12);
+// Orthonormal basis of the column space of `a` (same rank test).
+Eigen::MatrixXd range_space(const Eigen::MatrixXd& a, double tol, double absolute = 1e-12);
 // Rows spanning the constraints of a twist space (its reciprocal complement
 // in the local pairing): (6 - k) x 6.
 Eigen::MatrixXd constraint_rows(const Mat6X& free_twists, double tol);

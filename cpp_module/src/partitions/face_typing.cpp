@@ -245,22 +245,14 @@ double fitted_revolution_area(const TopoDS_Face& face, const SurfaceParams& para
   for (TopExp_Explorer edges(face, TopAbs_EDGE); edges.More(); edges.Next()) {
     const TopoDS_Edge& edge = TopoDS::Edge(edges.Current());
     if (BRep_Tool::Degenerated(edge) || !bounds_the_face(edge)) continue;
-    const BRepAdaptor_Curve curve(edge);
-    integration_pieces(curve, curve.FirstParameter(), curve.LastParameter(), breaks);
-    double sum = 0;
-    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-      sum += gauss(breaks[i], breaks[i + 1], [&](double t) {
-        gp_Pnt p;
-        gp_Vec d;
-        curve.D1(t, p, d);
-        const gp_XYZ r = p.XYZ() - origin;
-        const double x = r * e1, y = r * e2, rho2 = x * x + y * y;
-        if (rho2 <= 0) return 0.0;
-        const double dtheta = (x * (d.XYZ() * e2) - y * (d.XYZ() * e1)) / rho2;
-        const double g = cone ? r.SquareModulus() * half_sin : params.radius * (r * axis);
-        return g * dtheta;
-      });
-    }
+    const double sum = curve_integral(BRepAdaptor_Curve(edge), breaks, [&](const gp_XYZ& p, const gp_XYZ& d) {
+      const gp_XYZ r = p - origin;
+      const double x = r * e1, y = r * e2, rho2 = x * x + y * y;
+      if (rho2 <= 0) return 0.0;
+      const double dtheta = (x * (d * e2) - y * (d * e1)) / rho2;
+      const double g = cone ? r.SquareModulus() * half_sin : params.radius * (r * axis);
+      return g * dtheta;
+    });
     total += edge.Orientation() == TopAbs_REVERSED ? -sum : sum;
   }
   return std::fabs(total);

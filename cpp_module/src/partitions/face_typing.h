@@ -5,12 +5,10 @@
 
 #include <cmath>
 
+#include "contactcore/common/angles.h"
 #include "contactcore/partitions/partitions.h"
 
 namespace contactcore::detail {
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kTwoPi = 2 * kPi;
 
 // unite() joins angular intervals separated by less than this: faces that
 // meet on a seam or a split line must give one closed interval even when their

@@ -16,13 +16,12 @@
 #include <gp_Circ.hxx>
 
 #include "common/quadrature.h"
+#include "contactcore/common/angles.h"
 
 namespace contactcore {
 namespace detail {
 
 namespace {
-
-constexpr double kTwoPi = 2 * 3.14159265358979323846;
 
 // Fewest points a full circle gets, whatever the sag allows: keeps the
 // polygon's crossings with other edges where the arc's are.
@@ -79,18 +78,10 @@ void free_curve_parameters(const BRepAdaptor_Curve& curve, double arc_step, std:
 // the boundary integral of x dy - y dx (Green), by Gauss on `breaks`.
 double twice_swept_area(const BRepAdaptor_Curve& curve, const gp_XYZ& origin, const gp_XYZ& x_dir,
                         const gp_XYZ& y_dir, std::vector<double>& breaks) {
-  integration_pieces(curve, curve.FirstParameter(), curve.LastParameter(), breaks);
-  double sum = 0;
-  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-    sum += gauss(breaks[i], breaks[i + 1], [&](double t) {
-      gp_Pnt p;
-      gp_Vec d;
-      curve.D1(t, p, d);
-      const gp_XYZ r = p.XYZ() - origin;
-      return (r * x_dir) * (d.XYZ() * y_dir) - (r * y_dir) * (d.XYZ() * x_dir);
-    });
-  }
-  return sum;
+  return curve_integral(curve, breaks, [&](const gp_XYZ& p, const gp_XYZ& d) {
+    const gp_XYZ r = p - origin;
+    return (r * x_dir) * (d * y_dir) - (r * y_dir) * (d * x_dir);
+  });
 }
 
 // Plane frame: origin, axes, normal (x ^ y).

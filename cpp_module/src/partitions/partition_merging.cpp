@@ -3,6 +3,7 @@
 // edge, then each partition's extent from its faces'.
 #include "partitions/partition_merging.h"
 
+#include "common/union_find.h"
 #include "partitions/face_typing.h"
 
 #include <algorithm>
@@ -17,22 +18,6 @@
 namespace contactcore::detail {
 
 namespace {
-
-class UnionFind {
- public:
-  explicit UnionFind(int n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int i) {
-    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);  // smallest index is the root
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 bool mergeable(const FaceInfo& a, const FaceInfo& b, const Tolerances& tol) {
   return a.params.kind == b.params.kind && a.params.kind != SurfaceKind::Other && a.side == b.side &&

@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -28,7 +29,6 @@
 namespace contactcore {
 
 using detail::kAngularJoinGap;
-using detail::kTwoPi;
 using detail::wrap_angle;
 
 const char* to_string(SurfaceKind kind) {
@@ -101,6 +101,27 @@ Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances) 
                   text(diagonal) + " mm model");
   }
   return Status::success();
+}
+
+Status body_tolerances(const Bnd_Box& body_box, std::optional<double> linear, std::optional<double> angular,
+                       Tolerances& out) {
+  if (!body_box.IsVoid()) {
+    double x0, y0, z0, x1, y1, z1;
+    body_box.Get(x0, y0, z0, x1, y1, z1);
+    for (double v : {x0, y0, z0, x1, y1, z1})
+      if (!std::isfinite(v))
+        return Status::failure(StatusCode::InvalidInput, "the body's extent is not finite (a coordinate of " +
+                                                             std::to_string(v) + " mm)");
+  }
+  out = resolve_tolerances(body_box, linear, angular);
+  return Status::success();
+}
+
+Status body_tolerances(const TopoDS_Shape& shape, std::optional<double> linear, std::optional<double> angular,
+                       Tolerances& out) {
+  Bnd_Box box;
+  if (!shape.IsNull()) BRepBndLib::Add(shape, box, false);
+  return body_tolerances(box, linear, angular, out);
 }
 
 std::vector<AngularInterval> unite(std::vector<AngularInterval> intervals) {
@@ -192,6 +213,7 @@ bool same_surface(const SurfaceParams& a, const SurfaceParams& b, const Toleranc
 
 BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol) {
   BodyPartitions result;
+  result.tolerances = tol;
   try {
     if (shape.IsNull()) {
       result.status = Status::failure(StatusCode::InvalidInput, "empty shape");

@@ -3,6 +3,7 @@
 // squares, Eigen's eigen-solver and LU), or swept surfaces typed from their
 // curve; each fit checked on a finer grid within the linear tolerance.
 #include "partitions/surface_fitting.h"
+#include "contactcore/common/angles.h"
 
 #include <algorithm>
 #include <array>
@@ -70,8 +71,6 @@ bool oriented_normal(const BRepAdaptor_Surface& surface, bool reversed, double u
 }
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------------------
 // Small dense linear algebra for the fits (3x3 and 4x4), by Eigen.

@@ -6,6 +6,7 @@
 #include "contactcore/simulation/collision.h"
 
 #include <algorithm>
+#include <string>
 #include <cstddef>
 #include <cmath>
 #include <limits>
@@ -14,6 +15,27 @@
 #include "simulation/collision_model.h"
 
 namespace contactcore {
+
+Status check_rigid_transform(const RigidTransform& placement) {
+  const auto fail = [](const std::string& message) { return Status::failure(StatusCode::InvalidArgument, message); };
+  for (double v : placement.rotation)
+    if (!std::isfinite(v)) return fail("a placement's rotation holds a number that is not finite");
+  for (double v : placement.translation)
+    if (!std::isfinite(v) || std::abs(v) > 1e100) return fail("a placement's translation is not a finite length");
+  const auto& r = placement.rotation;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double dot = r[3 * i] * r[3 * j] + r[3 * i + 1] * r[3 * j + 1] + r[3 * i + 2] * r[3 * j + 2];
+      if (std::abs(dot - (i == j ? 1.0 : 0.0)) > 1e-6)
+        return fail("a placement's rotation is not orthonormal (rows " + std::to_string(i) + " and " +
+                    std::to_string(j) + " give " + std::to_string(dot) + "): scaled, sheared or all zero");
+    }
+  const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                     r[2] * (r[3] * r[7] - r[4] * r[6]);
+  if (det < 0) return fail("a placement's rotation is a mirror (determinant -1)");
+  return Status::success();
+}
+
 
 namespace {
 constexpr std::size_t kMaxContactsPerPair = 512;  // intersecting triangle pairs kept per partition pair

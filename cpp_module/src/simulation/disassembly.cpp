@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <numeric>
@@ -174,8 +175,9 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
       result.status = Status::failure(StatusCode::InvalidInput, "a contact refers to a missing part");
       return result;
     }
-  if (!(options.tolerance > 0)) {
-    result.status = Status::failure(StatusCode::InvalidInput, "the disassembly tolerance must be positive");
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) {
+    result.status = Status::failure(StatusCode::InvalidArgument, "the disassembly tolerance must be a positive, finite "
+                                                                 "length in mm");
     return result;
   }
   result.directions = candidate_directions(parts);
@@ -188,6 +190,28 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
 
   std::vector<Box> boxes(n);
   for (int i = 0; i < n; ++i) boxes[i] = mesh_box(parts[i].model->mesh());
+  // A part is blocked when a probe puts it deeper than the tolerance into
+  // another: at half the thinnest part's thickness or more, that part can
+  // never be seen inside another, and a sweep through it passes (issue 25:
+  // tolerance 1e9 gave a "complete" sequence cutting into the front cover).
+  {
+    int thinnest = -1;
+    double thickness = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < n; ++i) {
+      double side = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) side = std::min(side, boxes[i].max[k] - boxes[i].min[k]);
+      if (side > 0 && side < thickness) thickness = side, thinnest = i;
+    }
+    if (thinnest >= 0 && options.tolerance >= thickness / 2) {
+      char text[300];
+      std::snprintf(text, sizeof text,
+                    "the disassembly tolerance %g mm is at least half the thinnest part's thickness ('%s', %g mm): "
+                    "no overlap with it could be seen; at most %g mm",
+                    options.tolerance, parts[thinnest].name.c_str(), thickness, thickness / 2);
+      result.status = Status::failure(StatusCode::InvalidArgument, text);
+      return result;
+    }
+  }
   // Contacts of each unordered pair.
   std::vector<std::vector<std::vector<int>>> pair_contacts(n, std::vector<std::vector<int>>(n));
   for (std::size_t k = 0; k < contacts.size(); ++k) {
@@ -370,6 +394,13 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
   // A signal inside OCCT while a body is measured or meshed fails the call
   // naming the body (find_contacts guards its own stages).
   const OcctGuard guard;
+  {
+    std::vector<TopoDS_Shape> shapes;
+    std::vector<std::string> names;
+    for (const Body& body : assembly.bodies) shapes.push_back(body.shape), names.push_back(body.name);
+    result.status = check_triangle_budget(shapes, names, mesh_options);
+    if (!result.status.ok()) return result;
+  }
   const ContactsResult found = find_contacts(assembly, contact_options, progress);
   if (!found.status.ok()) {
     result.status = found.status;
@@ -386,6 +417,9 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
           meshed = mesh_body(body.shape, found.partitions[i], mesh_options);
         }, failure, "OCCT: "))
       meshed.status = Status::failure(StatusCode::GeometryError, failure);
+    for (const FaceFailure& failed : meshed.failed_faces)
+      result.messages.push_back("body '" + body.name + "': Face" + std::to_string(failed.face) +
+                                " not meshed (" + failed.message + "): its collision model has a hole there");
     if (!meshed.status.ok()) {
       result.status = meshed.status;
       result.status.body = body.name;
@@ -416,7 +450,9 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
       }
   DisassemblyOptions resolved = options;
   if (!(resolved.tolerance > 0)) resolved.tolerance = 2 * mesh_options.deflection;
-  return plan_disassembly(parts, found.contacts, resolved, progress);
+  DisassemblyResult planned = plan_disassembly(parts, found.contacts, resolved, progress);
+  planned.messages.insert(planned.messages.begin(), result.messages.begin(), result.messages.end());
+  return planned;
 }
 
 }  // namespace contactcore

@@ -7,11 +7,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <fstream>
 #include <unordered_map>
 #include <unordered_set>
 
 #include <BRepAdaptor_Surface.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
+#include <BRepGProp.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
@@ -27,6 +34,8 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Vertex.hxx>
+
+#include "contactcore/common/angles.h"
 
 namespace contactcore {
 
@@ -182,9 +191,8 @@ MeshResult mesh_body(const TopoDS_Shape& shape, const BodyPartitions& partitions
     result.status = Status::failure(StatusCode::InvalidInput, "empty shape");
     return result;
   }
-  if (!(options.deflection > 0) || !(options.angle > 0) || options.max_edge_length < 0) {
-    result.status = Status::failure(StatusCode::InvalidInput,
-                                    "deflection and angle must be positive, the maximum edge length not negative");
+  if (const Status valid = check_mesh_options(options); !valid.ok()) {
+    result.status = valid;
     return result;
   }
   TopTools_IndexedMapOfShape faces, edges, topo_vertices;
@@ -229,8 +237,8 @@ MeshResult mesh_body(const TopoDS_Shape& shape, const BodyPartitions& partitions
       TopLoc_Location location;
       const Handle(Poly_Triangulation) triangulation = BRep_Tool::Triangulation(face, location);
       if (triangulation.IsNull() || triangulation->NbTriangles() == 0) {
-        result.status = face_failure(f, "OCCT could not tessellate the face");
-        return result;
+        result.failed_faces.push_back({f, "OCCT could not tessellate the face"});
+        continue;
       }
       const gp_Trsf transform = location.Transformation();
       std::vector<int> node_global(triangulation->NbNodes() + 1, -1);
@@ -242,14 +250,22 @@ MeshResult mesh_body(const TopoDS_Shape& shape, const BodyPartitions& partitions
       // Poles and apexes (vertices of degenerated edges): BRepMesh may put
       // several nodes there, off the edge's polygon; they are one vertex.
       std::vector<std::pair<gp_Pnt, int>> poles;  // point, B-rep vertex index
+      bool edges_discretised = true;
+      for (TopExp_Explorer explorer(face, TopAbs_EDGE); explorer.More() && edges_discretised; explorer.Next())
+        edges_discretised = !BRep_Tool::PolygonOnTriangulation(TopoDS::Edge(explorer.Current()), triangulation,
+                                                               location).IsNull();
+      if (!edges_discretised) {
+        result.failed_faces.push_back({f, "an edge of the face has no discretisation"});
+        continue;
+      }
+      if (!triangulation->HasUVNodes() && options.max_edge_length > 0) {
+        result.failed_faces.push_back({f, "the face's tessellation has no UV nodes to refine"});
+        continue;
+      }
       for (TopExp_Explorer explorer(face, TopAbs_EDGE); explorer.More(); explorer.Next()) {
         const TopoDS_Edge edge = TopoDS::Edge(explorer.Current());
         const Handle(Poly_PolygonOnTriangulation) polygon =
             BRep_Tool::PolygonOnTriangulation(edge, triangulation, location);
-        if (polygon.IsNull()) {
-          result.status = face_failure(f, "an edge of the face has no discretisation");
-          return result;
-        }
         const int edge_index = edges.FindIndex(edge);
         const int count = polygon->NbNodes();
         TopoDS_Vertex first, last;
@@ -304,10 +320,6 @@ MeshResult mesh_body(const TopoDS_Shape& shape, const BodyPartitions& partitions
           continue;
         work.push_back(triangle);
       }
-      if (!has_uv && options.max_edge_length > 0) {
-        result.status = face_failure(f, "the face's tessellation has no UV nodes to refine");
-        return result;
-      }
       if (progress && f % 16 == 0 && !progress->report("mesh", 0.3 + 0.4 * f / faces.Extent())) {
         result.status = Status::failure(StatusCode::Cancelled, "cancelled while meshing");
         return result;
@@ -339,6 +351,119 @@ MeshResult mesh_body(const TopoDS_Shape& shape, const BodyPartitions& partitions
   return result;
 }
 
+Status check_mesh_options(const MeshOptions& options) {
+  const auto fail = [](const std::string& message) { return Status::failure(StatusCode::InvalidArgument, message); };
+  if (!std::isfinite(options.deflection) || !(options.deflection > 0))
+    return fail("the mesh deflection must be a positive, finite length in mm; got " + std::to_string(options.deflection));
+  if (!std::isfinite(options.angle) || !(options.angle > 0) || options.angle > kPi)
+    return fail("the mesh angle must be positive and at most pi radians; got " + std::to_string(options.angle));
+  if (!std::isfinite(options.max_edge_length) || options.max_edge_length < 0)
+    return fail("the maximum edge length must be a finite length in mm, 0 for none; got " +
+                std::to_string(options.max_edge_length));
+  if (!(options.max_triangles > 0))
+    return fail("the maximum number of triangles must be positive");
+  return Status::success();
+}
+
+double estimated_triangles(const TopoDS_Shape& shape, const MeshOptions& options) {
+  constexpr double kEquilateral = 0.4330127018922193;  // sqrt(3) / 4: area of a unit equilateral triangle
+  // The longest chord whose sagitta stays within the deflection and whose
+  // normals turn by at most the angle, on a circle of radius r.
+  const auto chord = [&](double r) {
+    const double by_deflection = options.deflection >= r ? 2 * r : 2 * std::sqrt(2 * r * options.deflection);
+    return std::min(by_deflection, 2 * r * std::sin(std::min(options.angle, kPi) / 2));
+  };
+  double total = 0;
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  for (int f = 1; f <= faces.Extent(); ++f) {
+    const TopoDS_Face& face = TopoDS::Face(faces(f));
+    GProp_GProps props;
+    BRepGProp::SurfaceProperties(face, props);
+    const double area = std::abs(props.Mass());
+    if (!std::isfinite(area) || area <= 0) continue;
+    double bound = options.max_edge_length > 0 ? area / (kEquilateral * options.max_edge_length * options.max_edge_length)
+                                               : 0;
+    Bnd_Box box;
+    BRepBndLib::Add(face, box, false);
+    const double diagonal = box.IsVoid() ? 0 : std::sqrt(box.SquareExtent());
+    const BRepAdaptor_Surface surface(face, false);
+    switch (surface.GetType()) {
+      case GeomAbs_Sphere: {
+        const double h = chord(surface.Sphere().Radius());
+        if (h > 0) bound = std::max(bound, area / (kEquilateral * h * h));
+        break;
+      }
+      case GeomAbs_Cylinder: {
+        const double h = chord(surface.Cylinder().Radius());
+        if (h > 0 && diagonal > 0) bound = std::max(bound, area / (h * diagonal));
+        break;
+      }
+      case GeomAbs_Torus: {
+        const double h = chord(surface.Torus().MinorRadius());
+        if (h > 0 && diagonal > 0) bound = std::max(bound, area / (h * diagonal));
+        break;
+      }
+      default: break;
+    }
+    total += bound;
+  }
+  return total;
+}
+
+double extrapolated_triangles(const TopoDS_Shape& shape, const MeshOptions& options) {
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box, false);
+  if (box.IsVoid()) return 0;
+  const double coarse = kCoarseRelativeDeflection * std::sqrt(box.SquareExtent());
+  if (!(coarse > options.deflection) || !std::isfinite(coarse)) return 0;
+  // A copy: the shape's own faces (shared by its instances) keep no triangulation.
+  const TopoDS_Shape copy = BRepBuilderAPI_Copy(shape, true, false).Shape();
+  IMeshTools_Parameters parameters;
+  parameters.Deflection = coarse;
+  parameters.Angle = options.angle;
+  parameters.InParallel = false;
+  BRepMesh_IncrementalMesh mesher(copy, parameters);
+  double total = 0;
+  for (TopExp_Explorer explorer(copy, TopAbs_FACE); explorer.More(); explorer.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(explorer.Current());
+    TopLoc_Location location;
+    const Handle(Poly_Triangulation) triangulation = BRep_Tool::Triangulation(face, location);
+    if (triangulation.IsNull()) continue;
+    const GeomAbs_SurfaceType type = BRepAdaptor_Surface(face, false).GetType();
+    const bool singly_curved = type == GeomAbs_Plane || type == GeomAbs_Cylinder || type == GeomAbs_Cone ||
+                               type == GeomAbs_SurfaceOfExtrusion;
+    total += triangulation->NbTriangles() * std::pow(coarse / options.deflection, singly_curved ? 0.5 : 1.0);
+  }
+  return total;
+}
+
+Status check_triangle_budget(const std::vector<TopoDS_Shape>& shapes, const std::vector<std::string>& names,
+                             const MeshOptions& options, Progress* progress) {
+  if (const Status valid = check_mesh_options(options); !valid.ok()) return valid;
+  double total = 0, largest = -1;
+  const std::string* largest_name = nullptr;
+  static const std::string unnamed;
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const double estimate =
+        std::max(estimated_triangles(shapes[i], options), extrapolated_triangles(shapes[i], options));
+    total += estimate;
+    if (estimate > largest) largest = estimate, largest_name = i < names.size() ? &names[i] : &unnamed;
+    if (progress && !progress->report("mesh estimate", double(i + 1) / shapes.size()))
+      return Status::failure(StatusCode::Cancelled, "cancelled");
+  }
+  if (total <= options.max_triangles) return Status::success();
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "meshing with deflection %g mm, angle %g rad, maximum edge %g mm needs at least %.3g triangles "
+                "(%.3g for body '%s'): more than the limit of %.0f (CLI --max-triangles); ask for coarser sizes",
+                options.deflection, options.angle, options.max_edge_length, total, largest,
+                largest_name ? largest_name->c_str() : "", options.max_triangles);
+  Status status = Status::failure(StatusCode::InvalidInput, text);
+  if (largest_name) status.body = *largest_name;
+  return status;
+}
+
 MeshQuality mesh_quality(const TaggedMesh& mesh) {
   MeshQuality quality;
   quality.triangles = mesh.triangles.size();
@@ -346,7 +471,7 @@ MeshQuality mesh_quality(const TaggedMesh& mesh) {
   uses.reserve(mesh.triangles.size() * 2);
   std::vector<double> aspects;
   aspects.reserve(mesh.triangles.size());
-  double min_angle = M_PI;
+  double min_angle = kPi;
   for (const auto& t : mesh.triangles) {
     std::array<Vec3, 3> p{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
     double longest = 0;
@@ -368,7 +493,7 @@ MeshQuality mesh_quality(const TaggedMesh& mesh) {
     if (count > 2) ++quality.nonmanifold_edges;
   }
   quality.watertight = !mesh.triangles.empty() && quality.boundary_edges == 0 && quality.nonmanifold_edges == 0;
-  quality.min_angle_deg = mesh.triangles.empty() ? 0 : min_angle * 180 / M_PI;
+  quality.min_angle_deg = mesh.triangles.empty() ? 0 : min_angle * 180 / kPi;
   if (!aspects.empty()) {
     std::sort(aspects.begin(), aspects.end());
     auto percentile = [&](double q) {

@@ -1,5 +1,6 @@
 // Defeaturing of small features, partitions carried through OCCT's history,
 // Hausdorff distance on mesh vertices.
+#include "contactcore/common/angles.h"
 #include "contactcore/simulation/simplify.h"
 
 #include <algorithm>
@@ -177,7 +178,7 @@ std::vector<int> small_features(const TopoDS_Shape& shape, const BodyPartitions&
     const bool hole = s.kind == SurfaceKind::Cylinder && face.side == MaterialSide::Concave && 2 * s.radius < size;
     const double blend_radius = s.kind == SurfaceKind::Torus ? s.minor_radius : s.radius;
     const bool blend = (s.kind == SurfaceKind::Cylinder || s.kind == SurfaceKind::Torus) && blend_radius < size / 2 &&
-                       !face.extent.angular.empty() && face.extent.angular_span() < M_PI - 1e-6;
+                       !face.extent.angular.empty() && face.extent.angular_span() < kPi - 1e-6;
     const bool chamfer = s.kind == SurfaceKind::Plane && is_chamfer(face.face, edge_faces, size);
     if (hole || blend || chamfer) faces.push_back(face.index);
   }

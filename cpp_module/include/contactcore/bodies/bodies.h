@@ -43,6 +43,7 @@ struct Assembly {
   std::string units = "mm";            // unit of the source file; shapes are always in mm
   double source_unit_in_mm = 1.0;      // 25.4 for an inch file
   std::vector<std::string> messages;   // what was skipped and why (open shells, ...)
+  std::string reader;                  // STEP: "products" (the fast read) or "xde" (its fallback); else ""
 };
 
 struct AssemblyResult {
@@ -50,9 +51,20 @@ struct AssemblyResult {
   Assembly assembly;
 };
 
+// How read_step brings a file's products in. Products: each product
+// transferred once and its instances placed (time N log N at most in the
+// parts), falling back to the XDE read, with a message and a progress stage
+// "read (XDE fallback)", for a product structure it does not know. Xde:
+// OCCT's XDE reader alone (time quadratic in the instances), as a reference.
+enum class StepReadMode { Products, Xde };
+
 // Reads a STEP file with names, instances and units (shapes converted to mm).
-// Open shells and surface models are skipped with a message.
-AssemblyResult read_step(const std::string& path, Progress* progress = nullptr);
+// Open shells and surface models are skipped with a message. Both modes give
+// the same bodies (names, paths, placements) in the same order. An assembly
+// that expands to more than `max_bodies` instances (or a set or mapped item to
+// more items) is refused (InvalidInput) before OCCT's transfer expands it.
+AssemblyResult read_step(const std::string& path, Progress* progress = nullptr,
+                         StepReadMode mode = StepReadMode::Products, std::size_t max_bodies = 1'000'000);
 
 // Splits a BRep string holding one compound into bodies: each direct child of
 // the compound is one body, named by `names` (same order; missing names get

@@ -1,7 +1,8 @@
 // Stage 1 (bodies), instances: bodies that place one shape several times (a screw used 500
 // times, a STEP product instanced) share its TShape. Their partitions are
-// those of the first placement moved rigidly, so the driver partitions each
-// distinct shape once and moves the result to every other placement.
+// those of the first placement moved rigidly (moved_partitions, partitions.h),
+// so the driver partitions each distinct shape once and moves the result to
+// every other placement.
 #pragma once
 
 #include <vector>
@@ -9,7 +10,6 @@
 #include <gp_Trsf.hxx>
 
 #include "contactcore/bodies/bodies.h"
-#include "contactcore/partitions/partitions.h"
 
 namespace contactcore {
 
@@ -20,14 +20,5 @@ std::vector<int> instance_sources(const std::vector<Body>& bodies);
 
 // The rigid motion taking body `from`'s placement to body `to`'s.
 gp_Trsf relative_motion(const Body& from, const Body& to);
-
-// The partitions of `shape`, which is `source_partitions`' shape moved by
-// `motion`: faces are `shape`'s own (FaceN order), surfaces, reference
-// directions and boxes moved; outlines and angular ranges, which are
-// measured in the surfaces' own frames, unchanged (the outlines shared with
-// the source, not copied). Status InvalidInput when the face counts differ
-// (not the same shape).
-BodyPartitions moved_partitions(const BodyPartitions& source_partitions, const gp_Trsf& motion,
-                                const TopoDS_Shape& shape);
 
 }  // namespace contactcore

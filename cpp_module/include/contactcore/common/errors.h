@@ -15,6 +15,7 @@ enum class StatusCode {
   Cancelled,       // the caller's progress callback asked to stop
   InvalidArgument, // an option out of range (a tolerance that is NaN, negative, too large)
   OutOfMemory,     // std::bad_alloc or OCCT's Standard_OutOfMemory (out_of_memory.h)
+  Internal,        // a C++ exception that is neither OCCT's nor out of memory: a bug
 };
 
 struct Status {

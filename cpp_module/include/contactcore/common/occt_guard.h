@@ -11,6 +11,7 @@
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 
+#include "contactcore/common/errors.h"
 #include "contactcore/common/out_of_memory.h"
 
 namespace contactcore {
@@ -45,6 +46,24 @@ class OcctGuard {
 
 // An OCCT failure's message, or its type when it has none (some carry none).
 std::string occt_failure_text(const Standard_Failure& failure);
+
+// The Status of the exception being handled (call it inside a catch block):
+// the one place where an exception that reached a boundary becomes a value.
+// OCCT's Standard_OutOfMemory and std::bad_alloc: OutOfMemory; any other OCCT
+// failure: GeometryError "OCCT <type>: <text>"; any other exception, C++ or
+// not: Internal (a bug, the CLI's exit 5), with its what().
+Status status_of_current_exception();
+
+// Runs work() (returning a Status) and returns its Status, or the Status of
+// what it threw (status_of_current_exception).
+template <class Work>
+Status status_of(Work&& work) {
+  try {
+    return work();
+  } catch (...) {
+    return status_of_current_exception();
+  }
+}
 
 // Runs fn() with OCCT's signals (SIGSEGV, SIGFPE, ... while an OcctGuard is
 // alive) turned into Standard_Failure exceptions in this thread; they and C++

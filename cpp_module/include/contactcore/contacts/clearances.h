@@ -13,9 +13,8 @@ namespace contactcore {
 // Partition pairs of bodies whose boxes come within `max_gap`: a convex and
 // a concave cylinder on the same axis (overlapping along it) or sphere on the
 // same centre, or two facing planes with overlapping outlines, whose gap
-// (radial or normal) is in (linear tolerance, max_gap). Sorted by bodies,
-// then partitions.
-std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap,
-                                       const Tolerances& tol);
+// (radial or normal) is in (linear tolerance, max_gap), with each body
+// pair's tolerances (pair_tolerances). Sorted by bodies, then partitions.
+std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap);
 
 }  // namespace contactcore

@@ -3,6 +3,7 @@
 // sides (LpC) found by sorting, then a real common-area test per candidate.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <optional>
@@ -39,6 +40,40 @@ struct Contact {
   bool partial = false;     // revolution contact spanning less than 180 degrees
   double span = 0;          // common angular span, radians (revolution contacts)
   Tolerances tolerances;    // tolerances used
+  // SPF, LAF, SPT: where the common region lies as seen from the ball's
+  // centre: every direction from the centre to it is within `region_angle`
+  // of `region_axis` (SPF: a cap of the sphere covering the common region,
+  // exact for a cup bounded by a circle; LAF, SPT: the arc of the contact
+  // circle, in the plane across `direction`). pi: all around (a ball held
+  // on every side). What makes a ball in a cup or an open groove one-sided.
+  gp_Dir region_axis;
+  double region_angle = M_PI;
+};
+
+// Point and line contacts (higher pairs), reported apart from the surface
+// contacts above (whose counts they never change): a ball on a plane or
+// against a cylinder of another radius touches at a point; a cylinder lying
+// on a plane, or along a parallel cylinder of another radius (outside it, or
+// inside a larger bore), along a line. Each is one-sided.
+enum class HigherPairType {
+  SphereOnPlane,       // point
+  SphereOnCylinder,    // point: a ball against a shaft, or inside a larger bore
+  CylinderOnPlane,     // line
+  CylinderOnCylinder,  // line: parallel axes, different radii
+};
+// "sphere_on_plane", "sphere_on_cylinder", "cylinder_on_plane", "cylinder_on_cylinder".
+const char* to_string(HigherPairType type);
+
+struct HigherPair {
+  HigherPairType type = HigherPairType::SphereOnPlane;
+  int body_a = 0, body_b = 0;            // body_a < body_b
+  int partition_a = 0, partition_b = 0;
+  std::vector<int> faces_a, faces_b;     // 1-based FaceN of the faces touching
+  gp_Pnt point;   // the point of contact; a line's middle
+  gp_Dir normal;  // the common normal there, out of body_a's material
+  gp_Pnt start, end;  // a line's ends (a point: the point twice)
+  double length = 0;  // a line's length, mm (a point: 0)
+  bool is_line() const { return type == HigherPairType::CylinderOnPlane || type == HigherPairType::CylinderOnCylinder; }
 };
 
 // Which solid checks run (validity.h): Quick, the default, or also OCCT's
@@ -47,7 +82,7 @@ struct Contact {
 enum class SolidChecks { Quick, Full };
 
 struct ContactOptions {
-  std::optional<double> linear;   // mm; unset: scaled to the model (default_tolerances)
+  std::optional<double> linear;   // mm; unset: each body's scaled to its own size (body_tolerances)
   std::optional<double> angular;  // radians; unset: the default
   double min_area_ratio = 1e-6;   // common area below ratio * smaller partition area: no contact
   double clearance_gap = 0;       // mm; > 0: also report clearance fits with radii this close
@@ -95,10 +130,13 @@ struct SkippedPair {
 // Timings of each stage in seconds, for benchmarks and the CLI.
 struct StageTimes {
   double partitions = 0, broad_phase = 0, candidates = 0, area = 0;
+  double validity = 0, interferences = 0;  // the solid checks, the interference pass
 };
 
 struct ContactsResult {
   Status status;
+  // The caller's, or the coarsest body's; each body's own are in
+  // partitions[i].tolerances, a pair's are pair_tolerances() of its two.
   Tolerances tolerances;
   std::vector<BodyPartitions> partitions;  // one per body
   // Per body, the body whose shape it instances (itself when none). An
@@ -108,6 +146,7 @@ struct ContactsResult {
   std::vector<std::pair<int, int>> body_pairs;  // broad phase output, i < j
   std::size_t candidates = 0;  // candidate partition pairs (those of body pairs placed alike each counted)
   std::vector<Contact> contacts;
+  std::vector<HigherPair> higher_pairs;  // point and line contacts, apart from `contacts`
   std::vector<Interference> interferences;
   std::vector<InvalidBody> invalid_bodies;  // in body order
   std::vector<Clearance> clearances;
@@ -115,6 +154,12 @@ struct ContactsResult {
   std::vector<std::string> messages;  // what was skipped or doubtful, for the user
   StageTimes times;
 };
+
+// The solid checks of find_contacts (validity.h) on bodies partitioned
+// elsewhere (partitions[i] of assembly.bodies[i], each with its tolerances):
+// the invalid ones, in body order. For the mesh tools, which name them.
+Status find_invalid_solids(const Assembly& assembly, const std::vector<BodyPartitions>& partitions,
+                           std::vector<InvalidBody>& invalid, SolidChecks checks = SolidChecks::Quick);
 
 // Body pairs (i < j, sorted) whose boxes meet within `gap`, by sort and sweep
 // on the axis along which the fewest boxes overlap (so an assembly stacked
@@ -127,6 +172,10 @@ struct BroadPhase {
 };
 // Reports "broad phase" progress and stops when asked (Status Cancelled).
 BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, double gap,
+                       std::size_t max_pairs = static_cast<std::size_t>(-1), Progress* progress = nullptr);
+// The same with a gap per box (each body's own linear tolerance): boxes i and
+// j meet within the larger of gaps[i] and gaps[j].
+BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, const std::vector<double>& gaps,
                        std::size_t max_pairs = static_cast<std::size_t>(-1), Progress* progress = nullptr);
 
 // Area of the intersection of two polygon sets (outer loops counter-clockwise,

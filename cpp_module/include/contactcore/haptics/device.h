@@ -38,7 +38,13 @@ struct DeviceCapabilities {
 // `axes` normalised to [-1, 1] (translation x y z, rotation x y z).
 struct DeviceSample {
   bool connected = false;
-  double time = 0;          // s, on the loop's clock, when the device last reported
+  // s, on the loop's clock, when the device's last report ARRIVED (stamped by
+  // the thread that received it, not by read): the stale watchdog's input.
+  double time = 0;
+  // The last report put the device at rest (a SpaceMouse or a joystick let
+  // go: all axes zero). HID devices report on change only, so a device at
+  // rest may stay silent without being stale.
+  bool at_rest = false;
   Pose pose = Pose::Identity();
   Vec6 velocity = Vec6::Zero();  // mm/s at the reference point, rad/s
   Vec6 axes = Vec6::Zero();
@@ -49,6 +55,10 @@ struct DeviceSample {
 struct Wrench {
   Vec3 force = Vec3::Zero();
   Vec3 torque = Vec3::Zero();
+  // The virtual coupling's gains behind the force (N/mm, N s/mm): a device
+  // that renders springs itself (HID PID conditions) holds that stiffness
+  // between its updates; others ignore them.
+  double stiffness = 0, damping = 0;
 };
 
 class Device {

@@ -33,6 +33,10 @@ struct CaptureTolerances {
   double distance = 0.5;   // mm: axis lines, plane distances, centres
   double angle = 0.035;    // rad (2 degrees)
   double radius = 0.005;   // mm: radii must agree this well to be one surface
+  // mm: a shaft in a bore up to this much larger in radius is a clearance
+  // fit (CLJ), recognised anywhere within its gap (axes up to the gap plus
+  // the capture distance apart).
+  double clearance = 0.1;
 };
 
 struct LiveContact {
@@ -42,6 +46,7 @@ struct LiveContact {
   int other_index = 0;          // into surfaces(body)
   int moving_index = 0;         // into moving_surfaces()
   double distance = 0, angle = 0;
+  double clearance = 0;         // CLJ: bore radius - shaft radius (0 for a line-to-line fit)
 };
 
 class RealtimeContacts {
@@ -69,7 +74,10 @@ class RealtimeContacts {
     std::vector<int> by_radius[6];  // per SurfaceKind: indices sorted by radius (planes: all)
     Eigen::AlignedBox3d box;
   };
-  bool match(const SurfaceProxy& m, const SurfaceProxy& o, LiveContact& c) const noexcept;
+  // `m` is the moving partition at `pose` (no outline); `local` the same at
+  // its assembled placement (with its outline, for planes).
+  bool match(const SurfaceProxy& m, const SurfaceProxy& local, const Pose& pose, const SurfaceProxy& o,
+             LiveContact& c) const noexcept;
   std::vector<BodySurfaces> bodies_;
   int moving_ = 0;
   CaptureTolerances tolerances_;
@@ -105,6 +113,16 @@ class ContactJointFinder : public JointFinder {
   Vec3 centre_;
   std::vector<LiveContact> live_;  // scratch, sized once
 };
+
+// Whether two parallel planar outlines share area once projected on the plane
+// of `o` (the moving one `m`'s loops placed by `pose`): a vertex of one inside
+// the other (even-odd, so holes count) or two edges crossing. Allocation-free.
+bool outlines_overlap(const SurfaceProxy& m, const Pose& pose, const SurfaceProxy& o) noexcept;
+
+// Whether two cones of one angle share a band of their surface once their
+// apexes meet: their axial ranges from the apex overlap (chamfers of one
+// angle at different radii do not).
+bool cone_bands_overlap(const SurfaceProxy& a, const SurfaceProxy& b) noexcept;
 
 // Groups of the moving part's revolution partitions lying on one surface that
 // some other body has a same-radius, opposite-side partition for: the surfaces

@@ -19,32 +19,9 @@
 
 #include "contactcore/haptics/constraints.h"
 #include "contactcore/haptics/device.h"
+#include "contactcore/haptics/triple_buffer.h"
 
 namespace contactcore::haptics {
-
-// Single-writer single-reader triple buffer: the writer never waits, the
-// reader always gets the latest complete value.
-template <class T>
-class TripleBuffer {
- public:
-  void write(const T& value) {
-    slots_[back_] = value;
-    back_ = middle_.exchange(back_ | kFresh, std::memory_order_acq_rel) & kIndex;
-  }
-  // The latest value written (the same one again if nothing new came).
-  const T& read() {
-    if (middle_.load(std::memory_order_acquire) & kFresh)
-      front_ = middle_.exchange(front_, std::memory_order_acq_rel) & kIndex;
-    return slots_[front_];
-  }
-
- private:
-  static constexpr int kFresh = 4, kIndex = 3;
-  T slots_[3]{};
-  std::atomic<int> middle_{1};
-  int back_ = 0;   // writer's
-  int front_ = 2;  // reader's
-};
 
 enum class Watchdog : int { None = 0, Disabled, Unplugged, Stale, Overrun };
 const char* to_string(Watchdog reason);
@@ -67,6 +44,11 @@ struct ServoConfig {
   int collision_bisections = 10;
   bool lockstep = false;            // virtual clock; overruns counted, not acted on
   int realtime_priority = 0;        // > 0: ask for SCHED_FIFO at this priority (needs CAP_SYS_NICE)
+  // Thread mode: lock the process' memory (mlockall) so no tick waits on a
+  // page fault or swap-in; done only where it cannot make later allocations
+  // fail (CAP_IPC_LOCK or an unlimited RLIMIT_MEMLOCK).
+  bool lock_memory = true;
+  double late_wakeup_us = 100;      // a wake-up this long after its deadline is late
 };
 
 // What the GUI (or a test) sees, published every tick.
@@ -91,6 +73,11 @@ struct ServoSnapshot {
   double max_penetration = 0, max_force = 0;
   std::uint64_t engagements = 0;
   Vec6 axes = Vec6::Zero();
+  // Real-time hygiene (thread mode; 0 / false in lockstep).
+  std::uint64_t late_wakeups = 0;   // woke more than late_wakeup_us after the deadline
+  double max_wake_latency_us = 0;
+  bool memory_locked = false;       // mlockall held while the loop runs
+  bool realtime_priority = false;   // SCHED_FIFO granted
 };
 
 // One engagement, for reports.
@@ -122,7 +109,7 @@ class ServoLoop {
   void stop();
   bool running() const { return thread_.joinable(); }
 
-  // Lockstep: one tick at virtual time ticks * period.
+  // Lockstep: one tick at virtual time ticks * period (overruns counted, not acted on).
   void step_lockstep();
 
   // GUI side: lock-free.
@@ -149,9 +136,17 @@ class ServoLoop {
   const std::vector<EngagementEvent>& engagement_events() const { return events_; }
   const ServoConfig& config() const { return config_; }
   bool got_realtime_priority() const { return got_priority_.load(); }
+  // Real-time hygiene (thread mode): memory locked, late wake-ups (woke more
+  // than config.late_wakeup_us after the absolute deadline), and the latency.
+  bool memory_locked() const { return memory_locked_.load(); }
+  std::uint64_t late_wakeups() const { return late_wakeups_; }
+  double wake_latency_max_us() const { return wake_latency_max_us_; }
+  double wake_latency_mean_us() const { return wake_count_ ? wake_latency_sum_us_ / wake_count_ : 0.0; }
 
  private:
-  void tick(double now);
+  // `wall_clock`: the tick runs on the thread's real clock, where an overrun
+  // trips the watchdog; on a virtual clock (step_lockstep) it is only counted.
+  void tick(double now, bool wall_clock);
   void run();
   void engage(const JointState& joint, double now);
   Pose interpolate(const Pose& a, const Pose& b, double s) const;
@@ -179,9 +174,12 @@ class ServoLoop {
   std::atomic<double> stiffness_, angular_stiffness_, damping_, angular_damping_;
   std::atomic<bool> stop_{false};
   std::atomic<bool> got_priority_{false};
+  std::atomic<bool> memory_locked_{false};
   std::thread thread_;
 
   std::uint64_t ticks_ = 0, overruns_ = 0;
+  std::uint64_t late_wakeups_ = 0, wake_count_ = 0;
+  double wake_latency_max_us_ = 0, wake_latency_sum_us_ = 0;
   std::vector<std::uint32_t> step_histogram_;  // allocated once: 0.25 us bins
   double step_max_us_ = 0;
   double start_time_ = 0, last_tick_start_ = 0;

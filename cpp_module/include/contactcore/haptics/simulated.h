@@ -63,6 +63,7 @@ class SimulatedHand : public Device {
   void set_connected(bool connected) { connected_ = connected; }
   void set_velocity(const Vec6& v) { velocity_ = v; }
   const Pose& pose() const { return pose_; }
+  Vec3 reference_point() const { return pose_ * centre_; }
   const Vec6& velocity() const { return velocity_; }
   const Wrench& applied() const { return applied_; }
   // Kinetic energy of the hand, N mm (= mJ).

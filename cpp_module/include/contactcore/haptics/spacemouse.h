@@ -18,6 +18,9 @@
 #include <vector>
 
 #include "contactcore/haptics/device.h"
+#include "contactcore/haptics/hid_pid_device.h"
+#include "contactcore/haptics/hid_recording.h"
+#include "contactcore/haptics/triple_buffer.h"
 
 namespace contactcore::haptics {
 
@@ -68,7 +71,8 @@ bool descriptor_has_pid_page(const std::uint8_t* descriptor, std::size_t size);
 // (hot-plug). Never throws: with no device, read() says not connected.
 class HidSpaceMouse : public Device {
  public:
-  HidSpaceMouse();
+  // `recorder`: every raw report (and unplug) with its arrival time, when given.
+  explicit HidSpaceMouse(std::shared_ptr<HidRecorder> recorder = nullptr);
   ~HidSpaceMouse() override;
   const DeviceCapabilities& capabilities() const override { return caps_; }
   DeviceSample read(double now) noexcept override;
@@ -91,22 +95,28 @@ class HidSpaceMouse : public Device {
   std::atomic<bool> connected_{false};
   mutable std::mutex description_mutex_;
   std::string description_;
-  // Last sample, written by the reader, read by the loop (seqlock).
-  std::atomic<std::uint32_t> sequence_{0};
-  std::atomic<double> axes_[6] = {};
-  std::atomic<std::uint32_t> buttons_{0};
-  std::atomic<double> last_report_{0};
+  std::shared_ptr<HidRecorder> recorder_;
+  // Last state, written by the reader thread, read by the loop: a triple
+  // buffer, so the loop never retries (a seqlock reader spins while the
+  // writer is preempted mid-write).
+  struct Reading {
+    Vec6 axes = Vec6::Zero();
+    std::uint32_t buttons = 0;
+    double arrival = 0;  // steady_seconds() when the report arrived
+  };
+  TripleBuffer<Reading> readings_;
 };
 
-// Recorded reports played back on the loop's clock: (time, bytes) in order; an
-// empty report marks an unplug, the next report a plug-in.
-struct RecordedReport {
-  double time = 0;
-  std::vector<std::uint8_t> bytes;
-};
+// Recorded reports (hid_recording.h) played back on the loop's clock through
+// the same parser as the live device: (time, bytes) in order; an empty report
+// marks an unplug, the next one a plug-in. A report's time is its arrival:
+// the stale watchdog sees the recorded gaps.
 class ReplayDevice : public Device {
  public:
   ReplayDevice(SpaceMouseModel model, std::vector<RecordedReport> reports);
+  // A HID PID device's input reports, through its descriptor's layout (the
+  // parser HidPidDevice uses), mapped as `config` says (rate or position).
+  ReplayDevice(PidLayout layout, const PidForceConfig& config, std::vector<RecordedReport> reports);
   const DeviceCapabilities& capabilities() const override { return caps_; }
   DeviceSample read(double now) noexcept override;
   void write(const Wrench&) noexcept override {}
@@ -115,17 +125,22 @@ class ReplayDevice : public Device {
  private:
   DeviceCapabilities caps_;
   SpaceMouseModel model_;
+  bool pid_ = false;
+  PidLayout layout_;
+  PidForceConfig pid_config_;
+  Vec6 pid_axes_ = Vec6::Zero(), pid_velocity_ = Vec6::Zero();
   std::vector<RecordedReport> reports_;
   std::size_t next_ = 0;
   SpaceMouseState state_;
   bool connected_ = true;
   double last_report_ = 0;
+  bool reported_ = false;
 };
 
 // Capabilities of a SpaceMouse: 6 DOF input, rate control, no force output.
 DeviceCapabilities spacemouse_capabilities(const std::string& name);
 
-// Seconds on the steady clock (the loop's clock outside lockstep tests).
+// Seconds on CLOCK_MONOTONIC (the loop's clock outside lockstep tests).
 double steady_seconds();
 
 }  // namespace contactcore::haptics

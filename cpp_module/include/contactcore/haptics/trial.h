@@ -73,6 +73,11 @@ struct TrialOptions {
   HandParameters hand;
   double settle = 1.5;     // s run after the last key
   int record_every = 10;   // ticks between recorded samples (0: no record)
+  // Another device than the scripted simulated hand (device_factory.h: a
+  // SpaceMouse, a HID force-feedback device, a replay); not owned. The run
+  // lasts `duration` s (the script's keys do not drive it).
+  Device* device = nullptr;
+  double duration = 0;
 };
 
 struct TrialSample {
@@ -101,6 +106,10 @@ struct TrialResult {
   double max_penetration_mm = 0, max_force_n = 0;
   std::vector<TrialSample> path;
   double setup_seconds = 0;
+  // Real-time hygiene of a realtime run (servo_loop.h): late wake-ups and
+  // whether the process' memory was locked.
+  std::uint64_t late_wakeups = 0;
+  bool memory_locked = false;
 };
 
 // Runs the script with the simulated hand in lockstep (deterministic), or on

@@ -36,9 +36,12 @@ enum class JointType {
   Planar,          // 3: rotation about a normal, translations in the plane
   SphereCylinder,  // 4: ball in a bore (rotations about a point, translation along the axis)
   SpherePlane,     // 5: rotations about a point, translations in a plane
+  CylinderPlane,   // 4: a line contact (a cylinder lying on a plane): rotations
+                   //    about the line and the normal, translations in the plane
   General,         // anything else (see dof)
 };
-// ISO 3952 type strings: "rigid", "revolute", ..., "sphere_cylinder", "general".
+// ISO 3952 type strings: "rigid", "revolute", ..., "sphere_cylinder",
+// "sphere_plane", "cylinder_plane", "general".
 const char* to_string(JointType type);
 
 struct FreeRotation {
@@ -47,15 +50,20 @@ struct FreeRotation {
 };
 
 struct OneSidedStop {
-  int contact = -1;  // index into ContactsResult::contacts
+  int contact = -1;  // index into ContactsResult::contacts (-1: a higher pair's)
   gp_Pnt point;      // where the unilateral force acts
   gp_Dir normal;     // out of a's material: b may move with u . normal >= 0 at point
+  int higher_pair = -1;  // index into ContactsResult::higher_pairs (-1: a contact's)
 };
 
 // What two bodies in contact allow each other (b relative to a).
 struct PairJoint {
   int body_a = 0, body_b = 0;     // body_a < body_b, indices into Assembly::bodies
   std::vector<int> contacts;      // indices into ContactsResult::contacts
+  std::vector<int> higher_pairs;  // indices into ContactsResult::higher_pairs (point, line contacts)
+  // Held rigid by an annotated contact (a press fit, a bond): type Rigid, no
+  // free twist, stop or free direction, whatever the surfaces allow.
+  bool annotated_rigid = false;
   JointType type = JointType::Rigid;
   int dof = 0;                    // = free_twists.size()
   std::vector<Twist> free_twists; // orthonormal basis of the free twists (in a
@@ -75,11 +83,29 @@ struct PairJoint {
   double frame_length = 1;
 };
 
+// The designer's intent for a contact (a fit or a bond the CAD model cannot
+// show: parts drawn at nominal size read as sliding fits). Interference,
+// transition and bonded contacts hold their pair rigid; ignored ones are
+// left out; clearance (and unspecified) ones are what the surfaces allow.
+enum class ContactIntent { Unspecified, Clearance, Transition, Interference, Bonded, Ignored };
+// "", "clearance", "transition", "interference", "bonded", "ignored".
+const char* to_string(ContactIntent intent);
+// The intent named `text` (one of the strings above but ""); false when unknown.
+bool parse_intent(const std::string& text, ContactIntent& intent);
+inline bool holds_rigid(ContactIntent intent) {
+  return intent == ContactIntent::Interference || intent == ContactIntent::Transition ||
+         intent == ContactIntent::Bonded;
+}
+
 struct JointOptions {
   // Singular values below this ratio of the largest count as zero (rows are
   // scaled to the pair's size, so the ratio does not depend on units).
   double rank_tolerance = 1e-6;
   int cone_samples = 12;  // stop normals sampled around a full cone
+  // The designer's annotations, per contact (indices of ContactsResult::
+  // contacts) and per higher pair; empty or shorter: unspecified.
+  std::vector<ContactIntent> contact_intents;
+  std::vector<ContactIntent> higher_pair_intents;
 };
 
 struct JointsResult {
@@ -87,7 +113,7 @@ struct JointsResult {
   std::vector<PairJoint> joints;  // one per body pair with at least one contact, sorted (a, b)
 };
 
-// Joints of every body pair in contact. `contacts` must come from find_contacts
+// Joints of every body pair in contact (surface contacts or higher pairs). `contacts` must come from find_contacts
 // on `assembly` (its partitions give the material sides and angular spans).
 JointsResult find_joints(const Assembly& assembly, const ContactsResult& contacts,
                          const JointOptions& options = {});
@@ -95,7 +121,8 @@ JointsResult find_joints(const Assembly& assembly, const ContactsResult& contact
 // The free twists of one set of contacts between two bodies (b relative to a):
 // the same computation as find_joints for a single pair.
 PairJoint joint_of_pair(const ContactsResult& contacts, int body_a, int body_b,
-                        const std::vector<int>& contact_indices, const JointOptions& options = {});
+                        const std::vector<int>& contact_indices, const JointOptions& options = {},
+                        const std::vector<int>& higher_pair_indices = {});
 
 // Generators of the cone of translation directions in which `body` can
 // leave, every neighbour it touches held still (all its contacts at once,

@@ -15,6 +15,7 @@
 #include <TopoDS_Shape.hxx>
 #include <gp_Dir.hxx>
 #include <gp_Pnt.hxx>
+#include <gp_Trsf.hxx>
 
 #include "contactcore/common/errors.h"
 
@@ -30,6 +31,13 @@ const char* to_string(SurfaceKind kind);
 //    (bore, spherical cup, groove).
 enum class MaterialSide { Outward, Convex, Concave };
 const char* to_string(MaterialSide side);
+
+// Two faces of the same revolution surface can only touch with one convex
+// (material inside) and the other concave.
+inline bool convex_against_concave(MaterialSide a, MaterialSide b) {
+  return (a == MaterialSide::Convex && b == MaterialSide::Concave) ||
+         (a == MaterialSide::Concave && b == MaterialSide::Convex);
+}
 
 // Parameters of an analytic surface, in global coordinates (mm, radians).
 struct SurfaceParams {
@@ -126,10 +134,13 @@ struct Tolerances {
   double angular = 1e-4;  // radians
 };
 
-// Defaults that scale with the model: linear = 1e-5 of the box diagonal (no
-// floor or ceiling, so a model scaled by 1e-6 or 1e6 behaves the same);
-// angular 1e-4 rad. Shapes are in mm, so the same assembly in inch and in mm
-// gets the same tolerances.
+// Defaults that scale with what is compared: linear = 1e-5 of the box
+// diagonal (no floor or ceiling, so a model scaled by 1e-6 or 1e6 behaves the
+// same); angular 1e-4 rad. Shapes are in mm, so the same assembly in inch and
+// in mm gets the same tolerances. The contact stage gives each body the
+// defaults of its own box (body_tolerances) and a body pair the coarser of its
+// two (pair_tolerances): a part far away or a huge one changes nothing about
+// the others (issue 25).
 constexpr double kDefaultRelativeLinear = 1e-5;
 Tolerances default_tolerances(const Bnd_Box& model_box);
 
@@ -147,12 +158,28 @@ constexpr double kMaxAngular = 0.1;
 // positive and below those bounds.
 Status check_tolerances(const Bnd_Box& model_box, const Tolerances& tolerances);
 
+// A body's tolerances: the caller's values where given, else the defaults of
+// the body's own box. InvalidArgument when the box is not finite.
+Status body_tolerances(const Bnd_Box& body_box, std::optional<double> linear, std::optional<double> angular,
+                       Tolerances& out);
+// The same from the shape's box (BRepBndLib, as the contact stage measures it).
+Status body_tolerances(const TopoDS_Shape& shape, std::optional<double> linear, std::optional<double> angular,
+                       Tolerances& out);
+
 struct BodyPartitions {
   Status status;
   std::vector<FaceInfo> faces;        // every face, in FaceN order
   std::vector<Partition> partitions;  // every face in exactly one partition
   Bnd_Box box;
+  Tolerances tolerances;              // those the body was partitioned with
 };
+
+// The tolerances of a comparison between two bodies: the coarser linear and
+// angular of the two (each body's surfaces are known to its own tolerance).
+inline Tolerances pair_tolerances(const BodyPartitions& a, const BodyPartitions& b) {
+  return {a.tolerances.linear > b.tolerances.linear ? a.tolerances.linear : b.tolerances.linear,
+          a.tolerances.angular > b.tolerances.angular ? a.tolerances.angular : b.tolerances.angular};
+}
 
 // Types one face. Never throws: a face OCCT cannot evaluate comes back as
 // Other with status failing (the caller names body and face).
@@ -162,6 +189,15 @@ Status type_face(const TopoDS_Face& face, const Tolerances& tol, FaceInfo& out);
 // included) of the same kind, parameters and material side into maximal
 // partitions.
 BodyPartitions partition_shape(const TopoDS_Shape& shape, const Tolerances& tol);
+
+// The partitions of `shape`, which is `source_partitions`' shape moved by
+// `motion`: faces are `shape`'s own (FaceN order), surfaces, reference
+// directions and boxes moved; outlines and angular ranges, which are
+// measured in the surfaces' own frames, unchanged (the outlines shared with
+// the source, not copied). Status InvalidInput when the face counts differ
+// (not the same shape).
+BodyPartitions moved_partitions(const BodyPartitions& source_partitions, const gp_Trsf& motion,
+                                const TopoDS_Shape& shape);
 
 // The extent of a revolution face seen from another frame on the same axis
 // line (origin on the axis, axis of either sign, ref_dir perpendicular to it):

@@ -34,6 +34,13 @@ struct RigidTransform {
   }
 };
 
+// InvalidArgument unless the placement is finite (translation within 1e100
+// mm) and its rotation orthonormal with determinant +1 (within 1e-6): NaN,
+// infinite, scaled, mirrored or all-zero rotations are refused (issue 25: a
+// NaN placement answered "intersecting, distance 0"). Python checks every
+// placement given; C++ callers with placements from outside should too.
+Status check_rigid_transform(const RigidTransform& placement);
+
 class CollisionModel;
 using CollisionModelPtr = std::shared_ptr<const CollisionModel>;
 

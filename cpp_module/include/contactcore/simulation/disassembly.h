@@ -47,6 +47,7 @@ struct DisassemblyResult {
   int base = -1;                       // the part left, or -1 when the sequence stops early
   bool complete = false;
   std::string reason;                  // why no sequence exists (when not complete)
+  std::vector<std::string> messages;   // what was left out (faces OCCT could not mesh), for the user
   std::vector<Direction> directions;   // every candidate direction used
   // blocking[d][i]: parts that block part i along directions[d], ascending.
   std::vector<std::vector<std::vector<int>>> blocking;

@@ -19,7 +19,41 @@ struct MeshOptions {
   double deflection = 0.1;     // chordal deviation, mm
   double angle = 0.5;          // angular deflection, radians
   double max_edge_length = 0;  // mm; 0: no bound
+  // Refused before meshing when the sizes asked need more triangles than this
+  // (estimated_triangles summed over the bodies meshed together).
+  double max_triangles = 10'000'000;
 };
+
+// InvalidArgument unless deflection and angle are finite and positive (angle
+// at most pi), the maximum edge length finite and not negative and
+// max_triangles positive (not NaN).
+Status check_mesh_options(const MeshOptions& options);
+
+// A lower bound of the triangles mesh_body makes of `shape` with `options`,
+// from each face's area and surface, without meshing: every triangle's edges
+// are at most the maximum edge length (area / (sqrt(3)/4 L^2)); on a sphere
+// the chord of the deflection and the angle bounds them too, on a cylinder
+// or a torus's tube the width across the curvature (area / (chord x the
+// face's box diagonal)). Planes, cones and free forms: the edge bound only.
+double estimated_triangles(const TopoDS_Shape& shape, const MeshOptions& options);
+
+// For a deflection below kCoarseRelativeDeflection of the shape's box
+// diagonal: the triangles of a mesh at that coarse deflection (cheap), each
+// face's count scaled to the deflection asked as BRepMesh's counts grow:
+// (coarse / deflection)^0.5 on planes, cylinders, cones and extrusions (their
+// boundaries are refined, one direction), ^1 on doubly curved faces (spheres,
+// tori, revolutions, free forms). An estimate, not a bound (within a factor
+// of two of the motor's meshes at deflections 0.01 and 0.001; test). 0 when
+// the deflection is coarser than that.
+constexpr double kCoarseRelativeDeflection = 1e-3;
+double extrapolated_triangles(const TopoDS_Shape& shape, const MeshOptions& options);
+
+// InvalidInput when the bodies' estimates (the larger of estimated_triangles
+// and extrapolated_triangles) together exceed options.max_triangles (naming the largest body, the estimate and the
+// limit); checks the options first. Cancelled when `progress` says so.
+// `names[i]` names `shapes[i]` in the message.
+Status check_triangle_budget(const std::vector<TopoDS_Shape>& shapes, const std::vector<std::string>& names,
+                             const MeshOptions& options, Progress* progress = nullptr);
 
 // Triangles share vertices by topology (B-rep vertices and edge polygons), so
 // the mesh is closed when the B-rep is, whatever the CAD tolerances.
@@ -44,10 +78,22 @@ struct MeshQuality {
   double max_edge_length = 0;
 };
 
+// A face OCCT could not tessellate: left out of the mesh (which is then not
+// watertight), the rest of the body meshed.
+struct FaceFailure {
+  int face = 0;  // 1-based FaceN
+  std::string message;
+};
+
 struct MeshResult {
   Status status;
   TaggedMesh mesh;
   MeshQuality quality;
+  std::vector<FaceFailure> failed_faces;
+  // Set by the mesh tools (mesh_assembly) when the body is not a valid solid
+  // (find_invalid_solids): reason empty when valid.
+  std::string invalid_reason;
+  std::vector<int> invalid_faces;
 };
 
 // Tessellates `shape` (one body) and tags each triangle with the face index

@@ -1,0 +1,180 @@
+"""Runs inside the FreeCAD GUI (freecad tests/gui/haptic_hand_session.py under Xvfb).
+
+The motor with its contact analysis drawn: opens the haptic trial panel on
+the Axis, drives the simulated hand with the panel's sliders (no hardware),
+measures the panel's display rate and counts the contact overlay's redraws
+while the part moves, reads the active-constraints readout, replays the
+bundled trial script through the panel's Replay, commits with OK and checks
+the document; writes what it saw to $CONTACTS_GUI_RESULT."""
+import json
+import os
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui
+from PySide2 import QtWidgets
+
+out_dir = os.environ["CONTACTS_GUI_OUT"]
+report = {"errors": []}
+
+
+def wait(seconds):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        QtWidgets.QApplication.processEvents()
+        time.sleep(0.005)
+
+
+def grab_window_with_view(name):
+    """The main window with the 3D view's own render pasted in (a window grab
+    leaves the OpenGL area blank)."""
+    from PySide2 import QtCore, QtGui
+    main = FreeCADGui.getMainWindow()
+    QtWidgets.QApplication.processEvents()
+    path = os.path.join(out_dir, name)
+    pixmap = main.grab()
+    mdi = main.findChild(QtWidgets.QMdiArea)
+    active = mdi.activeSubWindow() if mdi is not None else None
+    viewers = [w for w in (active or main).findChildren(QtWidgets.QWidget)
+               if w.metaObject().className() == "SIM::Coin3D::Quarter::QuarterWidget" and w.isVisible()]
+    if viewers:
+        area = viewers[0].viewport() if hasattr(viewers[0], "viewport") else viewers[0]
+        rendered = os.path.join(out_dir, "view_" + name)
+        FreeCADGui.activeDocument().activeView().saveImage(rendered, area.width(), area.height(), "Current")
+        painter = QtGui.QPainter(pixmap)
+        painter.drawImage(area.mapTo(main, QtCore.QPoint(0, 0)), QtGui.QImage(rendered))
+        painter.end()
+    pixmap.save(path)
+    return path
+
+
+def offset(obj, original):
+    return list(obj.Placement.Base - original.Base)
+
+
+def run():
+    main = FreeCADGui.getMainWindow()
+    main.resize(1280, 960)
+    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
+    from contactwb.gui.panels import haptic_panel
+    axis = next(o for o in doc.Objects if o.Label == "Axis")
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewFront()
+    view.fitAll()
+    # Baseline: the panel's display rate without a contact analysis (same drag, 1.5 s).
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(axis)
+    FreeCADGui.runCommand("Contacts_HapticTrial")
+    wait(0.5)
+    FreeCADGui.Selection.clearSelection()
+    panel = haptic_panel.active_panel
+    frames_before, start = len(panel.frame_times), time.monotonic()
+    for i in range(31):
+        panel.hand_sliders["z"].setValue(int(round(5.0 * i / 30 * haptic_panel.SLIDER_STEPS_PER_UNIT)))
+        wait(0.05)
+    report["baseline_rate_hz"] = (len(panel.frame_times) - frames_before) / (time.monotonic() - start)
+    costs = panel.update_seconds[-(len(panel.frame_times) - frames_before):] or [0.0]
+    report["baseline_update_ms"] = 1000 * sum(costs) / len(costs)
+    panel.reject()
+    wait(0.3)
+    from contactwb.make import make_contact_analysis
+    group = make_contact_analysis(doc)
+    doc.recompute()
+    wait(1.0)
+    provider = group.ViewObject.Proxy
+    report["contacts"] = len([c for c in group.Group if c.TypeId != "App::DocumentObjectGroup"])
+    builds = []
+    original_build = provider.overlay.build
+
+    def counting_build(*args, **kwargs):
+        builds.append(time.monotonic())
+        return original_build(*args, **kwargs)
+    provider.overlay.build = counting_build
+
+    axis = next(o for o in doc.Objects if o.Label == "Axis")
+    for o in doc.Objects:  # the shaft and what it goes through, cut open by hiding the rest
+        if o.Label in ("Body", "Stator", "Front-cover", "Back-cover") or o.Label.startswith(("Screw", "Magnet")):
+            o.ViewObject.Visibility = False
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewFront()
+    view.fitAll()
+    wait(0.3)
+    original = FreeCAD.Placement(axis.Placement)
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(axis)
+    FreeCADGui.runCommand("Contacts_HapticTrial")
+    wait(0.5)
+    FreeCADGui.Selection.clearSelection()
+    panel = haptic_panel.active_panel
+    report["panel_open"] = panel is not None
+    if panel is None:
+        return
+    dock = next((d for d in main.findChildren(QtWidgets.QDockWidget) if d.windowTitle() == "Combo View"), None)
+    if dock is not None:
+        from PySide2 import QtCore
+        main.resizeDocks([dock], [430], QtCore.Qt.Horizontal)
+    report["hand_enabled"] = panel.hand_box.isEnabled()
+    report["sliders"] = sorted(panel.hand_sliders)
+    builds_before = len(builds)
+
+    # The user drags the Z slider up 15 mm over 3 s: the hand pulls the axis out along its bores.
+    start = time.monotonic()
+    frames_before = len(panel.frame_times)
+    for i in range(61):
+        panel.hand_sliders["z"].setValue(int(round(15.0 * i / 60 * haptic_panel.SLIDER_STEPS_PER_UNIT)))
+        wait(0.05)
+    wait(1.0)
+    elapsed = time.monotonic() - start
+    report["frames"] = len(panel.frame_times) - frames_before
+    report["seconds"] = elapsed
+    report["update_rate_hz"] = report["frames"] / elapsed
+    costs = panel.update_seconds[-report["frames"]:] or [0.0]
+    report["update_ms"] = 1000 * sum(costs) / len(costs)
+    report["panel_rate_hz"] = panel.update_rate_hz(3.0)
+    report["redraws_while_moving"] = len(builds) - builds_before
+    report["slider_label"] = panel.hand_values["z"].text()
+    report["pulled_offset"] = offset(axis, original)
+    report["pulled_snapshot"] = panel.session.snapshot()["translate"]
+    report["constraints_pulled"] = panel.readouts["constraints"].text()
+    report["sliders_png"] = grab_window_with_view("haptic_hand_sliders.png")
+
+    # Replay of the bundled trial script (a script, not a recorded path).
+    try:
+        panel.replay_file(os.environ["CONTACTS_TRIAL_SCRIPT"])
+        report["replay_error"] = None
+    except Exception:
+        report["replay_error"] = traceback.format_exc()
+    frames_before, start = len(panel.frame_times), time.monotonic()
+    while not panel.script_done() and time.monotonic() - start < 15:
+        wait(0.05)
+    wait(2.0)
+    report["replay_rate_hz"] = (len(panel.frame_times) - frames_before) / (time.monotonic() - start)
+    report["redraws_while_replaying"] = len(builds) - builds_before - report["redraws_while_moving"]
+    report["replayed_snapshot"] = panel.session.snapshot()["translate"]
+    report["replayed_offset"] = offset(axis, original)
+    report["sliders_after_replay"] = list(panel.hand_slider_values()[0]) + list(panel.hand_slider_values()[1])
+    report["constraints_seated"] = panel.readouts["constraints"].text()
+    report["readouts"] = {k: v.text() for k, v in panel.readouts.items()}
+    report["replay_png"] = grab_window_with_view("haptic_hand_replayed.png")
+
+    builds_at_ok = len(builds)
+    undo_before = list(doc.UndoNames)
+    panel.accept()
+    FreeCADGui.updateGui()
+    wait(0.5)
+    report["panel_closed"] = haptic_panel.active_panel is None
+    report["redraws_after_ok"] = len(builds) - builds_at_ok
+    report["final_offset"] = offset(axis, original)
+    report["undo_added"] = [n for n in doc.UndoNames if n not in undo_before] or list(doc.UndoNames)[:1]
+    report["ok_png"] = grab_window_with_view("haptic_hand_ok.png")
+
+
+try:
+    run()
+except Exception:
+    report["errors"].append(traceback.format_exc())
+with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
+    json.dump(report, stream, indent=1)
+os._exit(0)

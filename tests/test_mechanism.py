@@ -1,0 +1,190 @@
+"""Issue 22 through the Python API and the CLI: prismatic joints keep their
+direction, overlapping pairs keep their contacts, point and line contacts
+(higher pairs) in the JSON, and the designer's annotations (the motor's
+example file: two rigid groups, 1 DOF). Expected values derived by hand in
+the comments (the same cases as cpp_module/tests/test_mechanism.cpp)."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+import FreeCAD
+import Part
+from contactwb import core, joints
+from contactwb.core import annotations
+
+from conftest import REPO, SAMPLES
+
+V = FreeCAD.Vector
+MOTOR_NOTES = os.path.join(SAMPLES, "motor.annotations.json")
+
+
+def run_cli(*args):
+    return subprocess.run([sys.executable, "-m", "contactwb.cli", *args], cwd=REPO, capture_output=True, text=True,
+                          env=dict(os.environ, PYTHONPATH=REPO))
+
+
+def parallel(u, v, tol=1e-6):
+    cross = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+    return sum(c * c for c in cross) ** 0.5 < tol
+
+
+def test_block_in_an_l_shaped_corner_slides_along_the_corner():
+    # Floor z <= 10 and wall x <= 10 (one body), the block on the floor against
+    # the wall: prismatic along y, "slides along (0, 1, 0)" in the table.
+    corner = Part.makeBox(40, 40, 10).fuse(Part.makeBox(10, 40, 30, V(0, 0, 10)))
+    block = Part.makeBox(10, 20, 10, V(10, 10, 10))
+    _, found = joints.joints_in_shapes([("Corner", corner), ("Block", block)])
+    (j,) = found.joints
+    assert (j.type, j.dof) == ("prismatic", 1)
+    assert len(j.translations) == 1 and parallel(j.translations[0]["direction"], (0, 1, 0))
+    assert len(j.free_directions) == 4
+    assert "prismatic (1): slides along (0, 1, 0)" in found.table() or \
+        "prismatic (1): slides along (0, -1, 0)" in found.table()
+
+
+def test_overlapping_tongue_keeps_its_two_plane_contacts_and_reports_the_interference():
+    # The tongue 12 x 8 x 2.5 sits 0.02 mm into each long wall of its slot
+    # (11.96 x 20): 0.8 mm3 of overlap; the large faces 40 x 30 - 11.96 x 20 -
+    # 0.32 = 960.48 mm2 and the tongue's end on the slot floor 11.96 x 8 =
+    # 95.68 mm2 (hand-derived, docs/reliability.md).
+    lower = Part.makeBox(40, 30, 10).cut(Part.makeBox(11.96, 20, 3.5, V(14.02, 5, 7.5)))
+    upper = Part.makeBox(40, 30, 5, V(0, 0, 10)).fuse(Part.makeBox(12, 8, 2.5, V(14, 11, 7.5)))
+    result, _ = joints.joints_in_shapes([("Slotted", lower), ("Tongued", upper)])
+    document = result.to_json()
+    assert sorted(round(c["area"], 6) for c in document["contacts"]) == [95.68, 960.48]
+    assert {c["type"] for c in document["contacts"]} == {"PLF"}
+    (interference,) = document["interferences"]
+    assert set(interference) == {"a", "b", "volume"}
+    assert interference["volume"] == pytest.approx(lower.common(upper).Volume, abs=1e-6)
+    assert interference["volume"] == pytest.approx(0.8, abs=1e-6)
+
+
+def test_ball_on_a_plane_is_a_sphere_plane_higher_pair():
+    # A ball r 5 on a plate's top: the point (20, 20, 10), normal +z; no
+    # surface contact; the joint sphere_plane, 5 DOF, free directions with +z.
+    plate, ball = Part.makeBox(40, 40, 10), Part.makeSphere(5, V(20, 20, 15))
+    result, found = joints.joints_in_shapes([("Plate", plate), ("Ball", ball)], ground="Plate")
+    assert result.contacts == []
+    (pair,) = result.to_json()["higher_pairs"]
+    assert (pair["type"], pair["kind"], pair["a"], pair["b"]) == ("sphere_on_plane", "point", "Plate", "Ball")
+    assert pair["point"] == pytest.approx([20, 20, 10], abs=1e-9)
+    assert pair["normal"] == pytest.approx([0, 0, 1], abs=1e-9)
+    (j,) = found.joints
+    assert (j.type, j.dof, j.contacts, j.higher_pairs) == ("sphere_plane", 5, [], [0])
+    assert any(d == pytest.approx([0, 0, 1], abs=1e-9) for d in j.free_directions)
+    assert len(j.free_directions) == 5
+    assert found.mobility.dof == 5
+    assert "sphere_on_plane at (20, 20, 10)" in result.table()
+
+
+def test_motor_with_its_example_annotations_is_two_groups_and_one_dof(sample):
+    # docs/joints.md: 26 DOF (9 passive) without; with the file the axis,
+    # rotor halves and magnets turn together about the axis (revolute) and
+    # everything else is rigid with the body.
+    _, plain = joints.joints_in_step(sample("motor.step"))
+    assert (plain.mobility.dof, plain.mobility.passive, len(plain.mobility.groups)) == (26, 9, 8)
+    result, found = joints.joints_in_step(sample("motor.step"), annotations=MOTOR_NOTES)
+    m = found.mobility
+    assert (m.dof, m.passive, len(m.groups)) == (1, 0, 2)
+    assert set(m.groups[1]) == {"Axis", "Rotor-front", "Rotor-back", "Magnet-1", "Magnet-2", "Magnet-3", "Magnet-4"}
+    assert m.group_joints[1]["type"] == "revolute"
+    assert parallel(m.group_joints[1]["rotations"][0]["direction"], (0, 0, 1))
+    pressed = [c for c in result.contacts if {c.a, c.b} == {"Axis", "Rotor-front"}]
+    assert [(c.intent, c.fit) for c in pressed] == [("interference", "H7/p6")]
+    assert len(result.contacts) == 35  # the annotations change no contact
+
+
+def test_cli_annotations_json_and_errors(sample, tmp_path):
+    done = run_cli(sample("motor.step"), "--annotations", MOTOR_NOTES, "--json")
+    assert done.returncode == 0, done.stderr
+    document = json.loads(done.stdout)
+    assert document["mobility"]["dof"] == 1 and len(document["mobility"]["groups"]) == 2
+    marked = [c for c in document["contacts"] if "intent" in c]
+    assert len(marked) == 17  # one contact per entry of the file
+    seal = [c for c in marked if {c["a"], c["b"]} == {"Seal", "Front-cover"}]
+    assert [(c["intent"], c["fit"]) for c in seal] == [("interference", "H8/s7")]
+    unmarked = [c for c in document["contacts"] if "intent" not in c]
+    assert len(unmarked) == 35 - 17
+    assert sum(1 for j in document["joints"] if j.get("annotated_rigid")) == 14
+    table = run_cli(sample("motor.step"), "--annotations", MOTOR_NOTES)
+    assert table.returncode == 0, table.stderr
+    assert "Axis           <->  Rotor-front    rigid (0): held by annotated fits or bonds" in table.stdout
+    assert "Mobility (ground Body): 1 DOF, of which 0 passive spins; 2 rigid groups" in table.stdout
+    # Without the file: today's 26 DOF.
+    plain = json.loads(run_cli(sample("motor.step"), "--joints", "--json").stdout)
+    assert plain["mobility"]["dof"] == 26
+
+    wrong = tmp_path / "wrong.json"
+    wrong.write_text(json.dumps([{"a": "Axis", "b": "Body", "intent": "bonded"}]))
+    bad = run_cli(sample("motor.step"), "--annotations", str(wrong))
+    assert bad.returncode == 2
+    assert "entry 1 ('Axis' - 'Body', bonded) matches no contact" in bad.stderr
+    wrong.write_text(json.dumps([{"a": "Axis", "b": "Seal", "intent": "glued"}]))
+    bad = run_cli(sample("motor.step"), "--annotations", str(wrong))
+    assert bad.returncode == 2 and "entry 1: unknown intent 'glued'" in bad.stderr
+    wrong.write_text(json.dumps([{"a": "Axis", "b": "Nobody", "intent": "ignored"}]))
+    bad = run_cli(sample("motor.step"), "--annotations", str(wrong))
+    assert bad.returncode == 2 and "no body named 'Nobody'" in bad.stderr
+
+
+def test_annotation_entries_are_checked():
+    with pytest.raises(core.ArgumentError, match="not an ISO 286 fit code"):
+        annotations.parse([{"a": "A", "b": "B", "intent": "interference", "fit": "p6"}])
+    with pytest.raises(core.ArgumentError, match="unknown field"):
+        annotations.parse([{"a": "A", "b": "B", "intent": "bonded", "glue": "epoxy"}])
+    (note,) = annotations.parse([{"a": "A", "b": "B", "intent": "transition", "fit": "H7/k6"}])
+    assert (note.a, note.b, note.intent, note.fit, note.type) == ("A", "B", "transition", "H7/k6", None)
+
+
+def test_committed_line_contact_case_has_its_higher_pairs_and_no_contact(sample):
+    # Resources/samples/cases/line_contact (tools/samples_families.py): a roller
+    # r 5 along x (axis z = 5, y = -10, x -20..20) and a ball r 5 (centre 0, 15,
+    # 5) on a plate's top z = 0. By hand: no surface contact (the expected
+    # file's count is unchanged), a line y = -10, z = 0 from x = -20 to 20
+    # (40 mm) and a point (0, 15, 0), both normal +z; the roller cylinder_plane
+    # (4 DOF), the ball sphere_plane (5): 9 DOF with the plate grounded.
+    path = os.path.join(SAMPLES, "cases", "line_contact.step")
+    result, found = joints.joints_in_step(path, ground="Plate")
+    assert result.contacts == []
+    with open(os.path.join(SAMPLES, "cases", "line_contact.expected.json")) as stream:
+        assert json.load(stream)["contacts"] == []
+    pairs = {h["b"]: h for h in result.to_json()["higher_pairs"]}
+    assert set(pairs) == {"Roller", "Ball"}
+    line, point = pairs["Roller"], pairs["Ball"]
+    assert (line["type"], line["kind"], point["type"], point["kind"]) == (
+        "cylinder_on_plane", "line", "sphere_on_plane", "point")
+    assert line["length"] == pytest.approx(40, abs=1e-6)
+    assert sorted([line["start"][0], line["end"][0]]) == pytest.approx([-20, 20], abs=1e-6)
+    assert line["start"][1:] == pytest.approx([-10, 0], abs=1e-6)
+    assert point["point"] == pytest.approx([0, 15, 0], abs=1e-9)
+    assert line["normal"] == pytest.approx([0, 0, 1], abs=1e-9)
+    types = {(j.a, j.b): (j.type, j.dof) for j in found.joints}
+    assert types == {("Plate", "Roller"): ("cylinder_plane", 4), ("Plate", "Ball"): ("sphere_plane", 5)}
+    assert found.mobility.dof == 9
+
+
+def test_d03_pin_in_the_arms_slot_is_two_line_contacts(shared_step):
+    # D03 (Assembly4's disc and arm): the disc's pin (Body001) runs in the
+    # straight slot of the arm (Body002), touching both of the slot's flat
+    # walls. By hand: two cylinder_on_plane lines along the pin (15 mm each,
+    # z 10..25) with opposite normals across the slot; the surface contacts
+    # stay 3 PLF + 1 CLJ (tests/test_contacts.py). With the pin's face on the
+    # arm (PLF), the pair turns about the pin and slides along the slot: 2 DOF,
+    # the translation across both normals.
+    result, found = joints.joints_in_step(shared_step("D03_asm4_tuto2_disk_arm.step"))
+    assert len(result.contacts) == 4
+    pairs = result.to_json()["higher_pairs"]
+    assert [(h["type"], h["a"], h["b"]) for h in pairs] == [("cylinder_on_plane", "Body001", "Body002")] * 2
+    for h in pairs:
+        assert h["length"] == pytest.approx(15, abs=1e-6)
+        assert sorted([h["start"][2], h["end"][2]]) == pytest.approx([10, 25], abs=1e-6)
+    n0, n1 = pairs[0]["normal"], pairs[1]["normal"]
+    assert sum(a * b for a, b in zip(n0, n1)) == pytest.approx(-1, abs=1e-9)
+    (j,) = [j for j in found.joints if (j.a, j.b) == ("Body001", "Body002")]
+    assert (j.dof, len(j.rotations), len(j.translations), j.higher_pairs) == (2, 1, 1, [0, 1])
+    assert parallel(j.rotations[0]["direction"], (0, 0, 1))
+    slide = j.translations[0]["direction"]
+    assert abs(sum(a * b for a, b in zip(slide, n0))) < 1e-9 and abs(slide[2]) < 1e-9
