@@ -7,6 +7,7 @@ CONTACT_ANALYSIS = "ContactAnalysis"
 CONTACT = "Contact"
 JOINT = "Joint"
 SIMULATION_MODEL = "SimulationModel"
+INTERFERENCE = "Interference"
 
 
 def proxy_kind(obj):
@@ -34,9 +35,16 @@ def is_simulation_model(obj):
     return proxy_kind(obj) == SIMULATION_MODEL
 
 
+def is_interference(obj):
+    """Whether a document object is one Interference of an analysis (two
+    bodies' overlapping material, its solid as its Shape)."""
+    return proxy_kind(obj) == INTERFERENCE
+
+
 def is_workbench_result(obj):
-    """The workbench's own results (they link to bodies but hold no solid)."""
-    return proxy_kind(obj) in (CONTACT_ANALYSIS, CONTACT, SIMULATION_MODEL)
+    """The workbench's own results (they link to bodies; an interference's
+    solid is a result, never a body to analyse)."""
+    return proxy_kind(obj) in (CONTACT_ANALYSIS, CONTACT, SIMULATION_MODEL, INTERFERENCE)
 
 
 def analyses(doc):
@@ -46,3 +54,15 @@ def analyses(doc):
         return []
     return [obj for obj in doc.Objects
             if obj.TypeId == "App::DocumentObjectGroupPython" and is_contact_analysis(obj)]
+
+
+def is_alive(doc, obj):
+    """Whether `obj` is still this document's object: not deleted, nor
+    replaced by an undo (which brings back a new object of the same name);
+    a reference kept across an undo must be checked before use."""
+    if obj is None or doc is None:
+        return False
+    try:
+        return doc.getObject(obj.Name) is obj
+    except Exception:  # deleted: its attributes raise
+        return False

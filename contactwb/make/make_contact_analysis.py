@@ -25,6 +25,24 @@ def _source_entries(objects):
     return entries
 
 
+def _scope_key(entries):
+    return sorted((obj.Name, tuple(sorted(s for s in subnames if s))) for obj, subnames in entries)
+
+
+def analysis_of_scope(doc, scope, objects=None):
+    """The document's analysis with this scope and these parts (objects or
+    selection entries, as make_contact_analysis takes them), or None: Find
+    contacts run again on the same scope updates it instead of adding one."""
+    entries = _source_entries(objects) if scope != "Document" else []
+    wanted = _scope_key(entries)
+    for group in doc.Objects:
+        if not is_contact_analysis(group) or group.Scope != scope:
+            continue
+        if scope == "Document" or _scope_key((o, list(subs)) for o, subs in group.Sources) == wanted:
+            return group
+    return None
+
+
 def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, progress=None,
                           name="Contacts", scope=None, types=None, clearance_gap=0.0, group=None,
                           derive_joints=None):

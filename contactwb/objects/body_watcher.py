@@ -2,8 +2,20 @@
 marks an analysis touched as soon as one of its bodies moves, changes shape or
 is deleted (FreeCAD itself only recomputes it, silently), so the tree shows it
 out of date before the recompute; and it removes the contacts a recompute no
-longer found once that recompute is over."""
-from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_joint
+longer found once that recompute is over.
+
+Undo: a recompute that updates a live analysis is recorded as one entry,
+RECOMPUTE_TRANSACTION (its contacts found, changed and removed, with the
+group's membership), never as FreeCAD's implicit "Delete" of the contacts it
+removed. Undoing that entry also undoes the user's action it followed (the
+move or the deletion that made the analysis out of date), so one Ctrl+Z
+restores the part and its contacts together; redo replays both."""
+from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_interference, is_joint
+
+RECOMPUTE_TRANSACTION = "Recompute contacts"
+# Entries whose own run updates the analyses: a recompute entry right above
+# one of them followed no user edit (an undo had made the analysis stale).
+OWN_TRANSACTIONS = ("Find contacts", "Derive joints", RECOMPUTE_TRANSACTION)
 
 
 class BodyWatcher:
@@ -15,10 +27,17 @@ class BodyWatcher:
     def __init__(self):
         self.documents = set()
         self.pending = {}  # document name -> contacts to remove once its recompute is over
+        self.recording = set()  # documents whose recompute this watcher records as one undo entry
+        self.chaining = False  # an undo or redo this watcher runs itself
 
     def _touch_dependents(self, obj, deleted=False):
         doc = obj.Document
-        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj):
+        if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj) \
+                or is_interference(obj):
+            return
+        if doc.Transacting:
+            # an undo or redo: it restores the analyses with their bodies
+            # (the recompute that followed an edit is undone with it)
             return
         for group in analyses(doc):
             if not getattr(group, "UpdateOnRecompute", False):
@@ -26,6 +45,8 @@ class BodyWatcher:
             if group.Name == obj.Name or "Touched" in group.State:
                 continue
             if obj in group.OutListRecursive:
+                if not getattr(group, "OutOfDate", True):
+                    group.OutOfDate = True  # recorded with the edit
                 group.touch()
 
     def slotChangedObject(self, obj, prop):
@@ -41,7 +62,7 @@ class BodyWatcher:
         # analyses may have missed its contacts
         try:
             doc = obj.Document
-            if doc.Recomputing or doc.Name not in self.documents:
+            if doc.Recomputing or doc.Transacting or doc.Name not in self.documents:
                 return
             if not (hasattr(obj, "Shape") or obj.isDerivedFrom("App::Link") or obj.isDerivedFrom("App::Part")):
                 return
@@ -51,17 +72,80 @@ class BodyWatcher:
         except Exception:
             pass
 
+    def slotBeforeRecomputeDocument(self, doc):
+        """Opens the recompute's undo entry when a live analysis is out of
+        date and no command has its own transaction open."""
+        try:
+            if doc.Name not in self.documents or not doc.UndoMode or doc.HasPendingTransaction:
+                return
+            import FreeCAD
+            if FreeCAD.getActiveTransaction():
+                return
+            if any(group.UpdateOnRecompute and "Touched" in group.State for group in analyses(doc)):
+                doc.openTransaction(RECOMPUTE_TRANSACTION)
+                self.recording.add(doc.Name)
+        except Exception:  # an observer must never break a recompute
+            pass
+
     def slotRecomputedDocument(self, doc):
         names = self.pending.pop(doc.Name, [])
         for name in names:
             if doc.getObject(name) is not None:
                 doc.removeObject(name)
+        if doc.Name in self.recording:
+            self.recording.discard(doc.Name)
+            import FreeCAD
+            active = FreeCAD.getActiveTransaction()
+            if active and active[0] == RECOMPUTE_TRANSACTION:
+                # closes it also when nothing changed (no entry then): left
+                # open, it would take the next edit under its name
+                FreeCAD.closeActiveTransaction()
+            elif doc.HasPendingTransaction:
+                doc.commitTransaction()
 
-    def slotDeletedObject(self, obj):
+    def slotUndoDocument(self, doc):
+        # the recompute entry undone: undo the user's action it followed too
+        if self.chaining or doc.Name not in self.documents:
+            return
+        if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
+                and doc.UndoNames[0] not in OWN_TRANSACTIONS:
+            self._chain(doc.undo)
+        self._restore_states(doc)
+
+    def slotRedoDocument(self, doc):
+        # the user's action redone: its recompute entry too
+        if self.chaining or doc.Name not in self.documents:
+            return
+        if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
+                and doc.UndoNames[0] not in OWN_TRANSACTIONS:
+            self._chain(doc.redo)
+        self._restore_states(doc)
+
+    @staticmethod
+    def _restore_states(doc):
+        """An undo or redo brings back the analyses' contacts with their
+        bodies, and OutOfDate as it was then: out of date (touched) or
+        current (not touched, though FreeCAD touched it relinking bodies)."""
         try:
-            self._touch_dependents(obj, deleted=True)
+            for group in analyses(doc):
+                if not group.UpdateOnRecompute:
+                    continue
+                if getattr(group, "OutOfDate", False):
+                    group.touch()
+                else:
+                    group.purgeTouched()
         except Exception:
             pass
+
+    def _chain(self, step):
+        """Runs the chained undo or redo now, inside the signal of the one
+        that asked for it (a deferred one could race with a script's next
+        undo)."""
+        self.chaining = True
+        try:
+            step()
+        finally:
+            self.chaining = False
 
 
 _watcher = None

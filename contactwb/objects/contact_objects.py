@@ -20,7 +20,7 @@ from contactwb import core
 from contactwb.core import analysis as contact_analysis
 from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, SCOPES  # noqa: F401  (SCOPES: this module's API)
 from contactwb.document import bodies as document_bodies
-from contactwb.document.identify import is_contact, is_contact_analysis, is_joint  # noqa: F401
+from contactwb.document.identify import is_contact, is_contact_analysis, is_interference, is_joint  # noqa: F401
 from contactwb.document.shapes import assembly_from_shapes
 from contactwb.objects import gui_hooks
 from contactwb.objects.base import PROXY_VERSION, VersionedProxy, add_property, versioned  # noqa: F401
@@ -78,12 +78,25 @@ def _analysis_properties(obj):
     # version 2
     add_property(obj, "App::PropertyInteger", "ContactCount", "Contacts", "Contacts found (shown in the group)", 1)
     add_property(obj, "App::PropertyInteger", "JointCount", "Joints", "Joints derived", 1)
+    # numbers by identity, never given twice in a document (added where missing)
+    add_property(obj, "App::PropertyInteger", "LastNumber", "Contacts", "Highest contact number issued", 2)
+    # recorded in the undo history with the edits and recomputes, so that an
+    # undo or redo knows whether the contacts it restores are current
+    add_property(obj, "App::PropertyBool", "OutOfDate", "Contacts", "Bodies changed since the last search", 2)
+    add_property(obj, "App::PropertyInteger", "InterferenceCount", "Contacts",
+                 "Pairs of bodies whose material overlaps", 1)
+    add_property(obj, "App::PropertyStringList", "Interferences", "Contacts",
+                 "Overlapping pairs with their common volume", 1)
 
 
 def count_children(obj):
     """Sets ContactCount and JointCount from the group's children."""
-    obj.ContactCount = sum(1 for child in obj.Group if is_contact(child))
-    obj.JointCount = sum(1 for child in obj.Group if is_joint(child))
+    contacts = sum(1 for child in obj.Group if is_contact(child))
+    joints = sum(1 for child in obj.Group if is_joint(child))
+    if obj.ContactCount != contacts:
+        obj.ContactCount = contacts
+    if obj.JointCount != joints:
+        obj.JointCount = joints
 
 
 def migrate_analysis(obj):
@@ -179,6 +192,24 @@ class Joint(VersionedProxy):
     add_properties = staticmethod(_joint_properties)
 
 
+def _interference_properties(obj):
+    add_property(obj, "App::PropertyString", "BodyA", "Interference", "First body")
+    add_property(obj, "App::PropertyString", "BodyB", "Interference", "Second body")
+    add_property(obj, "App::PropertyVolume", "Volume", "Interference",
+                 "Volume of the material both bodies occupy (its solid is the Shape)")
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == "Interference":
+            obj.setEditorMode(name, 1)
+
+
+class Interference(VersionedProxy):
+    """Two bodies whose material overlaps (a modelling error, not a contact):
+    the pair, the common volume, and the overlapping solid as its Shape (a
+    Part feature, so it shows in the view; the GUI draws it red)."""
+    TYPE = "Interference"
+    add_properties = staticmethod(_interference_properties)
+
+
 # --- the recompute ------------------------------------------------------
 
 EN_DASH = "\u2013"
@@ -239,12 +270,35 @@ def _clearance_lines(raw, gap, names):
             for c in core.contactcore.find_clearances(raw, gap)]
 
 
-def _numbers_in_use(doc, group):
-    used = set()
-    for other in doc.Objects:
-        if other is not group and is_contact_analysis(other):
-            used.update(c.Number for c in other.Group if is_contact(c))
-    return used
+def contact_key(body_a, body_b, faces_a, faces_b):
+    """A contact's identity: its body pair and partition pair (the faces of
+    each side), the same before and after a move or a recompute."""
+    return (body_a, body_b, tuple(faces_a), tuple(faces_b))
+
+
+def _face_names(links):
+    """The face names ("Face3") of an XLinkSub list, without the object path."""
+    return [sub.rpartition(".")[2] for _, subs in links for sub in subs]
+
+
+def key_of_contact(obj):
+    return contact_key(obj.BodyA, obj.BodyB, _face_names(obj.FacesA), _face_names(obj.FacesB))
+
+
+def key_of_record(record):
+    return contact_key(record.a, record.b, record.faces_a, record.faces_b)
+
+
+def _highest_number(doc):
+    """The highest contact number any analysis of the document issued (also
+    to contacts since removed: a number is never given twice)."""
+    highest = 0
+    for obj in doc.Objects:
+        if is_contact_analysis(obj):
+            highest = max(highest, getattr(obj, "LastNumber", 0), obj.NumberBase)
+        elif is_contact(obj):
+            highest = max(highest, obj.Number)
+    return highest
 
 
 def update_contact_analysis(group, progress=None):
@@ -267,28 +321,80 @@ def update_contact_analysis(group, progress=None):
             (focus is None or id(bodies[r.body_a]) in focus or id(bodies[r.body_b]) in focus)]
     records = [result.contacts[index] for index in kept]
 
-    group.Bodies = [document_bodies.body_link(b) for b in bodies]
-    group.BodyTable = json.dumps([{"name": b.name, "path": b.path, "volume": b.volume,
-                                   "center": list(b.center)} for b in result.bodies])
-    group.LinearTolerance = result.linear_tolerance
-    group.AngularTolerance = degrees(result.angular_tolerance)
-    group.BodyCount = len(result.bodies)
+    set_if_changed(group, "Bodies", [document_bodies.body_link(b) for b in bodies], ordered=False)
+    set_if_changed(group, "BodyTable", json.dumps([{"name": b.name, "path": b.path, "volume": b.volume,
+                                                    "center": list(b.center)} for b in result.bodies]))
+    set_if_changed(group, "LinearTolerance", result.linear_tolerance)
+    set_if_changed(group, "AngularTolerance", degrees(result.angular_tolerance))
+    set_if_changed(group, "BodyCount", len(result.bodies))
     shown = contact_analysis.Analysis(result.source, result.units, result.linear_tolerance,
                                       result.angular_tolerance, result.bodies, records)
-    group.Summary = [f"{kind}: {count}" for kind, count in sorted(shown.counts().items())]
-    group.PairSummary = [f"{a} {EN_DASH} {b}: " + ", ".join(f"{n} {k}" for k, n in sorted(types.items()))
-                         for (a, b), types in shown.by_pair().items()]
-    group.Messages = result.messages
-    group.Clearances = _clearance_lines(raw, group.ClearanceGap.Value, [b.name for b in result.bodies])
+    set_if_changed(group, "Summary", [f"{kind}: {count}" for kind, count in sorted(shown.counts().items())])
+    set_if_changed(group, "PairSummary", [f"{a} {EN_DASH} {b}: " + ", ".join(f"{n} {k}" for k, n in sorted(types.items()))
+                                          for (a, b), types in shown.by_pair().items()])
+    set_if_changed(group, "Messages", result.messages)
+    set_if_changed(group, "Clearances", _clearance_lines(raw, group.ClearanceGap.Value,
+                                                         [b.name for b in result.bodies]))
     _update_children(doc, group, records, bodies)
+    _update_interferences(doc, group, result.interferences, bodies)
     if group.DeriveJoints:
         _update_joints(doc, group, assembly, raw, result, kept, bodies)
     else:
         remove_after_recompute(doc, [o for o in group.Group if is_joint(o)])
-        group.Group = [o for o in group.Group if not is_joint(o)]
-        group.Mobility, group.LiaisonGraph = [], ""
+        set_if_changed(group, "Group", [o for o in group.Group if not is_joint(o)])
+        set_if_changed(group, "Mobility", [])
+        set_if_changed(group, "LiaisonGraph", "")
     count_children(group)
+    set_if_changed(group, "OutOfDate", False)
     return group
+
+
+def _same_solid(old, new):
+    """Whether an interference's stored solid is already `new` (unchanged
+    bodies: nothing to record)."""
+    if old.isNull() or new.isNull():
+        return old.isNull() == new.isNull()
+    return abs(old.Volume - new.Volume) <= 1e-9 * max(1.0, abs(new.Volume)) and \
+        (old.BoundBox.Center - new.BoundBox.Center).Length <= 1e-9 and \
+        abs(old.BoundBox.DiagonalLength - new.BoundBox.DiagonalLength) <= 1e-9
+
+
+def _update_interferences(doc, group, interferences, bodies):
+    """Interference children, one per overlapping pair (kept by pair across
+    recomputes), after the contacts: the common solid of the two bodies
+    (their Boolean common, made only for the pairs the core found
+    overlapping) and its volume as the core measured it."""
+    by_name = {b.name: b for b in bodies}
+    old = {}
+    for obj in group.Group:
+        if is_interference(obj):
+            old.setdefault((obj.BodyA, obj.BodyB), obj)
+    found = []
+    for index, (a, b, volume) in enumerate(interferences):
+        obj = old.pop((a, b), None)
+        if obj is None:
+            obj = doc.addObject("Part::FeaturePython", "Interference")
+            Interference(obj)
+            gui_hooks.new_object(obj)
+        set_if_changed(obj, "BodyA", a)
+        set_if_changed(obj, "BodyB", b)
+        set_if_changed(obj, "Volume", volume)
+        if a in by_name and b in by_name:
+            common = by_name[a].shape.common(by_name[b].shape)
+            if not _same_solid(obj.Shape, common):
+                obj.Shape = common
+        set_if_changed(obj, "Label", f"Interference {index + 1}: {a} {EN_DASH} {b}")
+        set_if_changed(obj, "Label2", f"{volume:.4g} mm\u00b3")
+        found.append(obj)
+    remove_after_recompute(doc, list(old.values()))
+    contacts = [o for o in group.Group if is_contact(o)]
+    others = [o for o in group.Group if not is_contact(o) and not is_interference(o)]
+    set_if_changed(group, "Group", contacts + found + others)
+    set_if_changed(group, "InterferenceCount", len(found))
+    set_if_changed(group, "Interferences", [f"{o.BodyA} {EN_DASH} {o.BodyB}: {o.Volume.Value:.4g} mm\u00b3"
+                                            for o in found])
+    for obj in found:
+        obj.purgeTouched()
 
 
 def _update_joints(doc, group, assembly, raw, result, kept, bodies):
@@ -300,98 +406,125 @@ def _update_joints(doc, group, assembly, raw, result, kept, bodies):
     ground = names.index(group.Ground) if group.Ground in names else \
         max(range(len(names)), key=lambda i: result.bodies[i].volume)
     mobility = cc.assembly_mobility(assembly, raw, found, ground)
-    group.LiaisonGraph = cc.liaison_graph_dot(assembly, found, mobility)
+    set_if_changed(group, "LiaisonGraph", cc.liaison_graph_dot(assembly, found, mobility))
     lines = [f"Ground: {names[mobility.ground]}" if mobility.ground >= 0 else "Ground: none",
              f"Degrees of freedom: {mobility.dof} ({mobility.passive} passive spins)"]
     for number, (members, motion) in enumerate(zip(mobility.groups, mobility.group_motions), start=1):
         lines.append(f"Rigid group {number}: {', '.join(names[i] for i in members)} "
                      f"({motion.type}, {motion.dof} DOF)")
-    group.Mobility = lines
+    set_if_changed(group, "Mobility", lines)
     contacts = [c for c in group.Group if is_contact(c)]
     position = {raw_index: k for k, raw_index in enumerate(kept)}
-    old = [o for o in group.Group if is_joint(o)]
+    old = {}  # (body A, body B) -> its Joint: a pair keeps its joint object
+    for obj in group.Group:
+        if is_joint(obj):
+            old.setdefault((obj.BodyA, obj.BodyB), obj)
     joints = []
     for pair in found.joints:
         mine = [contacts[position[i]] for i in pair.contacts if i in position]
         if not mine:  # a pair outside the scope shown
             continue
-        index = len(joints)
-        if index < len(old):
-            obj = old[index]
-        else:
+        a, b = names[pair.body_a], names[pair.body_b]
+        obj = old.pop((a, b), None)
+        if obj is None:
             obj = doc.addObject("App::FeaturePython", "Joint")
             Joint(obj)
             gui_hooks.new_object(obj)
-        obj.Label = obj.Name
-        a, b = names[pair.body_a], names[pair.body_b]
-        obj.JointType, obj.DOF, obj.BodyA, obj.BodyB = pair.type, pair.dof, a, b
-        obj.AxisPoints = [FreeCAD.Vector(*point) for point, _ in pair.rotations]
-        obj.AxisDirections = [FreeCAD.Vector(*direction) for _, direction in pair.rotations]
-        obj.Translations = [FreeCAD.Vector(*d) for d in pair.translations]
-        obj.FreeDirections = [FreeCAD.Vector(*d) for d in pair.free_directions]
+        set_if_changed(obj, "JointType", pair.type)
+        set_if_changed(obj, "DOF", pair.dof)
+        set_if_changed(obj, "BodyA", a)
+        set_if_changed(obj, "BodyB", b)
+        set_if_changed(obj, "AxisPoints", [FreeCAD.Vector(*point) for point, _ in pair.rotations])
+        set_if_changed(obj, "AxisDirections", [FreeCAD.Vector(*direction) for _, direction in pair.rotations])
+        set_if_changed(obj, "Translations", [FreeCAD.Vector(*d) for d in pair.translations])
+        set_if_changed(obj, "FreeDirections", [FreeCAD.Vector(*d) for d in pair.free_directions])
         centre = FreeCAD.Vector()
         for contact in mine:
             centre += contact.Point
-        obj.Centre = centre * (1.0 / len(mine))
-        obj.GlyphLength = 0.6 * min(bodies[pair.body_a].shape.BoundBox.DiagonalLength,
-                                    bodies[pair.body_b].shape.BoundBox.DiagonalLength)
-        obj.Contacts = mine
-        obj.Label = f"J{group.NumberBase + index + 1} {pair.type}: {a} {EN_DASH} {b}"
-        obj.Label2 = f"{pair.dof} DOF"
+        set_if_changed(obj, "Centre", centre * (1.0 / len(mine)))
+        set_if_changed(obj, "GlyphLength", 0.6 * min(bodies[pair.body_a].shape.BoundBox.DiagonalLength,
+                                                     bodies[pair.body_b].shape.BoundBox.DiagonalLength))
+        set_if_changed(obj, "Contacts", mine)
         joints.append(obj)
-    remove_after_recompute(doc, old[len(joints):])
-    group.Group = contacts + joints
+    # joints numbered in the order of their pairs (J1, J2, ... after the group's base)
+    for index, obj in enumerate(joints):
+        set_if_changed(obj, "Label", f"J{group.NumberBase + index + 1} {obj.JointType}: "
+                                     f"{obj.BodyA} {EN_DASH} {obj.BodyB}")
+        set_if_changed(obj, "Label2", f"{obj.DOF} DOF")
+    remove_after_recompute(doc, list(old.values()))
+    set_if_changed(group, "Group", contacts + [o for o in group.Group if is_interference(o)] + joints)
     for obj in joints:
         obj.purgeTouched()
 
 
+def _comparable(value):
+    if hasattr(value, "Value") and hasattr(value, "Unit"):  # a Quantity
+        return round(value.Value, 12)
+    if isinstance(value, float):
+        return round(value, 12)
+    if isinstance(value, (list, tuple)):
+        return [_comparable(v) for v in value]
+    if hasattr(value, "Name") and hasattr(value, "Document"):  # a document object
+        return value.Name
+    if hasattr(value, "x") and hasattr(value, "z"):  # a vector
+        return (round(value.x, 12), round(value.y, 12), round(value.z, 12))
+    return value
+
+
+def set_if_changed(obj, name, value, ordered=True):
+    """Assigns only a new value: an unchanged result records nothing in the
+    undo history and touches nothing. ordered=False: a list compared as a
+    set (FreeCAD may reorder a link list's entries)."""
+    old, new = _comparable(getattr(obj, name)), _comparable(value)
+    if not ordered:
+        old, new = sorted(map(repr, old)), sorted(map(repr, new))
+    if old != new:
+        setattr(obj, name, value)
+
+
 def _update_children(doc, group, records, bodies):
+    """Updates the group's Contact children to `records`, by identity (body
+    pair and partition pair): a contact found again keeps its object, name
+    and number; a new one gets a new object and the next number of the
+    document; a vanished one is removed."""
     old = [c for c in group.Group if is_contact(c)]
     others = [c for c in group.Group if not is_contact(c)]  # joints: updated after
-    # Contacts no analysis holds any more (an undo can bring them back):
-    # they would keep labels the live contacts need.
+    # Contacts no analysis holds any more (left by an older version's undo)
     orphans = [o for o in doc.Objects if is_contact(o) and o not in old
                and not any(is_contact_analysis(p) for p in o.InList)]
-    remove_after_recompute(doc, orphans)
-    used = _numbers_in_use(doc, group)
-    base = group.NumberBase
-    if any(base + k in used for k in range(1, len(records) + 1)):
-        base = max(used)
-    mine = set(old) | set(orphans)
-    taken = {o.Label for o in doc.Objects if o not in mine}
-    labels = lambda b: [contact_label(r.type, b + k + 1, r.a, r.b) for k, r in enumerate(records)]  # noqa: E731
-    if taken.intersection(labels(base)):
-        # another object holds one of the labels: number after every contact
-        base = max([base] + list(used) + [o.Number for o in doc.Objects if is_contact(o)])
-    group.NumberBase = base
+    by_key = {}  # identity -> its objects (a list: two contacts may share faces)
+    for obj in old:
+        by_key.setdefault(key_of_contact(obj), []).append(obj)
+    highest = max(_highest_number(doc), getattr(group, "LastNumber", 0))
     children = []
-    for index, record in enumerate(records):
-        if index < len(old):
-            obj = old[index]
-        else:
+    for record in records:
+        same = by_key.get(key_of_record(record))
+        obj = same.pop(0) if same else None
+        if obj is None:
             obj = doc.addObject("App::FeaturePython", record.type)
             Contact(obj)
             gui_hooks.new_object(obj)
+            highest += 1
+            obj.Number = highest
         children.append(obj)
-    for obj in children + orphans:
-        obj.Label = obj.Name  # frees the labels for the contacts that will take them
-    remove_after_recompute(doc, old[len(records):])
-    for index, (obj, record) in enumerate(zip(children, records)):
-        number = base + index + 1
-        obj.ContactType = record.type
-        obj.Number = number
-        obj.BodyA, obj.BodyB = record.a, record.b
-        obj.FacesA = _face_links(bodies[record.body_a], record.faces_a)
-        obj.FacesB = _face_links(bodies[record.body_b], record.faces_b)
-        obj.Area = record.area
-        obj.Partial = record.partial
-        obj.Span = record.span
-        obj.Radius = record.radius
-        obj.HalfAngle = record.half_angle
-        obj.Point = FreeCAD.Vector(*record.point)
-        obj.Direction = FreeCAD.Vector(*record.direction)
-        obj.Label = contact_label(record.type, number, record.a, record.b)
-        obj.Label2 = contact_label2(record)
-    group.Group = children + others
+    vanished = [o for o in old if o not in children]
+    remove_after_recompute(doc, vanished + orphans)
+    for obj, record in zip(children, records):
+        set_if_changed(obj, "ContactType", record.type)
+        set_if_changed(obj, "BodyA", record.a)
+        set_if_changed(obj, "BodyB", record.b)
+        set_if_changed(obj, "FacesA", _face_links(bodies[record.body_a], record.faces_a))
+        set_if_changed(obj, "FacesB", _face_links(bodies[record.body_b], record.faces_b))
+        set_if_changed(obj, "Area", record.area)
+        set_if_changed(obj, "Partial", record.partial)
+        set_if_changed(obj, "Span", record.span)
+        set_if_changed(obj, "Radius", record.radius)
+        set_if_changed(obj, "HalfAngle", record.half_angle)
+        set_if_changed(obj, "Point", FreeCAD.Vector(*record.point))
+        set_if_changed(obj, "Direction", FreeCAD.Vector(*record.direction))
+        set_if_changed(obj, "Label", contact_label(record.type, obj.Number, record.a, record.b))
+        set_if_changed(obj, "Label2", contact_label2(record))
+    set_if_changed(group, "LastNumber", highest)
+    set_if_changed(group, "Group", children + others)
     for obj in children:
         obj.purgeTouched()  # results, not edits: no second execute of the group

@@ -22,6 +22,7 @@ PROXY_CLASSES = {
     "Contact": contact_objects.Contact,
     "Joint": contact_objects.Joint,
     "SimulationModel": simulation_model.SimulationModel,
+    "Interference": contact_objects.Interference,
 }
 # Version 1 files have no ProxyType: the properties only that kind has.
 SIGNATURES = (
@@ -44,7 +45,7 @@ def proxy_type(obj):
 
 def lost_proxy(obj):
     """Whether `obj` is a Contacts object whose proxy is gone."""
-    if obj.TypeId not in ("App::FeaturePython", "App::DocumentObjectGroupPython"):
+    if obj.TypeId not in ("App::FeaturePython", "App::DocumentObjectGroupPython", "Part::FeaturePython"):
         return False
     return getattr(obj, "Proxy", None) is None and proxy_type(obj) is not None
 

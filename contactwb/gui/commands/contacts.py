@@ -40,15 +40,11 @@ def _selected_contact():
     return next((o for o in FreeCADGui.Selection.getSelection(doc.Name) if is_contact(o)), None)
 
 
-def _in_transaction(doc, name, action):
-    """Runs action() as one undoable step."""
-    doc.openTransaction(name)
-    try:
-        action()
-    except Exception:
-        doc.abortTransaction()
-        raise
-    doc.commitTransaction()
+# View-only commands (isolate, show all, ghost, partitions, the table and
+# panels) change how things look, not the document: FreeCAD must open no undo
+# transaction for them (it otherwise records their visibility and
+# transparency changes under the command's name).
+VIEW_ONLY = {"CmdType": "NoTransaction"}
 
 
 class Contacts_ShowContactTable:
@@ -61,6 +57,7 @@ class Contacts_ShowContactTable:
             "ToolTip": "List every contact in a table: sort and filter by type, part, area or "
                        "partial; a row selects, zooms to or isolates its contact; the counts per "
                        "type and per pair below",
+            **VIEW_ONLY,
         }
 
     def IsActive(self):
@@ -79,6 +76,7 @@ class Contacts_IsolateContact:
             "Pixmap": contactwb.icon_path("Contacts_IsolateContact"),
             "MenuText": "Isolate contact",
             "ToolTip": "Show only the selected contact with its two parts, and zoom to it",
+            **VIEW_ONLY,
         }
 
     def IsActive(self):
@@ -87,7 +85,7 @@ class Contacts_IsolateContact:
     def Activated(self):
         from contactwb.gui import actions
         contact = _selected_contact()
-        _in_transaction(contact.Document, "Isolate contact", lambda: actions.isolate(contact))
+        actions.isolate(contact)
         actions.zoom_to(contact)
 
 
@@ -99,6 +97,7 @@ class Contacts_ShowAll:
             "Pixmap": contactwb.icon_path("Contacts_ShowAll"),
             "MenuText": "Show all",
             "ToolTip": "Show again the parts and contacts an isolation hid, and undo ghosting",
+            **VIEW_ONLY,
         }
 
     def IsActive(self):
@@ -107,7 +106,7 @@ class Contacts_ShowAll:
     def Activated(self):
         from contactwb.gui import actions
         doc = FreeCAD.ActiveDocument
-        _in_transaction(doc, "Show all", lambda: actions.show_all(doc))
+        actions.show_all(doc)
 
 
 class Contacts_GhostBodies:
@@ -119,6 +118,7 @@ class Contacts_GhostBodies:
             "MenuText": "Ghost parts",
             "ToolTip": "Make the parts' geometry see-through, so the painted contacts (also those "
                        "inside the assembly) stand out (again: make them solid)",
+            **VIEW_ONLY,
         }
 
     def IsActive(self):
@@ -128,7 +128,7 @@ class Contacts_GhostBodies:
         from contactwb.gui import actions
         doc = FreeCAD.ActiveDocument
         ghosted = not actions.is_ghosted(doc)
-        _in_transaction(doc, "Ghost parts", lambda: actions.set_ghosted(doc, ghosted))
+        actions.set_ghosted(doc, ghosted)
 
 
 class Contacts_ShowPartitions:
@@ -140,6 +140,7 @@ class Contacts_ShowPartitions:
             "MenuText": "Show partitions",
             "ToolTip": "Colour every partition (adjacent faces on one surface) of the selected parts, "
                        "or of all visible parts, by surface type, with a legend (again: hide them)",
+            **VIEW_ONLY,
         }
 
     def IsActive(self):
@@ -218,6 +219,7 @@ class Contacts_ShowJoints:
             "MenuText": "Joints and liaison graph",
             "ToolTip": "Show the assembly's degrees of freedom, its rigid groups and the liaison graph "
                        "of the selected analysis (after Derive joints)",
+            **VIEW_ONLY,
         }
 
     def IsActive(self):

@@ -106,6 +106,7 @@ class ContactOverlay:
         self.path_names = set()  # names of the objects on the body paths
         self.names = ()        # the contacts drawn, in order
         self.on_body_changed = None  # WeakMethod: a body moved or changed shape
+        self.on_recomputed = None  # WeakMethod: the document was recomputed, or undone
         self.triangles = 0
         self.faces = 0
         self.circles = 0

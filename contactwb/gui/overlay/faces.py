@@ -7,6 +7,11 @@ import FreeCAD
 import numpy
 
 CIRCLE_SEGMENTS = 96
+# The common areas already computed, by contact and by where its faces are
+# (see _common_key): a rebuild after a recompute or a move recomputes only
+# the contacts whose bodies moved or changed.
+COMMON_CACHE_SIZE = 4000
+_common_cache = {}
 
 
 def circle_points(centre, axis, radius, segments=CIRCLE_SEGMENTS):
@@ -84,7 +89,40 @@ class FaceSource:
         shape, deflection = self._object_shape(root, prefix)
         return shape.getElement(element), deflection
 
+    def _common_key(self, contact, fuzzy):
+        """Where the contact's faces are: each face's object path, placement
+        (of the placed shape), area and box; the same key, the same common
+        area (a body moved or reshaped changes its faces' keys)."""
+        key = [contact.Document.Name, contact.Name, round(fuzzy, 12)]
+        for links in (contact.FacesA, contact.FacesB):
+            for root, subnames in links:
+                for subname in subnames:
+                    prefix, _, element = subname.rpartition(".")
+                    prefix = prefix + "." if prefix else ""
+                    shape, deflection = self._object_shape(root, prefix)
+                    face = shape.getElement(element)
+                    box = face.BoundBox
+                    key.append((root.Name, subname, round(deflection, 9),
+                                tuple(round(v, 9) for v in shape.Placement.toMatrix().A),
+                                round(face.Area, 9),
+                                tuple(round(v, 9) for v in (box.XMin, box.YMin, box.ZMin,
+                                                            box.XMax, box.YMax, box.ZMax))))
+        return tuple(key)
+
     def common_meshes(self, contact, fuzzy):
+        """common_meshes_now(), from the cache when the contact's faces have
+        not moved or changed since it was last computed."""
+        try:
+            key = self._common_key(contact, fuzzy)
+        except Exception:  # a deleted or broken body: no caching
+            return self.common_meshes_now(contact, fuzzy)
+        if key not in _common_cache:
+            if len(_common_cache) >= COMMON_CACHE_SIZE:
+                _common_cache.pop(next(iter(_common_cache)))
+            _common_cache[key] = self.common_meshes_now(contact, fuzzy)
+        return _common_cache[key]
+
+    def common_meshes_now(self, contact, fuzzy):
         """[(key, mesh) of side A, (key, mesh) of side B]: the area the two
         sides' faces share (Boolean common with a fuzzy value, for drawing
         only), pushed out of each side's body; None when there is none to

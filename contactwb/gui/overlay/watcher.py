@@ -74,6 +74,27 @@ class OverlayWatcher:
         for name in [doc] if doc else FreeCAD.listDocuments():
             self._selection_changed(name)
 
+    def _document_settled(self, doc):
+        # a recompute (which may change nothing, leaving the analysis up to
+        # date), an undo or a redo: the paint's shown-while-current switch
+        try:
+            for overlay in list(self.overlays):
+                if overlay.doc_name == doc.Name and overlay.on_recomputed is not None:
+                    method = overlay.on_recomputed()
+                    if method is not None:
+                        method()
+        except Exception as error:
+            FreeCAD.Console.PrintWarning(f"Contacts: cannot follow the recompute: {error}\n")
+
+    def slotRecomputedDocument(self, doc):
+        self._document_settled(doc)
+
+    def slotUndoDocument(self, doc):
+        self._document_settled(doc)
+
+    def slotRedoDocument(self, doc):
+        self._document_settled(doc)
+
     def slotDeletedObject(self, obj):
         # a body deleted: its contacts lose their links; redraw without them
         try:

@@ -9,7 +9,7 @@ import FreeCADGui
 from PySide2 import QtCore, QtWidgets
 
 from contactwb.core.kinds import CONTACT_TYPES, SCOPES, TYPE_NAMES
-from contactwb.document.identify import is_contact, is_contact_analysis
+from contactwb.document.identify import is_alive, is_contact, is_contact_analysis
 from contactwb.gui import settings
 
 SCOPE_TEXTS = {"Document": "Whole document", "Selection": "Selected parts only",
@@ -210,7 +210,7 @@ class FindContactsPanel:
     def run(self):
         """Finds the contacts; True when done (the panel may close)."""
         from contactwb import core
-        from contactwb.make import make_contact_analysis
+        from contactwb.make import analysis_of_scope, make_contact_analysis
         linear, angular, types, gap = self.settings()
         if not types:
             self.status.setText("Tick at least one contact type.")
@@ -221,12 +221,14 @@ class FindContactsPanel:
             return False
         self.running, self.cancel_requested = True, False
         self.cancel.setEnabled(True)
+        # the same scope again: that analysis, updated in place (not a second one)
+        target = self.group if is_alive(self.doc, self.group) else analysis_of_scope(self.doc, scope, self.entries)
         self.doc.openTransaction("Find contacts")
         try:
             group = make_contact_analysis(self.doc, self.entries if scope != "Document" else None,
                                           linear, angular, self.progress, scope=scope,
                                           types=types if len(types) < len(CONTACT_TYPES) else None,
-                                          clearance_gap=gap, group=self.group)
+                                          clearance_gap=gap, group=target)
         except core.Cancelled:
             self.doc.abortTransaction()
             self.status.setText("Cancelled: nothing changed.")
@@ -244,8 +246,11 @@ class FindContactsPanel:
         self.doc.commitTransaction()
         self.group = self.result = group
         self.progress_bar.setValue(1000)
-        message = (f"{len(group.Group)} contacts between {group.BodyCount} bodies "
+        message = (f"{group.ContactCount} contacts between {group.BodyCount} bodies "
                    f"({', '.join(group.Summary) or 'none'})")
+        if group.InterferenceCount:
+            message += (f"; {group.InterferenceCount} interference{'s' if group.InterferenceCount > 1 else ''} "
+                        f"(overlapping material): " + "; ".join(group.Interferences))
         self.status.setText(message)
         FreeCAD.Console.PrintMessage(f"Contacts: {message}\n")
         from contactwb.gui.panels import contact_table

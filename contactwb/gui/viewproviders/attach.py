@@ -5,10 +5,11 @@ the objects of a document restored without them (made headless, or saved
 without the workbench)."""
 import FreeCAD
 
-from contactwb.document.identify import (CONTACT, CONTACT_ANALYSIS, JOINT, SIMULATION_MODEL, is_contact,
+from contactwb.document.identify import (CONTACT, CONTACT_ANALYSIS, INTERFERENCE, JOINT, SIMULATION_MODEL, is_contact,
                                          is_contact_analysis, is_joint, is_simulation_model, proxy_kind)
 from contactwb.gui.viewproviders.contact import ViewProviderContact
 from contactwb.gui.viewproviders.contact_analysis import ViewProviderContactAnalysis
+from contactwb.gui.viewproviders.interference import ViewProviderInterference
 from contactwb.gui.viewproviders.joint import ViewProviderJoint
 from contactwb.gui.viewproviders.simulation_model import ViewProviderSimulationModel
 
@@ -17,6 +18,7 @@ VIEW_PROVIDERS = {
     CONTACT: ViewProviderContact,
     JOINT: ViewProviderJoint,
     SIMULATION_MODEL: ViewProviderSimulationModel,
+    INTERFERENCE: ViewProviderInterference,
 }
 
 
@@ -69,6 +71,8 @@ def attach_view_providers(doc_name):
                     given |= give_view_provider(child, ViewProviderContact)
             if given:
                 obj.ViewObject.Proxy.rebuild()
+        elif proxy_kind(obj) == INTERFERENCE:
+            give_view_provider(obj, ViewProviderInterference)
         elif is_joint(obj) and give_view_provider(obj, ViewProviderJoint):
             obj.ViewObject.Proxy.redraw()
         elif is_simulation_model(obj) and \

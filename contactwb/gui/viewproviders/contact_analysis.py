@@ -33,6 +33,7 @@ class ViewProviderContactAnalysis(ViewProvider):
         self.overlay = ContactOverlay(vobj.Object.Document.Name)
         # weak: the overlay must not keep a closed document's view provider alive
         self.overlay.on_body_changed = weakref.WeakMethod(self.schedule_rebuild)
+        self.overlay.on_recomputed = weakref.WeakMethod(self.update_switch)
         self.switch = coin.SoSwitch()
         self.switch.setName("ContactsSwitch")
         self.switch.addChild(self.overlay.root)
@@ -89,12 +90,15 @@ class ViewProviderContactAnalysis(ViewProvider):
             return
         try:
             self.Object.ViewObject.Visibility  # raises once the group is deleted
-            restoring = self.Object.Document.Restoring
+            document = self.Object.Document
+            busy = document.Restoring or document.Recomputing or document.Transacting
         except Exception:
             return
-        if restoring:
-            # FreeCAD processes events while it opens a document: the bodies'
-            # visibility and the group's state are not final yet
+        if busy:
+            # FreeCAD processes events while it opens a document, and the
+            # search's progress while it recomputes: the bodies' visibility,
+            # the contacts and the group's state are not final yet (drawing
+            # now would draw again for every change: once per recompute)
             from PySide2 import QtCore
             self._scheduled = True
             QtCore.QTimer.singleShot(RESTORE_RETRY_MS, self._deferred_rebuild)

@@ -1,0 +1,319 @@
+"""Runs inside the FreeCAD GUI (freecad tests/gui/day_session.py under Xvfb)
+for tests/gui/test_gui_day.py: issue 21's designer's day replayed with the
+GUI's own commands on the motor. Find contacts (twice, nothing selected);
+delete Screw-4, recompute, undo, derive joints, save and reopen; move a part,
+recompute, undo; ghost, isolate, show all. Each step records what the
+document holds afterwards (objects, names, numbers, labels, undo names) and
+its duration; screenshots go to $CONTACTS_GUI_OUT. Each step records its own
+traceback, so one failure does not hide the others."""
+import json
+import os
+import re
+import tempfile
+import time
+import traceback
+
+import FreeCAD
+import FreeCADGui
+from PySide2 import QtCore, QtWidgets
+from pivy import coin
+
+out_dir = os.environ["CONTACTS_GUI_OUT"]
+report = {"errors": {}, "times": {}}
+state = {}
+LABEL = re.compile(r"^(PLF|CLJ|CJU|SPF|LAF|SPT|TRF) (\d+): (.+) \u2013 (.+)$")
+
+
+def step(function):
+    """Runs one step; its exception goes to the report under its name."""
+    try:
+        function()
+    except Exception:
+        report["errors"][function.__name__] = traceback.format_exc()
+    settle()
+
+
+def settle():
+    for _ in range(5):  # deferred work: view providers attached, drawings rebuilt
+        FreeCADGui.updateGui()
+
+
+class Timer:
+    """Times one user action (wall clock, printed by the test)."""
+
+    def __init__(self, name):
+        self.name = name
+
+    def __enter__(self):
+        self.start = time.perf_counter()
+
+    def __exit__(self, *exc):
+        settle()
+        report["times"][self.name] = round(time.perf_counter() - self.start, 3)
+
+
+def save_view(name, width=900, height=650):
+    settle()
+    path = os.path.join(out_dir, name)
+    FreeCADGui.activeDocument().activeView().saveImage(path, width, height, "White")
+    return path
+
+
+def report_view_text():
+    texts = []
+    for dock in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDockWidget):
+        if dock.objectName() == "Report view":
+            texts += [edit.toPlainText() for edit in dock.findChildren(QtWidgets.QTextEdit)]
+    return "\n".join(texts)
+
+
+def new_report_text():
+    """What the Report view printed since the last call."""
+    text = report_view_text()
+    seen = state.get("report_seen", 0)
+    state["report_seen"] = len(text)
+    return text[seen:]
+
+
+def answer_dialogs():
+    """Accepts the question a command asks (Std_Delete's 'the analysis
+    depends on it'), as the designer did."""
+    for widget in QtWidgets.QApplication.topLevelWidgets():
+        if isinstance(widget, QtWidgets.QMessageBox) and widget.isVisible():
+            button = widget.button(QtWidgets.QMessageBox.Yes) or widget.button(QtWidgets.QMessageBox.Ok)
+            if button is not None:
+                button.click()
+
+
+def run(command):
+    """A GUI command, as from its menu or toolbar."""
+    timer = QtCore.QTimer()
+    timer.timeout.connect(answer_dialogs)
+    timer.start(100)
+    try:
+        FreeCADGui.runCommand(command)
+    finally:
+        timer.stop()
+    settle()
+
+
+def analyses(doc):
+    from contactwb.document.identify import analyses as found
+    return found(doc)
+
+
+def contacts_of(group):
+    from contactwb.document.identify import is_contact
+    return [c for c in group.Group if is_contact(c)]
+
+
+def joints_of(group):
+    from contactwb.document.identify import is_joint
+    return [c for c in group.Group if is_joint(c)]
+
+
+def snapshot(doc, group):
+    """What the analysis holds: its contacts by name (number, label,
+    bodies), whether every contact is in it, its paint, the undo names."""
+    from contactwb.document.identify import is_contact
+    contacts = contacts_of(group)
+    labels_ok = all(LABEL.match(c.Label) and LABEL.match(c.Label).group(2) == str(c.Number)
+                    and LABEL.match(c.Label).group(1) == c.ContactType
+                    and LABEL.match(c.Label).groups()[2:] == (c.BodyA, c.BodyB) for c in contacts)
+    proxy = group.ViewObject.Proxy
+    return {"contacts": {c.Name: [c.Number, c.Label, c.BodyA, c.BodyB] for c in contacts},
+            "count": len(contacts), "labels_ok": labels_ok,
+            "all_in_group": sorted(o.Name for o in doc.Objects if is_contact(o)) == sorted(c.Name for c in contacts),
+            "numbers_unique": len({c.Number for c in contacts}) == len(contacts),
+            "analyses": len(analyses(doc)), "touched": "Touched" in group.State,
+            "drawn": len(proxy.overlay.names),
+            "paint_shown": proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL,
+            "undo": list(doc.UndoNames), "redo": list(doc.RedoNames)}
+
+
+def run_panel():
+    """Find contacts from the toolbar with nothing selected; OK."""
+    from contactwb.gui.panels import task_panel
+    FreeCADGui.Selection.clearSelection()
+    run("Contacts_FindContacts")
+    return task_panel.current.accept()
+
+
+def open_sample():
+    FreeCADGui.getMainWindow().resize(1400, 1000)
+    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    run("Contacts_OpenSample")
+    doc = FreeCAD.ActiveDocument
+    doc.UndoMode = 1
+    state["doc"] = doc
+    new_report_text()
+
+
+def find_contacts_twice():
+    """Item 3: a second Find contacts on the same scope updates the analysis."""
+    doc = state["doc"]
+    with Timer("find_contacts_panel"):
+        accepted = run_panel()
+    (group,) = analyses(doc)
+    state["group"] = group
+    first = snapshot(doc, group)
+    with Timer("find_contacts_again_panel"):
+        again = run_panel()
+    report["find_twice"] = {"accepted": [accepted, again], "first": first, "second": snapshot(doc, group),
+                            "labels": sorted(o.Label for o in doc.Objects if o.TypeId == "App::DocumentObjectGroupPython")}
+
+
+def delete_recompute_undo_derive():
+    """Item 1: Find contacts, delete Screw-4, Recompute, Undo, Derive joints."""
+    doc, group = state["doc"], state["group"]
+    before = snapshot(doc, group)
+    screw = doc.getObjectsByLabel("Screw-4")[0]
+    screw_name = screw.Name
+    result = {"before": before, "screw_contacts": sum("Screw-4" in (c.BodyA, c.BodyB) for c in contacts_of(group))}
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(screw)
+    with Timer("delete_screw"):
+        run("Std_Delete")  # FreeCAD's Delete recomputes: the contacts go in its one entry
+    result["deleted"] = doc.getObject(screw_name) is None
+    result["after_delete"] = snapshot(doc, group)
+    with Timer("recompute_after_delete"):
+        run("Std_Refresh")
+    result["after_recompute"] = snapshot(doc, group)
+    result["png_deleted"] = save_view("day_screw4_deleted.png")
+    with Timer("undo_delete"):
+        run("Std_Undo")
+    result["screw_back"] = doc.getObject(screw_name) is not None
+    result["after_undo"] = snapshot(doc, group)
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    with Timer("derive_joints"):
+        run("Contacts_DeriveJoints")
+    FreeCADGui.Control.closeDialog()
+    result["after_derive"] = snapshot(doc, group)
+    result["joints"] = len(joints_of(group))
+    result["joint_labels_ok"] = all(re.match(r"^J\d+ \w+: .+ \u2013 .+$", j.Label) for j in joints_of(group))
+    result["report"] = new_report_text()
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewIsometric()
+    view.fitAll()
+    result["png"] = save_view("day_undo_then_joints.png")
+    # save, reopen: no warnings, the same contacts and joints, drawn
+    path = os.path.join(tempfile.mkdtemp(prefix="contacts-day-"), "motor_day.FCStd")
+    names = sorted(before["contacts"])
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    settle()
+    new_report_text()
+    with Timer("reopen"):
+        doc = FreeCAD.openDocument(path)
+        settle()
+        QtCore.QThread.msleep(200)
+        settle()
+    group = analyses(doc)[0]
+    result["reopened"] = snapshot(doc, group)
+    result["reopened_names_same"] = sorted(snapshot(doc, group)["contacts"]) == names
+    result["reopened_joints"] = len(joints_of(group))
+    result["reopen_report"] = new_report_text()
+    state["doc"], state["group"] = doc, group
+    report["delete_undo"] = result
+
+
+def move_recompute_undo():
+    """Item 2: move a part, recompute, one Ctrl+Z; identity kept (item 4)."""
+    doc, group = state["doc"], state["group"]
+    doc.UndoMode = 1
+    before = snapshot(doc, group)
+    cover = doc.getObjectsByLabel("Back-cover")[0]
+    placement = FreeCAD.Placement(cover.Placement)
+    doc.openTransaction("Move Back-cover")  # as the Placement dialog records it
+    cover.Placement = FreeCAD.Placement(placement.Base + FreeCAD.Vector(0, 0, -40), placement.Rotation)
+    doc.commitTransaction()
+    settle()
+    result = {"before": before, "touched_after_move": "Touched" in group.State}
+    with Timer("recompute_after_move"):
+        run("Std_Refresh")
+    result["after_recompute"] = snapshot(doc, group)
+    result["png_moved"] = save_view("day_cover_moved.png")
+    with Timer("undo_move"):
+        run("Std_Undo")
+    result["placement_restored"] = cover.Placement.multiply(placement.inverse()).isIdentity()
+    result["after_undo"] = snapshot(doc, group)
+    with Timer("recompute_after_undo"):
+        doc.recompute()
+    result["after_undo_recompute"] = snapshot(doc, group)
+    report["move_undo"] = result
+
+
+def interferences():
+    """Item 5: Screw-1 pushed 0.6 mm sideways into its holes: the CLI's three
+    interferences as objects with their solids (red), in the export and the
+    panel's message; one Ctrl+Z removes them with the move."""
+    from contactwb.document import export
+    from contactwb.document.identify import is_interference
+    doc, group = state["doc"], state["group"]
+    screw = doc.getObjectsByLabel("Screw-1")[0]
+    placement = FreeCAD.Placement(screw.Placement)
+    doc.openTransaction("Move Screw-1")
+    screw.Placement = FreeCAD.Placement(placement.Base + FreeCAD.Vector(0.6, 0, 0), placement.Rotation)
+    doc.commitTransaction()
+    with Timer("recompute_with_interferences"):
+        run("Std_Refresh")
+    found = [o for o in group.Group if is_interference(o)]
+    result = {"objects": sorted([o.BodyA, o.BodyB, o.Volume.Value, o.Shape.Volume, o.Label, o.Label2,
+                                 list(o.ViewObject.ShapeColor[:3]), o.ViewObject.Visibility] for o in found),
+              "count": group.InterferenceCount, "lines": list(group.Interferences),
+              "export": export.to_json(group)["interferences"],
+              "undo": list(doc.UndoNames[:2])}
+    # the picture: the overlaps in red on the see-through screw, the rest hidden
+    shown = {o.Name: o.ViewObject.Visibility for o in doc.Objects if o.TypeId == "Part::Feature"}
+    for obj in doc.Objects:
+        if obj.TypeId == "Part::Feature":
+            obj.ViewObject.Visibility = obj is screw
+    screw.ViewObject.Transparency = 75
+    for joint in joints_of(group):
+        joint.ViewObject.Visibility = False
+    switch = group.ViewObject.Proxy.switch
+    switch.whichChild.setValue(coin.SO_SWITCH_NONE)
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewIsometric()
+    view.fitAll()
+    result["png"] = save_view("day_interferences.png")
+    result["display_modes"] = [o.ViewObject.DisplayMode for o in found]
+    for name, visible in shown.items():
+        doc.getObject(name).ViewObject.Visibility = visible
+    screw.ViewObject.Transparency = 0
+    for joint in joints_of(group):
+        joint.ViewObject.Visibility = True
+    switch.whichChild.setValue(coin.SO_SWITCH_ALL)
+    run("Std_Undo")
+    result["after_undo"] = {"interferences": [o.Name for o in doc.Objects if is_interference(o)],
+                            "snapshot": snapshot(doc, group)}
+    report["interferences"] = result
+
+
+def view_only_actions():
+    """Item 2: ghost, isolate, show all never enter the undo stack."""
+    doc, group = state["doc"], state["group"]
+    undo = list(doc.UndoNames)
+    run("Contacts_GhostBodies")
+    ghosted_undo = list(doc.UndoNames)
+    contact = contacts_of(group)[0]
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(contact)
+    run("Contacts_IsolateContact")
+    isolated_undo = list(doc.UndoNames)
+    run("Contacts_ShowAll")
+    report["view_only"] = {"before": undo, "ghost": ghosted_undo, "isolate": isolated_undo,
+                           "show_all": list(doc.UndoNames)}
+
+
+def report_view():
+    report["report_view"] = report_view_text()
+
+
+for function in (open_sample, find_contacts_twice, delete_recompute_undo_derive, move_recompute_undo,
+                 interferences, view_only_actions, report_view):
+    step(function)
+with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
+    json.dump(report, stream, indent=1)
+os._exit(0)
