@@ -126,9 +126,8 @@ struct TrialResult {
   double max_penetration_mm = 0, max_force_n = 0;
   std::vector<TrialSample> path;
   double setup_seconds = 0;
-  // Real-time hygiene of a realtime run (servo_loop.h): late wake-ups and
-  // whether the process' memory was locked.
-  std::uint64_t late_wakeups = 0;
+  // Real-time hygiene of a realtime run (servo_loop.h): whether the
+  // process' memory was locked (late wake-ups: above).
   bool memory_locked = false;
 };
 
