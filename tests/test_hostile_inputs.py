@@ -102,7 +102,8 @@ def test_body_tolerances_follow_their_own_size():
     import Part
     small, large = Part.makeBox(1, 1, 1), Part.makeBox(1000, 1000, 10)
     small.translate(FreeCAD_vector(0, 0, 10))
-    raw = core.contactcore.find_contacts(core.assembly_from_shapes([("Small", small), ("Large", large)]))
+    from contactwb.document.shapes import assembly_from_shapes
+    raw = core.contactcore.find_contacts(assembly_from_shapes([("Small", small), ("Large", large)]))
     assert raw.partitions[0].tolerances.linear == pytest.approx(1e-5 * math.sqrt(3), rel=1e-6)
     assert raw.partitions[1].tolerances.linear == pytest.approx(1e-5 * math.sqrt(2e6 + 100), rel=1e-6)
     assert raw.tolerances.linear == raw.partitions[1].tolerances.linear

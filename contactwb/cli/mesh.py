@@ -94,14 +94,12 @@ def _mesh(argv):
               f"min angle {body['min_angle']:.1f} deg, aspect p50 {body['aspect_ratio']['p50']:.2f} "
               f"p99 {body['aspect_ratio']['p99']:.2f} -> {body['file']}")
         collision = body.get("collision")
-        if collision is None:
-            continue
-        if collision["simplified"]:
+        if collision is not None and collision["simplified"]:
             change = (f"{len(collision['removed_faces'])} faces of small features removed"
                       if collision["removed_faces"] else "no small feature")
             print(f"  collision model: {collision['triangles']} triangles, {change}, "
                   f"Hausdorff {collision['hausdorff']:.3f} mm <= {args.envelope:g} -> {collision['file']}")
-        else:
+        elif collision is not None:
             print(f"  collision model: {collision['triangles']} triangles, {collision['message']} "
                   f"-> {collision['file']}")
         if body.get("invalid"):

@@ -59,22 +59,29 @@ void bind_contacts(py::module_& m) {
       });
 
   py::class_<HigherPair>(m, "HigherPair", "A point or line contact (apart from the surface contacts).")
-      .def_property_readonly("type", [](const HigherPair& h) { return std::string(to_string(h.type)); })
-      .def_property_readonly("kind", [](const HigherPair& h) { return std::string(h.is_line() ? "line" : "point"); })
-      .def_readonly("body_a", &HigherPair::body_a)
-      .def_readonly("body_b", &HigherPair::body_b)
-      .def_readonly("partition_a", &HigherPair::partition_a)
-      .def_readonly("partition_b", &HigherPair::partition_b)
-      .def_readonly("faces_a", &HigherPair::faces_a)
-      .def_readonly("faces_b", &HigherPair::faces_b)
-      .def_property_readonly("face_names_a", [](const HigherPair& h) { return face_names(h.faces_a); })
-      .def_property_readonly("face_names_b", [](const HigherPair& h) { return face_names(h.faces_b); })
-      .def_property_readonly("point", [](const HigherPair& h) { return to_tuple(h.point); })
+      .def_property_readonly("type", [](const HigherPair& h) { return std::string(to_string(h.type)); },
+          "'sphere_on_plane', 'sphere_on_cylinder', 'cylinder_on_plane' or 'cylinder_on_cylinder'")
+      .def_property_readonly("kind", [](const HigherPair& h) { return std::string(h.is_line() ? "line" : "point"); },
+          "'point' or 'line'")
+      .def_readonly("body_a", &HigherPair::body_a, "index into Assembly.bodies")
+      .def_readonly("body_b", &HigherPair::body_b, "index into Assembly.bodies")
+      .def_readonly("partition_a", &HigherPair::partition_a, "partition id within body_a")
+      .def_readonly("partition_b", &HigherPair::partition_b, "partition id within body_b")
+      .def_readonly("faces_a", &HigherPair::faces_a, "1-based FaceN indices of body_a's faces in contact")
+      .def_readonly("faces_b", &HigherPair::faces_b, "1-based FaceN indices of body_b's faces in contact")
+      .def_property_readonly("face_names_a", [](const HigherPair& h) { return face_names(h.faces_a); },
+          "['FaceN', ...] of body_a")
+      .def_property_readonly("face_names_b", [](const HigherPair& h) { return face_names(h.faces_b); },
+          "['FaceN', ...] of body_b")
+      .def_property_readonly("point", [](const HigherPair& h) { return to_tuple(h.point); },
+          "(x, y, z) mm: the point contact, or the middle of the line")
       .def_property_readonly("normal", [](const HigherPair& h) { return to_tuple(h.normal); },
-                             "out of body a's material")
-      .def_property_readonly("start", [](const HigherPair& h) { return to_tuple(h.start); })
-      .def_property_readonly("end", [](const HigherPair& h) { return to_tuple(h.end); })
-      .def_readonly("length", &HigherPair::length)
+                             "unit (x, y, z) out of body a's material")
+      .def_property_readonly("start", [](const HigherPair& h) { return to_tuple(h.start); },
+          "(x, y, z) mm: a line contact's first end (a point contact: the point)")
+      .def_property_readonly("end", [](const HigherPair& h) { return to_tuple(h.end); },
+          "(x, y, z) mm: a line contact's other end (a point contact: the point)")
+      .def_readonly("length", &HigherPair::length, "mm: a line contact's length (0: a point)")
       .def("__repr__", [](const HigherPair& h) {
         return std::string("<HigherPair ") + to_string(h.type) + " bodies " + std::to_string(h.body_a) + "-" +
                std::to_string(h.body_b) + ">";

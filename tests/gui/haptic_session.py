@@ -85,8 +85,13 @@ def pick_joints(doc, axis):
                               "label": panel.joint_label.text()}
     # The hand pulls it out along the axis and sideways: held, it slides out on the chosen axis.
     panel.session.set_hand_target([0.2, 0.1, 12.0], [0.0, 0.0, 0.0])
-    wait(1.5)
-    pulled = panel.session.snapshot()
+    # Real time: how far it gets in a given wall time depends on the machine's load (a tick in
+    # contact costs ms here), so wait until it has slid out, 10 s at most.
+    for _ in range(100):
+        wait(0.1)
+        pulled = panel.session.snapshot()
+        if pulled["translate"][2] > 6.0:
+            break
     report["chosen_pulled"] = {"translate": pulled["translate"], "rotate_deg": pulled["rotate_deg"],
                                "held": pulled["held"]}
     FreeCADGui.activeDocument().activeView().fitAll()

@@ -340,6 +340,14 @@ def stale_after_move_and_delete():
     FreeCADGui.updateGui()
     result["after_recompute"] = len(group.Group)
     result["touched_after_recompute"] = "Touched" in group.State
+    # The paint is redrawn once the recompute is over (a deferred rebuild, not during it): let the
+    # event loop run it, 3 s at most.
+    import time
+    for _ in range(60):
+        if proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL:
+            break
+        time.sleep(0.05)
+        FreeCADGui.updateGui()
     result["paint_shown_again"] = proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL
     result["drawn"] = len(proxy.overlay.names)
     axis.Placement = placement

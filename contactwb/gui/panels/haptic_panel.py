@@ -509,8 +509,8 @@ class HapticTrialPanel:
         doc = self.obj.Document  # the moved object's (a link's own, not its target's)
         doc.openTransaction("Haptic trial")
         self.obj.Placement = final
+        doc.recompute()  # inside: the contacts found again are part of this one undo entry
         doc.commitTransaction()
-        doc.recompute()
         FreeCADGui.Control.closeDialog()
         return True
 

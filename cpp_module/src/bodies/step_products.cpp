@@ -224,10 +224,10 @@ ProductPlanResult plan_products(const StepReader& reader) {
     if (p1 == child->second && p2 == parent->second) occurrence.reversed = false;
     else if (p2 == child->second && p1 == parent->second) occurrence.reversed = true;
     else return fail("a placement whose representations are not its occurrence's products (" + entity_ref(model, nauo) + ")");
-    // XDE's name for an occurrence: its description, else its name, else its id.
+    // XDE's name for an occurrence: its description, else its name (else its product's, below).
     if (nauo->HasDescription() && useful(nauo->Description())) occurrence.name = utf8(reader.name_of(nauo->Description()->String()));
     else if (useful(nauo->Name())) occurrence.name = utf8(reader.name_of(nauo->Name()->String()));
-    else if (!nauo->Id().IsNull()) occurrence.name = utf8(reader.name_of(nauo->Id()->String()));
+    // no description nor name: the product's name is used below (issue 25: not the id)
     is_child[child->second] = 1;
     plan->products[parent->second].children.push_back(std::move(occurrence));
   }

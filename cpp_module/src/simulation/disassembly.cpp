@@ -449,7 +449,8 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
         parts[joint.body_a].directions.push_back({-d.X(), -d.Y(), -d.Z()});
       }
   DisassemblyOptions resolved = options;
-  if (!(resolved.tolerance > 0)) resolved.tolerance = 2 * mesh_options.deflection;
+  if (resolved.tolerance == 0) resolved.tolerance = 2 * mesh_options.deflection;  // 0: the default
+  // anything else not positive and finite is refused by plan_disassembly
   DisassemblyResult planned = plan_disassembly(parts, found.contacts, resolved, progress);
   planned.messages.insert(planned.messages.begin(), result.messages.begin(), result.messages.end());
   return planned;
