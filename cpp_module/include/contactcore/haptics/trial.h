@@ -24,6 +24,9 @@ struct SceneOptions {
   // stage's overlap depth (its deepest vertex) sees a long face crossing
   // another body mid-way (a pin's side across a bore's rim); 0: no bound.
   double moving_max_edge = 1.0;
+  // Closed-form contacts between analytic partitions in the loop's contact
+  // query, the meshes for the rest (StageCollision::use_analytic).
+  bool analytic = true;
 };
 
 // Everything the loop needs about the assembly, built once (OCCT here only).
