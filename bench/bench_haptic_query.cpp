@@ -237,18 +237,18 @@ int main(int argc, char** argv) {
       const int b = static_cast<int>(body);
       benchmark::RegisterBenchmark(("contact_query/closed_form/" + name).c_str(),
                                    [part, b](benchmark::State& s) { BM_ContactQuery(s, part, b, true); })
-          ->Iterations(2000)->Unit(benchmark::kMicrosecond);
+          ->Iterations(200)->Unit(benchmark::kMicrosecond);
       benchmark::RegisterBenchmark(("contact_query/meshes_only/" + name).c_str(),
                                    [part, b](benchmark::State& s) { BM_ContactQuery(s, part, b, false); })
-          ->Iterations(300)->Unit(benchmark::kMicrosecond);
+          ->Iterations(60)->Unit(benchmark::kMicrosecond);
     }
     const std::string part_name = m.parts[part];
     benchmark::RegisterBenchmark(("servo_tick/closed_form/" + part_name).c_str(),
                                  [part](benchmark::State& s) { BM_ServoTick(s, part, true); })
-        ->Iterations(3000)->Unit(benchmark::kMicrosecond);
+        ->Iterations(200)->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark(("servo_tick/meshes_only/" + part_name).c_str(),
                                  [part](benchmark::State& s) { BM_ServoTick(s, part, false); })
-        ->Iterations(1000)->Unit(benchmark::kMicrosecond);
+        ->Iterations(60)->Unit(benchmark::kMicrosecond);
     for (int priority : {0, 80})
       benchmark::RegisterBenchmark(("realtime_loop/" + std::string(priority ? "fifo80/" : "normal/") + part_name).c_str(),
                                    [part, priority](benchmark::State& s) { BM_RealtimeLoop(s, part, priority); })
