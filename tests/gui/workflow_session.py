@@ -189,7 +189,7 @@ def table():
     FreeCADGui.updateGui()
     widget = contact_table.dock().widget()
     state["table"] = widget
-    result = {"rows": widget.table.rowCount(), "summary": widget.summary.text()}
+    result = {"rows": widget.table.rowCount(), "summary": widget.summary.toPlainText()}
     widget.table.sortItems(4, QtCore.Qt.DescendingOrder)
     areas = [widget.table.item(r, 4).data(QtCore.Qt.UserRole + 1) for r in range(widget.table.rowCount())]
     result["sorted_desc"] = areas == sorted(areas, reverse=True)
