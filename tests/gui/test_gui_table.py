@@ -63,11 +63,11 @@ def test_dock_leaves_the_3d_view_its_room(run):
 
 def test_plane_contacts_show_their_extent(run):
     cells = run["table"]["cells"]
-    # a PLF: no span, no radius, its common face's 10 x 6 mm
-    assert cells["PLF"] == [["", "", "10 \u00d7 6"]]
+    # a PLF: no span, no radius, its common face's 10 x 6 mm (FreeCAD's Standard schema, 2 decimals)
+    assert cells["PLF"] == [["", "", "10.00 mm \u00d7 6.00 mm"]]
     # a pin's CLJ: the whole turn, its radius, no plane extent
-    assert cells["CLJ"] == [["360", "2", ""]]
-    assert run["table"]["headers"][7] == "Extent (mm)"
+    assert cells["CLJ"] == [["360.00 \u00b0", "2.00 mm", ""]]
+    assert run["table"]["headers"][4:8] == ["Area", "Span / DOF", "Radius", "Extent"]
 
 
 @pytest.mark.parametrize("kind", ["PLF", "CLJ"])

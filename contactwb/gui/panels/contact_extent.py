@@ -95,11 +95,13 @@ def plane_extent(contact):
 
 
 def extent_text(contact):
-    """The table's Extent cell: "40 × 5" for a plane contact, "" otherwise."""
+    """The table's Extent cell: "40.00 mm × 5.00 mm" for a plane contact
+    (the property editor's units), "" otherwise."""
+    from contactwb.document import units
     if contact.ContactType != "PLF":
         return ""
     try:
         extent = plane_extent(contact)
     except Exception:  # a broken body: the other columns still hold
         return "?"
-    return f"{extent[0]:.4g} \u00d7 {extent[1]:.4g}" if extent else ""
+    return f"{units.length_text(extent[0])} \u00d7 {units.length_text(extent[1])}" if extent else ""

@@ -8,12 +8,13 @@ import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from contactwb.core.kinds import CONTACT_TYPES
+from contactwb.document import units
 from contactwb.document.identify import is_contact, is_joint
 from contactwb.gui.overlay.colours import legend_colours
 from contactwb.gui.panels import contact_extent
 
-COLUMNS = ["#", "Type", "Part A", "Part B", "Area (mm\u00b2)", "Span (\u00b0) / DOF", "Radius (mm)", "Extent (mm)",
-           "Partial", "Analysis"]
+# Quantities written as the property editor writes them (contactwb.document.units)
+COLUMNS = ["#", "Type", "Part A", "Part B", "Area", "Span / DOF", "Radius", "Extent", "Partial", "Analysis"]
 NUMERIC = {0, 4, 5, 6}
 PARTIAL_COLUMN = 8
 DOCK_NAME = "ContactsTable"
@@ -173,9 +174,9 @@ class ContactTable(QtWidgets.QWidget):
                 _cell(str(contact.Number), contact.Number),
                 type_cell,
                 _cell(contact.BodyA), _cell(contact.BodyB),
-                _cell(f"{contact.Area.Value:.4g}", contact.Area.Value),
-                _cell(f"{contact.Span.Value:.0f}" if revolution else "", contact.Span.Value),
-                _cell(f"{contact.Radius.Value:.4g}" if revolution else "", contact.Radius.Value),
+                _cell(units.area_text(contact.Area.Value), contact.Area.Value),
+                _cell(units.angle_text(contact.Span.Value) if revolution else "", contact.Span.Value),
+                _cell(units.length_text(contact.Radius.Value) if revolution else "", contact.Radius.Value),
                 _cell(contact_extent.extent_text(contact)),
                 _cell("yes" if contact.Partial else ""),
                 _cell(group.Label if group else ""),

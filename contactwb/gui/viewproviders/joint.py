@@ -1,5 +1,7 @@
 """View provider of a Joint: its axis glyphs (contactwb.gui.overlay.joint_glyphs)
-over the bodies; double-click selects the faces of its contacts.
+over the bodies, labelled and pickable (a click on a glyph selects the
+joint); a selected joint (tree, view or joints panel) is drawn in the
+selection colour; double-click selects the faces of its contacts.
 
 Saved files name ViewProviderJoint (also by its old module,
 contactwb.gui.joint_view): a permanent name."""
@@ -12,6 +14,41 @@ from contactwb.gui.overlay.joint_glyphs import joint_glyphs
 from contactwb.gui.viewproviders.base import ViewProvider
 
 
+class _SelectionHighlight:
+    """One selection observer for every joint: redraws the joints whose
+    selected state changed, in the selection colour or their own."""
+
+    def __init__(self):
+        self.highlighted = set()  # (document name, joint name)
+
+    def _update(self, *_):
+        try:
+            from contactwb.document.identify import is_joint
+            selected = {(o.Document.Name, o.Name) for o in FreeCADGui.Selection.getSelection("*") if is_joint(o)}
+            for doc_name, name in selected ^ self.highlighted:
+                doc = FreeCAD.listDocuments().get(doc_name)
+                joint = doc.getObject(name) if doc else None
+                proxy = getattr(getattr(joint, "ViewObject", None), "Proxy", None)
+                if isinstance(proxy, ViewProviderJoint):
+                    proxy.highlighted = (doc_name, name) in selected
+                    proxy.redraw()
+            self.highlighted = selected
+        except Exception as error:  # an observer must never break the selection
+            FreeCAD.Console.PrintWarning(f"Contacts: joint highlight failed: {error}\n")
+
+    addSelection = removeSelection = setSelection = clearSelection = _update
+
+
+_highlight = None
+
+
+def _install_highlight():
+    global _highlight
+    if _highlight is None:
+        _highlight = _SelectionHighlight()
+        FreeCADGui.Selection.addObserver(_highlight)
+
+
 class ViewProviderJoint(ViewProvider):
     """Draws its Joint's glyphs (over the bodies: an annotation)."""
 
@@ -20,7 +57,9 @@ class ViewProviderJoint(ViewProvider):
         self.glyphs = coin.SoAnnotation()
         self.glyphs.setName("JointGlyphs")
         self.axes = self.arrows = 0
+        self.highlighted = False
         vobj.addDisplayMode(self.glyphs, "Glyphs")
+        _install_highlight()
 
     def getDisplayModes(self, vobj):
         return ["Glyphs"]
@@ -32,7 +71,7 @@ class ViewProviderJoint(ViewProvider):
         return mode
 
     def updateData(self, obj, prop):
-        if prop in ("AxisPoints", "AxisDirections", "Translations", "Centre", "GlyphLength"):
+        if prop in ("AxisPoints", "AxisDirections", "Translations", "Centre", "GlyphLength", "Label", "JointType"):
             self.redraw()
 
     def redraw(self):
@@ -41,7 +80,9 @@ class ViewProviderJoint(ViewProvider):
             return
         glyphs.removeAllChildren()
         try:
-            node, self.axes, self.arrows = joint_glyphs(self.Object)
+            from contactwb.gui.overlay.colours import selection_colour
+            node, self.axes, self.arrows = joint_glyphs(self.Object, getattr(self, "highlighted", False),
+                                                        selection_colour())
         except Exception as error:  # drawing only
             FreeCAD.Console.PrintWarning(f"Contacts: cannot draw joint '{self.Object.Label}': {error}\n")
             return
