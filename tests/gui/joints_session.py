@@ -161,7 +161,9 @@ def glyph_pick_and_labels():
     if hit is not None:
         # a real click there: the viewer's widget, Qt's y from the top
         widget = view.graphicsView().viewport()
-        position = QtCore.QPointF(hit[0], height - hit[1])
+        # the view's pixels (Coin's, y up) to the widget's (Qt's, y down; the GL viewport may be scaled)
+        position = QtCore.QPointF(hit[0] * widget.width() / width,
+                                  widget.height() - hit[1] * widget.height() / height)
         FreeCADGui.Selection.clearSelection()
         for kind, button, buttons in ((QtCore.QEvent.MouseMove, QtCore.Qt.NoButton, QtCore.Qt.NoButton),
                                       (QtCore.QEvent.MouseButtonPress, QtCore.Qt.LeftButton, QtCore.Qt.LeftButton),

@@ -39,7 +39,55 @@ class _SelectionHighlight:
     addSelection = removeSelection = setSelection = clearSelection = _update
 
 
+class _GlyphClicks:
+    """A left click in a 3D view whose picked object is a Joint selects that
+    joint (with Ctrl: adds it): FreeCAD's selection ignores a Python view
+    provider's own Coin nodes. One event callback per view."""
+
+    def __init__(self):
+        self.views = {}  # id(view) -> (view, callback)
+
+    def watch(self, doc_name):
+        gui_doc = FreeCADGui.getDocument(doc_name)
+        if gui_doc is None:
+            return
+        for view in gui_doc.mdiViewsOfType("Gui::View3DInventor"):
+            if id(view) in self.views:
+                continue
+            callback = view.addEventCallbackPivy(coin.SoMouseButtonEvent.getClassTypeId(),
+                                                 lambda cb, v=view: self.clicked(v, cb))
+            self.views[id(view)] = (view, callback)
+
+    def clicked(self, view, callback):
+        try:
+            event = callback.getEvent()
+            if event.getButton() != coin.SoMouseButtonEvent.BUTTON1 or event.getState() != coin.SoButtonEvent.UP:
+                return
+            position = event.getPosition().getValue()
+            info = view.getObjectInfo((int(position[0]), int(position[1])))
+            doc = FreeCAD.listDocuments().get(info["Document"]) if info else None
+            joint = doc.getObject(info["Object"]) if doc else None
+            proxy = getattr(getattr(joint, "ViewObject", None), "Proxy", None)
+            if not isinstance(proxy, ViewProviderJoint):
+                return
+            add = event.wasCtrlDown()
+            doc_name, name = joint.Document.Name, joint.Name
+
+            def select():  # after FreeCAD's own handling of the click, which clears the selection
+                target = FreeCAD.listDocuments().get(doc_name)
+                target = target.getObject(name) if target else None
+                if target is not None:
+                    if not add:
+                        FreeCADGui.Selection.clearSelection()
+                    FreeCADGui.Selection.addSelection(target)
+            from PySide2 import QtCore
+            QtCore.QTimer.singleShot(0, select)
+        except Exception as error:  # a click must never raise into the view
+            FreeCAD.Console.PrintWarning(f"Contacts: joint pick failed: {error}\n")
+
+
 _highlight = None
+_clicks = _GlyphClicks()
 
 
 def _install_highlight():
@@ -87,9 +135,21 @@ class ViewProviderJoint(ViewProvider):
             FreeCAD.Console.PrintWarning(f"Contacts: cannot draw joint '{self.Object.Label}': {error}\n")
             return
         glyphs.addChild(node)
+        try:
+            _clicks.watch(self.Object.Document.Name)
+        except Exception:  # no view yet (a document opened without the GUI): the next redraw
+            pass
 
     def getIcon(self):
         return contactwb.icon_path("Contacts_DeriveJoints")
+
+    # FreeCAD's unified selection picks the glyph's path and asks which
+    # element it is (the whole joint); _GlyphClicks selects it on a click.
+    def useNewSelectionModel(self):
+        return True
+
+    def getElementPicked(self, picked_point):
+        return ""
 
     def doubleClicked(self, vobj):
         """Selects the faces of the joint's contacts."""
