@@ -44,10 +44,10 @@ def contact_box(contact):
     return contact_extent.contact_box(contact)
 
 
-def zoom_to(contact, slack=1.3):
+def zoom_to(contact, margin=1.3):
     """Frames the contact: the camera, keeping its direction, fitted on the
-    bounding box of the contact's common region (Coin's viewBoundingBox, the
-    box filling about 1/slack of the smaller side of the view)."""
+    bounding box of the contact's common region (Coin's viewBoundingBox: the
+    box's bounding sphere fills 1/margin of the smaller side of the view)."""
     from pivy import coin
     box = contact_box(contact)
     if not box.isValid():
@@ -59,7 +59,7 @@ def zoom_to(contact, slack=1.3):
     bounds = coin.SbBox3f(box.XMin - pad, box.YMin - pad, box.ZMin - pad, box.XMax + pad, box.YMax + pad,
                           box.ZMax + pad)
     width, height = view.getSize()
-    camera.viewBoundingBox(bounds, width / max(height, 1), slack)
+    camera.viewBoundingBox(bounds, width / max(height, 1), max(margin, 1.0))
 
 
 def _body_objects(doc):
