@@ -70,7 +70,8 @@ Motor& motor() {
       std::exit(1);
     }
     m.assembly = read.assembly;
-    const SceneOptions options;
+    SceneOptions options;
+    options.analytic = true;  // the servo tick rows switch it per run (set_analytic)
     const ContactOptions defaults;
     for (const Body& b : m.assembly.bodies) {
       Tolerances tol;
