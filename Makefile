@@ -22,7 +22,7 @@ DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   python3-dev cmake make g++ libtbb-dev libeigen3-dev graphviz libfcl-dev pkg-config ccache
 # What `make test`, `make bench`, `make sanitize` and `make fuzz` add.
 DEB_TEST_PACKAGES := $(DEB_PACKAGES) libcoin-dev python3-pytest googletest libgtest-dev \
-  libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev
+  libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev liburdfdom-tools libmujoco-dev
 
 .PHONY: run test deps deps-test build build-extension install uninstall samples bench test-cpp test-python test-gui clean fuzz sanitize
 
