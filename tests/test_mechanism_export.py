@@ -164,7 +164,7 @@ def test_motor_in_mujoco_only_the_rotor_group_turns(motor_export):
     # group's moment about the axis (its inertia about z plus m d^2, d its centre's distance).
     tool = mujoco_tool()
     document, _, mjcf = motor_export
-    tau, steps = 2e-5, 500
+    tau, steps = 1e-5, 500
     result = step(tool, str(mjcf), steps, Body__Axis=tau)
     assert result["gravity"] == pytest.approx([0, 0, -9.81])
     assert (result["nq"], result["njnt"]) == (1, 1)
@@ -425,3 +425,28 @@ def test_unreadable_input_and_unknown_ground(tmp_path):
     done = run_cli(MOTOR, "--ground", "Nobody", "--export-urdf", str(tmp_path / "u"))
     assert done.returncode == 2 and "Nobody" in done.stderr
     assert not os.path.exists(tmp_path / "u" / "motor.urdf")
+
+
+def test_document_analysis_exports_the_same_mechanism_as_the_step_file(tmp_path, motor_export):
+    # The FreeCAD command's path (contactwb.document.mechanism): the motor's document, its sidecar
+    # annotations found beside it; the same links (bodies, masses) and joint as the STEP file's.
+    from contactwb.document import freecad_setup
+    from contactwb.document import mechanism as document_mechanism
+    from contactwb.make import make_contact_analysis
+    doc = freecad_setup.open_document(os.path.join(SAMPLES, "motor.FCStd"))
+    try:
+        group = make_contact_analysis(doc)
+        notes = document_mechanism.sidecar_annotations(doc)
+        assert notes == MOTOR_NOTES
+        model, paths = document_mechanism.export_analysis(group, "mjcf", str(tmp_path / "doc.xml"), annotations=notes)
+        with pytest.raises(Exception, match="an MJCF file is an .xml file"):
+            document_mechanism.export_analysis(group, "mjcf", str(tmp_path / "doc.txt"))
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+    assert paths == [str(tmp_path / "doc.xml")]
+    step_links = motor_export[0]["export"]["links"]
+    assert [sorted(l.bodies) for l in model.links] == [sorted(l["bodies"]) for l in step_links]
+    for link, expected in zip(model.links, step_links):
+        assert link.mass == pytest.approx(expected["mass"], rel=1e-7)  # the document stores its own B-rep
+        assert list(link.centre) == pytest.approx(expected["centre"], abs=1e-8)
+    assert [(j.type, j.parent, j.child) for j in model.joints] == [("revolute", "Body", "Axis")]

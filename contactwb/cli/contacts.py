@@ -149,7 +149,9 @@ def _contacts(argv):
     if args.annotations:
         args.joints = True
     exporting = bool(args.export_urdf or args.export_mjcf)
-    wants_joints = args.joints or args.graph or exporting
+    if exporting:
+        args.joints = True
+    wants_joints = args.joints or args.graph
     # Paths go to C++ as bytes: a file name that is not UTF-8 still works.
     path = os.fsdecode(args.file)
     try:

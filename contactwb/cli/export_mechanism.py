@@ -4,7 +4,7 @@ made before any work (exit 2) and the export after the joints
 import os
 import sys
 
-from contactwb.cli.process import EXIT_FAILED, EXIT_OK, EXIT_USAGE, escape_controls
+from contactwb.cli.process import EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE, escape_controls
 
 
 def check_export_arguments(args):
@@ -61,6 +61,9 @@ def export(args, found, source_path):
     except output_files.UnsafeTarget as error:
         print(f"contacts: {error}", file=sys.stderr)
         return EXIT_USAGE, None
+    except core.InputError as error:  # refused before the work (beyond a limit)
+        print(f"contacts: export refused: {error} (file '{source_path}')", file=sys.stderr)
+        return EXIT_INPUT, None
     except core.ContactsError as error:
         print(f"contacts: export failed: {error} (file '{source_path}')", file=sys.stderr)
         return EXIT_FAILED, None
