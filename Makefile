@@ -88,7 +88,7 @@ test-cpp: deps-test build
 	cd $(BUILD_DIR) && ctest --output-on-failure
 
 test-python: deps-test build
-	CONTACTS_PYTHON_DIR=$(abspath $(BUILD_DIR))/python $(PYTHON) -m pytest -q tests --ignore=tests/gui
+	CONTACTS_BUILD_DIR=$(abspath $(BUILD_DIR)) CONTACTS_PYTHON_DIR=$(abspath $(BUILD_DIR))/python $(PYTHON) -m pytest -q tests --ignore=tests/gui
 
 test-gui: deps-test build
 	CONTACTS_BUILD_DIR=$(abspath $(BUILD_DIR)) $(PYTHON) -m pytest -q tests/gui
