@@ -450,3 +450,32 @@ def test_document_analysis_exports_the_same_mechanism_as_the_step_file(tmp_path,
         assert link.mass == pytest.approx(expected["mass"], rel=1e-7)  # the document stores its own B-rep
         assert list(link.centre) == pytest.approx(expected["centre"], abs=1e-8)
     assert [(j.type, j.parent, j.child) for j in model.joints] == [("revolute", "Body", "Axis")]
+
+
+def test_a_part_touching_nothing_is_a_floating_link_that_falls_freely(tmp_path):
+    # A block 20 x 20 x 10 on a plate and a cube 10 mm a side 20 mm away from both: the cube is
+    # its own group with no joint to anything: URDF "floating", MJCF a freejoint; in MuJoCo it
+    # falls freely (visual meshes do not collide): z drops by g h^2 N (N + 1) / 2.
+    plate = Part.makeBox(60, 60, 10)
+    block = Part.makeBox(20, 20, 10, V(0, 0, 10))
+    cube = Part.makeBox(10, 10, 10, V(40, 40, 40))
+    _, found = joints.joints_in_shapes([("Plate", plate), ("Block", block), ("Cube", cube)], ground="Plate")
+    model, _ = mechanism.export_mechanism(found.assembly, found, urdf_dir=str(tmp_path),
+                                          mjcf_path=str(tmp_path / "f.xml"), name="floating")
+    by_child = {j.child: j for j in model.joints}
+    assert (by_child["Cube"].type, by_child["Cube"].parent) == ("floating", "world")
+    assert model.link("Cube").origin == pytest.approx((0.045, 0.045, 0.045), abs=1e-12)
+    assert model.notes == ["Cube touches no other group: exported as a free (floating) body"]
+    text = (tmp_path / "floating.urdf").read_text()
+    assert '<joint name="world__Cube" type="floating">' in text
+    done = subprocess.run([check_urdf_tool(), str(tmp_path / "floating.urdf")], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout
+    assert "root Link: world has 2 child(ren)" in done.stdout
+    steps = 100
+    result = step(mujoco_tool(), str(tmp_path / "f.xml"), steps)
+    before = {b["name"]: b for b in result["before"]["bodies"]}
+    after = {b["name"]: b for b in result["after"]["bodies"]}
+    drop = before["Cube"]["xpos"][2] - after["Cube"]["xpos"][2]
+    assert drop == pytest.approx(euler_travel(9.81, result["timestep"], steps), rel=1e-9)
+    assert after["Cube"]["xpos"][:2] == pytest.approx(before["Cube"]["xpos"][:2], abs=1e-12)
+    assert after["Plate"] == before["Plate"]
