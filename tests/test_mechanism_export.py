@@ -1,5 +1,5 @@
 """Issue 22, item 5: the derived mechanism exported as URDF and MJCF
-(contactwb.core.mechanism, `contacts FILE --export-urdf DIR --export-mjcf
+(contactwb.core.mechanism and mechanism_export, `contacts FILE --export-urdf DIR --export-mjcf
 FILE.xml`). URDF files are checked by `check_urdf` (Debian liburdfdom-tools),
 MJCF files loaded and stepped in MuJoCo 2.2 (Debian libmujoco-dev) through
 cpp_module/tests/tools/mujoco_step_check.cpp. Where those are missing the
@@ -22,7 +22,7 @@ import pytest
 import FreeCAD
 import Part
 from contactwb import joints
-from contactwb.core import mechanism, meshes
+from contactwb.core import mechanism_export, meshes
 
 from conftest import REPO, SAMPLES
 
@@ -261,7 +261,7 @@ def lever_by_hand():
 def hand_export(tmp_path_factory):
     out = tmp_path_factory.mktemp("hand")
     _, found = joints.joints_in_shapes(lever_and_slider())
-    model, written = mechanism.export_mechanism(found.assembly, found, urdf_dir=str(out), mjcf_path=str(out / "hand.xml"),
+    model, written = mechanism_export.export_mechanism(found.assembly, found, urdf_dir=str(out), mjcf_path=str(out / "hand.xml"),
                                                 density=RHO, name="hand")
     return model, out
 
@@ -354,7 +354,7 @@ def test_cylindrical_and_spherical_groups_become_documented_chains(tmp_path):
                                         ("Ball", ball)])
     kinds = {g["type"] for g in found.mobility.group_joints}
     assert kinds == {"rigid", "cylindrical", "spherical"}
-    model, _ = mechanism.export_mechanism(found.assembly, found, urdf_dir=str(tmp_path),
+    model, _ = mechanism_export.export_mechanism(found.assembly, found, urdf_dir=str(tmp_path),
                                           mjcf_path=str(tmp_path / "m.xml"), name="chains")
     by_child = {j.child: j for j in model.joints}
     assert [e.kind for e in by_child["Shaft"].elements] == ["prismatic", "revolute"]
@@ -460,7 +460,7 @@ def test_a_part_touching_nothing_is_a_floating_link_that_falls_freely(tmp_path):
     block = Part.makeBox(20, 20, 10, V(0, 0, 10))
     cube = Part.makeBox(10, 10, 10, V(40, 40, 40))
     _, found = joints.joints_in_shapes([("Plate", plate), ("Block", block), ("Cube", cube)], ground="Plate")
-    model, _ = mechanism.export_mechanism(found.assembly, found, urdf_dir=str(tmp_path),
+    model, _ = mechanism_export.export_mechanism(found.assembly, found, urdf_dir=str(tmp_path),
                                           mjcf_path=str(tmp_path / "f.xml"), name="floating")
     by_child = {j.child: j for j in model.joints}
     assert (by_child["Cube"].type, by_child["Cube"].parent) == ("floating", "world")

@@ -1,6 +1,6 @@
 """`contacts FILE --export-urdf DIR` and `--export-mjcf FILE.xml`: the checks
 made before any work (exit 2) and the export after the joints
-(contactwb.core.mechanism; docs/mechanism.md)."""
+(contactwb.core.mechanism_export; docs/mechanism.md)."""
 import os
 import sys
 
@@ -39,19 +39,19 @@ def check_export_arguments(args):
 
 
 def _mesh_folder(path):
-    from contactwb.core.mechanism import mjcf_mesh_folder
+    from contactwb.core.mechanism_export import mjcf_mesh_folder
     return mjcf_mesh_folder(path)
 
 
 def export(args, found, source_path):
     """Writes the formats asked; returns (exit code, the export's JSON summary or None)."""
     from contactwb import core
-    from contactwb.core import mechanism, output_files
+    from contactwb.core import mechanism_export, output_files
     from contactwb.core.mechanism import DEFAULT_DENSITY
     density = DEFAULT_DENSITY if args.density is None else args.density
     name = os.path.splitext(os.path.basename(source_path))[0]
     try:
-        model, written = mechanism.export_mechanism(
+        model, written = mechanism_export.export_mechanism(
             found.assembly, found, urdf_dir=os.fsdecode(args.export_urdf) if args.export_urdf else None,
             mjcf_path=os.fsdecode(args.export_mjcf) if args.export_mjcf else None, density=density,
             ground=args.ground, name=name)

@@ -3,7 +3,7 @@ command Contacts_ExportMechanism calls it): the analysis' parts (its Scope:
 the document's visible solids, or its Sources for a Selection) and
 tolerances, the designer's annotations from a JSON file (by default the
 document's sidecar NAME.annotations.json when there is one), then
-contactwb.core.mechanism writes URDF or MJCF (docs/mechanism.md).
+contactwb.core.mechanism_export writes URDF or MJCF (docs/mechanism.md).
 
     from contactwb.document import mechanism
     model, paths = mechanism.export_analysis(group, "urdf", "/tmp/motor_urdf")"""
@@ -12,7 +12,8 @@ import os
 
 from contactwb import core
 from contactwb.core import joints
-from contactwb.core import mechanism as core_mechanism
+from contactwb.core import mechanism_export
+from contactwb.core.mechanism import DEFAULT_DENSITY
 from contactwb.document import bodies as document_bodies
 from contactwb.document.identify import is_contact_analysis
 from contactwb.document.shapes import assembly_from_shapes
@@ -38,14 +39,14 @@ def analysis_bodies(group):
     return everything
 
 
-def export_analysis(group, fmt, path, density=core_mechanism.DEFAULT_DENSITY, ground=None, annotations=None):
+def export_analysis(group, fmt, path, density=DEFAULT_DENSITY, ground=None, annotations=None):
     """Writes the mechanism of a ContactAnalysis group as `fmt` "urdf" (path: a folder) or "mjcf"
     (path: an .xml file); `annotations`: a JSON file (None: none). Returns (Model, [paths written]).
     Raises core.ArgumentError for a bad format, path or ground, ContactsError when the analysis
     fails, OSError when a file cannot be written."""
     if not is_contact_analysis(group):
         raise core.ArgumentError(f"'{getattr(group, 'Label', group)}' is not a contact analysis")
-    if fmt not in core_mechanism.FORMATS:
+    if fmt not in mechanism_export.FORMATS:
         raise core.ArgumentError(f"unknown mechanism format '{fmt}': use urdf or mjcf")
     if fmt == "mjcf" and not path.lower().endswith(".xml"):
         raise core.ArgumentError(f"'{path}': an MJCF file is an .xml file")
@@ -58,6 +59,6 @@ def export_analysis(group, fmt, path, density=core_mechanism.DEFAULT_DENSITY, gr
                                          annotations=annotations)
     name = os.path.splitext(os.path.basename(group.Document.FileName))[0] if group.Document.FileName else \
         group.Document.Label
-    return core_mechanism.export_mechanism(
+    return mechanism_export.export_mechanism(
         assembly, found, urdf_dir=path if fmt == "urdf" else None, mjcf_path=path if fmt == "mjcf" else None,
         density=density, ground=ground, name=name)
