@@ -23,7 +23,7 @@ DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   python3-pyside2.qtsvg
 # What `make test`, `make bench`, `make sanitize` and `make fuzz` add.
 DEB_TEST_PACKAGES := $(DEB_PACKAGES) libcoin-dev python3-pytest googletest libgtest-dev \
-  libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev
+  libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev liburdfdom-tools libmujoco-dev
 
 .PHONY: run test deps deps-test build build-extension install uninstall samples bench test-cpp test-python test-gui clean fuzz sanitize
 
@@ -89,7 +89,7 @@ test-cpp: deps-test build
 	cd $(BUILD_DIR) && ctest --output-on-failure
 
 test-python: deps-test build
-	CONTACTS_PYTHON_DIR=$(abspath $(BUILD_DIR))/python $(PYTHON) -m pytest -q tests --ignore=tests/gui
+	CONTACTS_BUILD_DIR=$(abspath $(BUILD_DIR)) CONTACTS_PYTHON_DIR=$(abspath $(BUILD_DIR))/python $(PYTHON) -m pytest -q tests --ignore=tests/gui
 
 test-gui: deps-test build
 	CONTACTS_BUILD_DIR=$(abspath $(BUILD_DIR)) $(PYTHON) -m pytest -q tests/gui

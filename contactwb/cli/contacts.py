@@ -109,7 +109,21 @@ def _contacts(argv):
                              "edges off their faces, zero or negative volume) or full (also OCCT's whole "
                              "BRepCheck_Analyzer and faces crossing each other: seconds on a large "
                              "model); see docs/reliability.md")
+    parser.add_argument("--export-urdf", metavar="DIR",
+                        help="write the derived mechanism as URDF: DIR/NAME.urdf and DIR/meshes/*.stl, one link "
+                             "per rigid group (docs/mechanism.md; implies --joints)")
+    parser.add_argument("--export-mjcf", metavar="FILE.xml",
+                        help="write the derived mechanism as MuJoCo MJCF: FILE.xml and FILE_meshes/*.stl beside it "
+                             "(implies --joints)")
+    parser.add_argument("--density", type=finite_number(low=0, low_open=True), default=None, metavar="KG_PER_M3",
+                        help="with --export-urdf/--export-mjcf: density of every body, kg/m^3 (default 7850, steel)")
     args = parser.parse_args(argv)
+    if args.export_urdf or args.export_mjcf or args.density is not None:
+        from contactwb.cli.export_mechanism import check_export_arguments
+        problem = check_export_arguments(args)
+        if problem:
+            print(f"contacts: {problem}", file=sys.stderr)
+            return EXIT_USAGE
     if args.graph:
         from contactwb.core import output_files
         try:
@@ -133,6 +147,9 @@ def _contacts(argv):
     start = time.perf_counter()
     found = None
     if args.annotations:
+        args.joints = True
+    exporting = bool(args.export_urdf or args.export_mjcf)
+    if exporting:
         args.joints = True
     wants_joints = args.joints or args.graph
     # Paths go to C++ as bytes: a file name that is not UTF-8 still works.
@@ -201,6 +218,12 @@ def _contacts(argv):
         print(f"contacts: internal error ({type(error).__name__}: {error}); "
               "set CONTACTS_DEBUG=1 for the traceback and please report it", file=sys.stderr)
         return EXIT_INTERNAL
+    exported = None
+    if exporting:
+        from contactwb.cli.export_mechanism import export
+        code, exported = export(args, found, path)
+        if code != EXIT_OK:
+            return code
     elapsed = time.perf_counter() - start
     if args.json:
         document = result.to_json()
@@ -208,6 +231,8 @@ def _contacts(argv):
             document.update(found.to_json())
             if args.clearance_gap > 0:
                 document["clearances"] = found.clearances
+        if exported is not None:
+            document["export"] = exported
         json.dump(document, sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
@@ -215,6 +240,10 @@ def _contacts(argv):
         if args.joints:
             print()
             print(found.table(interferences=False))  # the contact table above lists them
+        if exported is not None:
+            from contactwb.cli.export_mechanism import export_table
+            print()
+            print(export_table(exported))
         t = result.times
         print(f"Time: {elapsed * 1000:.1f} ms in all (partitions {t['partitions'] * 1000:.1f} ms, "
               f"broad phase {t['broad_phase'] * 1000:.2f} ms, candidates {t['candidates'] * 1000:.2f} ms, "

@@ -76,6 +76,7 @@ class Joints:
     interferences: List[dict] = field(default_factory=list)
     clearance_gap: float = 0.0
     raw: Optional[object] = None  # (contactcore.ContactsResult, .JointsResult, .MobilityResult)
+    assembly: Optional[object] = None  # the contactcore.Assembly analysed (for the mechanism export)
     _body_index: dict = field(default_factory=dict, repr=False)
 
     def to_json(self):
@@ -237,7 +238,7 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     return result, Joints(source=source, joints=records, mobility=record,
                           dot=cc.liaison_graph_dot(assembly, found, mobility), clearances=clearances,
                           interferences=interferences_of(raw, names), clearance_gap=clearance_gap,
-                          raw=(raw, found, mobility), _body_index={name: i for i, name in enumerate(names)})
+                          raw=(raw, found, mobility), assembly=assembly, _body_index={name: i for i, name in enumerate(names)})
 
 
 def interferences_of(raw, names):

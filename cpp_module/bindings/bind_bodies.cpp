@@ -2,6 +2,7 @@
 #include "common.h"
 
 #include "contactcore/bodies/bodies.h"
+#include "contactcore/bodies/inertia.h"
 #include "contactcore/common/occt_guard.h"
 
 namespace contactcore::bindings {
@@ -31,6 +32,21 @@ void bind_bodies(py::module_& m) {
                              "Volume, mm^3 (computed on first use, then kept).")
       .def_property_readonly("center", [](const Body& b) { return to_tuple(mass_of(b).centre); },
                              "Centre of mass (x, y, z), mm (computed on first use, then kept).")
+      .def(
+          "inertia",
+          [](const Body& b) {
+            BodyInertia inertia;
+            {
+              py::gil_scoped_release release;
+              inertia = body_inertia(b);
+            }
+            raise_if_failed(inertia.status);
+            return py::make_tuple(inertia.volume, to_tuple(gp_Pnt(inertia.centre[0], inertia.centre[1],
+                                                                   inertia.centre[2])),
+                                  inertia.tensor);
+          },
+          "(volume mm^3, centre of mass (x, y, z) mm, inertia tensor about the centre, global axes, at unit "
+          "density, mm^5, as 3 rows): OCCT GProp's volume integration, computed on each call.")
       .def("__repr__", [](const Body& b) { return "<Body '" + b.name + "' path='" + b.path + "'>"; });
 
   py::class_<Assembly>(m, "Assembly", "Bodies of an assembly, in mm, with the source file's unit.")
