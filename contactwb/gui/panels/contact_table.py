@@ -8,13 +8,14 @@ import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from contactwb.core.kinds import CONTACT_TYPES
-from contactwb.document.identify import is_contact, is_joint
+from contactwb.document.identify import is_contact, is_interference, is_joint
 from contactwb.gui.overlay.colours import legend_colours
 
 COLUMNS = ["#", "Type", "Part A", "Part B", "Area (mm\u00b2)", "Span (\u00b0) / DOF", "Radius (mm)", "Partial",
            "Analysis"]
 NUMERIC = {0, 4, 5, 6}
 DOCK_NAME = "ContactsTable"
+INTERFERENCE_COLOUR = "#e60d0d"  # as the Interference objects are drawn
 
 
 class _Item(QtWidgets.QTableWidgetItem):
@@ -105,7 +106,8 @@ class ContactTable(QtWidgets.QWidget):
         colours = legend_colours()
         self._syncing = True
         self.table.setSortingEnabled(False)
-        self.table.setRowCount(len(self.contacts) + len(joints))
+        interferences = [i for g in groups for i in g.Group if is_interference(i)]
+        self.table.setRowCount(len(self.contacts) + len(joints) + len(interferences))
         for row, contact in enumerate(self.contacts):
             group = next((p for p in contact.InList if p in groups), None)
             cells = [
@@ -130,6 +132,17 @@ class ContactTable(QtWidgets.QWidget):
             for column, item in enumerate(cells):
                 item.setData(QtCore.Qt.UserRole, joint.Name)
                 self.table.setItem(row, column, item)
+        # overlapping material: its common volume in the area column
+        for row, overlap in enumerate(interferences, start=len(self.contacts) + len(joints)):
+            group = next((p for p in overlap.InList if p in groups), None)
+            volume = overlap.Volume.Value
+            cells = [_cell(overlap.Label.split(":", 1)[0].replace("Interference ", "I")),
+                     _cell("Interference", colour=INTERFERENCE_COLOUR), _cell(overlap.BodyA), _cell(overlap.BodyB),
+                     _cell(f"{volume:.4g} mm\u00b3", volume), _cell(""), _cell(""), _cell(""),
+                     _cell(group.Label if group else "")]
+            for column, item in enumerate(cells):
+                item.setData(QtCore.Qt.UserRole, overlap.Name)
+                self.table.setItem(row, column, item)
         self.table.setSortingEnabled(True)
         self.table.resizeColumnsToContents()
         self._syncing = False
@@ -147,6 +160,8 @@ class ContactTable(QtWidgets.QWidget):
                          + (f", {joints} joints" if joints else "")
                          + (" <i>(out of date: recompute)</i>" if "Touched" in group.State else ""))
             lines.append("By type: " + (", ".join(group.Summary) or "none"))
+            if getattr(group, "InterferenceCount", 0):
+                lines.append(f"Interferences: {group.InterferenceCount} (overlapping material)")
             if group.PairSummary:
                 lines.append("By pair: " + "; ".join(group.PairSummary))
             if getattr(group, "Mobility", None):
@@ -192,7 +207,7 @@ class ContactTable(QtWidgets.QWidget):
             if is_joint(obj):
                 if obj.Contacts:
                     return obj.Contacts[0]
-            else:
+            elif is_contact(obj):  # (an interference has no faces to zoom to)
                 return obj
         return None
 
