@@ -237,7 +237,7 @@ class ContactOverlay:
         self.interferences = sum(1 for child in getattr(group, "Group", []) if is_interference(child))
         if self.interferences:
             entries.append((f"Interferences ({self.interferences})", INTERFERENCE_COLOUR))
-        self.legend = legend_node(entries)
+        self.legend = legend_node(entries, stack=(self.doc_name, ("analysis", id(self))))
         self.root.addChild(self.legend)
         self.names = tuple(c.Name for c in contacts)
         self.region_generation = regions.generation(group) if group is not None else None
