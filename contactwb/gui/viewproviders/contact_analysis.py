@@ -111,8 +111,6 @@ class ViewProviderContactAnalysis(ViewProvider):
             busy = document.Restoring or document.Recomputing or document.Transacting
         except Exception:
             return
-        if self.is_stale():
-            return  # hidden until the recompute, which draws it (after_recompute)
         if busy:
             # FreeCAD processes events while it opens a document, and the
             # search's progress while it recomputes: the bodies' visibility,
