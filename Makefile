@@ -81,6 +81,7 @@ samples:
 bench: deps-test build
 	$(PYTHON) bench/run_benchmarks.py --build-dir $(BUILD_DIR) --plot docs/read_scaling.png
 	$(PYTHON) bench/bench_bad_inputs.py --build-dir $(BUILD_DIR)
+	$(PYTHON) bench/bench_gui.py --build-dir $(BUILD_DIR)
 
 test: deps-test build
 	@bash tests/run_all.sh $(BUILD_DIR)

@@ -21,8 +21,8 @@ from contactwb.core import analysis as contact_analysis
 from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, SCOPES  # noqa: F401  (SCOPES: this module's API)
 from contactwb.document import bodies as document_bodies
 from contactwb.document.identify import is_contact, is_contact_analysis, is_interference, is_joint  # noqa: F401
-from contactwb.document.shapes import assembly_from_shapes
-from contactwb.objects import gui_hooks
+from contactwb.document.shapes import assembly_from_shapes, shape_from_brep
+from contactwb.objects import gui_hooks, regions
 from contactwb.objects.base import PROXY_VERSION, VersionedProxy, add_property, versioned  # noqa: F401
 from contactwb.objects.body_watcher import (pending_removal, remove_after_recompute,  # noqa: F401
                                             watch_document)
@@ -255,11 +255,13 @@ def _choose_bodies(doc, group, messages):
     return everything, {id(b) for b in picked}
 
 
-def _find(bodies, source, linear, angular, progress):
-    """(analysis.Analysis, contactcore.Assembly, contactcore.ContactsResult)."""
+def _find(bodies, source, linear, angular, progress, region_bodies=False):
+    """(analysis.Analysis, contactcore.Assembly, contactcore.ContactsResult);
+    `region_bodies`: the common regions to compute (contactwb.objects.regions)."""
     assembly = assembly_from_shapes((b.name, b.shape) for b in bodies)
     face_name = lambda body, index: bodies[body].object_face_name(index)  # noqa: E731
-    raw = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress)
+    raw = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress,
+                                         regions=region_bodies)
     return contact_analysis.analysis_of_result(source, assembly, raw, face_name), assembly, raw
 
 
@@ -315,7 +317,10 @@ def update_contact_analysis(group, progress=None):
         raise core.ContactsError(f"no visible solid in document '{doc.Label}'")
     linear = group.LinearToleranceSetting.Value or None
     angular = radians(group.AngularToleranceSetting.Value) or None
-    result, assembly, raw = _find(bodies, doc.Label, linear, angular, progress)
+    settings = (linear, angular)
+    result, assembly, raw = _find(bodies, doc.Label, linear, angular, progress,
+                                  regions.region_bodies(group, bodies, settings))
+    painted = regions.store(group, bodies, settings, assembly, raw, result.contacts, key_of_record)
     result.messages.extend(messages)
     wanted = set(group.ContactTypes) or set(CONTACT_TYPES)
     kept = [index for index, r in enumerate(result.contacts) if r.type in wanted and
@@ -337,7 +342,7 @@ def update_contact_analysis(group, progress=None):
     set_if_changed(group, "Clearances", _clearance_lines(raw, group.ClearanceGap.Value,
                                                          [b.name for b in result.bodies]))
     _update_children(doc, group, records, bodies)
-    _update_interferences(doc, group, result.interferences, bodies)
+    _update_interferences(doc, group, result.interferences, bodies, painted.solids)
     if group.DeriveJoints:
         _update_joints(doc, group, assembly, raw, result, kept, bodies)
     else:
@@ -350,6 +355,21 @@ def update_contact_analysis(group, progress=None):
     return group
 
 
+def compute_regions(group):
+    """The common regions of an analysis whose regions are not cached (a file
+    just opened), for its paint: the core run on its bodies as they are now
+    (contactwb.objects.regions). The document is not changed."""
+    bodies, _ = _choose_bodies(group.Document, group, [])
+    if not bodies:
+        return None
+    linear = group.LinearToleranceSetting.Value or None
+    angular = radians(group.AngularToleranceSetting.Value) or None
+    settings = (linear, angular)
+    result, assembly, raw = _find(bodies, group.Document.Label, linear, angular, None,
+                                  regions.region_bodies(group, bodies, settings))
+    return regions.store(group, bodies, settings, assembly, raw, result.contacts, key_of_record)
+
+
 def _same_solid(old, new):
     """Whether an interference's stored solid is already `new` (unchanged
     bodies: nothing to record)."""
@@ -360,11 +380,13 @@ def _same_solid(old, new):
         abs(old.BoundBox.DiagonalLength - new.BoundBox.DiagonalLength) <= 1e-9
 
 
-def _update_interferences(doc, group, interferences, bodies):
+def _update_interferences(doc, group, interferences, bodies, solids=None):
     """Interference children, one per overlapping pair (kept by pair across
     recomputes), after the contacts: the common solid of the two bodies
-    (their Boolean common, made only for the pairs the core found
-    overlapping) and its volume as the core measured it."""
+    (the core's, `solids` {pair: BRep text}; else their Boolean common, made
+    only for the pairs the core found overlapping) and its volume as the
+    core measured it."""
+    solids = solids or {}
     by_name = {b.name: b for b in bodies}
     old = {}
     for obj in group.Group:
@@ -380,8 +402,8 @@ def _update_interferences(doc, group, interferences, bodies):
         set_if_changed(obj, "BodyA", a)
         set_if_changed(obj, "BodyB", b)
         set_if_changed(obj, "Volume", volume)
-        if a in by_name and b in by_name:
-            common = by_name[a].shape.common(by_name[b].shape)
+        if (a, b) in solids or (a in by_name and b in by_name):
+            common = shape_from_brep(solids[(a, b)]) if (a, b) in solids else by_name[a].shape.common(by_name[b].shape)
             if not _same_solid(obj.Shape, common):
                 obj.Shape = common
         set_if_changed(obj, "Label", f"Interference {index + 1}: {a} {EN_DASH} {b}")

@@ -1,6 +1,9 @@
 // Contacts: the whole stage on an assembly, with progress and cancellation.
 #include "common.h"
 
+#include <pybind11/numpy.h>
+
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -8,7 +11,37 @@
 #include "contactcore/common/angles.h"
 #include "contactcore/contacts/contacts.h"
 
+#include <BRepGProp.hxx>
+#include <GProp_GProps.hxx>
+#include <TopExp_Explorer.hxx>
+
 namespace contactcore::bindings {
+
+namespace {
+
+double region_area(const TopoDS_Shape& region) {
+  if (region.IsNull()) return 0.0;
+  GProp_GProps properties;
+  BRepGProp::SurfaceProperties(region, properties);
+  return properties.Mass();
+}
+
+// find_contacts' `regions`: False, True (all), or body indices (an empty list: none).
+void set_regions(ContactOptions& options, const py::object& regions) {
+  if (py::isinstance<py::bool_>(regions)) {
+    options.regions = regions.cast<bool>();
+    return;
+  }
+  if (regions.is_none()) return;
+  try {
+    options.region_bodies = regions.cast<std::vector<int>>();
+  } catch (const py::cast_error&) {
+    raise_argument_error("regions must be True, False or a list of body indices");
+  }
+  options.regions = !options.region_bodies.empty();
+}
+
+}  // namespace
 
 void bind_contacts(py::module_& m) {
   py::enum_<ContactType>(m, "ContactType")
@@ -48,6 +81,36 @@ void bind_contacts(py::module_& m) {
                              "SPF, LAF, SPT: middle of the directions from the centre to the common region")
       .def_readonly("region_angle", &Contact::region_angle,
                     "SPF, LAF, SPT: the common region lies within this angle of region_axis (pi: all around)")
+      .def_property_readonly("has_region", [](const Contact& c) { return !c.region.IsNull(); },
+                             "whether the common region was computed (find_contacts(regions=...), "
+                             "find_common_regions); never for LAF, SPT")
+      .def_property_readonly("region_area", [](const Contact& c) {
+            return call_guarded([&] { return region_area(c.region); });
+          }, "mm^2, area of the common region's faces (0 when not computed)")
+      .def_property_readonly("region_faces", [](const Contact& c) {
+            int faces = 0;
+            for (TopExp_Explorer e(c.region, TopAbs_FACE); e.More(); e.Next()) ++faces;
+            return faces;
+          }, "number of faces of the common region")
+      .def_property_readonly("region_brep", [](const Contact& c) {
+            return c.region.IsNull() ? std::string() : call_guarded([&] { return shape_to_brep(c.region); });
+          }, "the common region as BRep text (a compound of faces oriented out of body_a; "
+             "Part.Shape.importBrepFromString), '' when not computed")
+      .def("region_mesh", [](const Contact& c, double deflection, double angular) {
+            RegionMesh mesh;
+            const Status status = guarded([&] { return mesh_region(c.region, deflection, angular, mesh); });
+            raise_if_failed(status);
+            const py::ssize_t points = static_cast<py::ssize_t>(mesh.points.size() / 3);
+            const py::ssize_t triangles = static_cast<py::ssize_t>(mesh.triangles.size() / 3);
+            py::array_t<double> xyz({points, py::ssize_t(3)});
+            std::copy(mesh.points.begin(), mesh.points.end(), xyz.mutable_data());
+            py::array_t<int> corners({triangles, py::ssize_t(3)});
+            std::copy(mesh.triangles.begin(), mesh.triangles.end(), corners.mutable_data());
+            return py::make_tuple(xyz, corners);
+          }, py::arg("deflection"), py::arg("angular") = 0.5,
+          "(points (n, 3) float array, triangles (m, 3) int array) of the common region, meshed "
+          "with this deflection (mm) and angle (radians); triangles wound counter-clockwise seen "
+          "from outside body_a; empty arrays when not computed")
       .def("__repr__", [](const Contact& c) {
         std::ostringstream out;
         out << "<Contact " << to_string(c.type) << " bodies " << c.body_a << "-" << c.body_b
@@ -94,6 +157,7 @@ void bind_contacts(py::module_& m) {
       .def_readonly("area", &StageTimes::area, "seconds testing candidates (common areas)")
       .def_readonly("validity", &StageTimes::validity, "seconds of the solid checks")
       .def_readonly("interferences", &StageTimes::interferences, "seconds of the interference pass")
+      .def_readonly("regions", &StageTimes::regions, "seconds computing common regions (regions=...)")
       .def("__repr__", [](const StageTimes& t) {
         std::ostringstream out;
         out << "<StageTimes partitions=" << t.partitions << " broad_phase=" << t.broad_phase
@@ -118,6 +182,11 @@ void bind_contacts(py::module_& m) {
       .def_readonly("body_a", &Interference::body_a, "index into Assembly.bodies, body_a < body_b")
       .def_readonly("body_b", &Interference::body_b, "index into Assembly.bodies")
       .def_readonly("volume", &Interference::volume, "common volume, mm^3")
+      .def_property_readonly("has_solid", [](const Interference& i) { return !i.solid.IsNull(); },
+                             "whether the overlapping solid was computed (find_contacts(regions=...))")
+      .def_property_readonly("solid_brep", [](const Interference& i) {
+            return i.solid.IsNull() ? std::string() : call_guarded([&] { return shape_to_brep(i.solid); });
+          }, "the overlapping solid as BRep text, '' when not computed")
       .def("__repr__", [](const Interference& i) {
         return "<Interference bodies " + std::to_string(i.body_a) + "-" + std::to_string(i.body_b) +
                " volume=" + std::to_string(i.volume) + ">";
@@ -141,6 +210,8 @@ void bind_contacts(py::module_& m) {
       .def_readonly("messages", &ContactsResult::messages, "warnings (OCCT's, bodies skipped)")
       .def_readonly("clearances", &ContactsResult::clearances, "[Clearance] (with clearance_gap > 0)")
       .def_readonly("times", &ContactsResult::times, "StageTimes")
+      .def_readonly("regions_computed", &ContactsResult::regions_computed,
+                    "common regions and overlapping solids computed by the last region pass")
       .def("__repr__", [](const ContactsResult& r) {
         return "<ContactsResult " + std::to_string(r.contacts.size()) + " contacts, " +
                std::to_string(r.body_pairs.size()) + " body pairs, " + std::to_string(r.candidates) +
@@ -151,8 +222,9 @@ void bind_contacts(py::module_& m) {
       "find_contacts",
       [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
          py::object progress, int threads, std::optional<std::size_t> max_pairs, bool reuse_instances,
-         double clearance_gap, const std::string& check_solids) {
+         double clearance_gap, const std::string& check_solids, py::object regions) {
         ContactOptions options;
+        set_regions(options, regions);
         if (check_solids != "quick" && check_solids != "full")
           raise_argument_error("check_solids must be 'quick' or 'full', not '" + check_solids + "'");
         options.solid_checks = check_solids == "full" ? SolidChecks::Full : SolidChecks::Quick;
@@ -176,13 +248,29 @@ void bind_contacts(py::module_& m) {
       py::arg("assembly"), py::arg("linear") = py::none(), py::arg("angular") = py::none(),
       py::arg("progress") = py::none(), py::arg("threads") = 0, py::arg("max_pairs") = py::none(),
       py::arg("reuse_instances") = true, py::arg("clearance_gap") = 0.0, py::arg("check_solids") = "quick",
+      py::arg("regions") = false,
       "Partitions every body, then finds contacts, on `threads` threads (0: all cores; the result "
       "is the same for any number). `progress(stage, fraction)` returning False cancels (raises "
       "contactcore.Cancelled); it is called from the calling thread. Tolerances default to the "
       "model's scale. More than `max_pairs` body pairs with meeting boxes (default 2,000,000) "
       "stops with ContactsError saying how many. `clearance_gap` > 0 also reports clearance fits. "
       "`check_solids`: 'quick' (default) or 'full' (also OCCT's BRepCheck_Analyzer and faces crossing "
-      "each other: seconds on a large model).");
+      "each other: seconds on a large model). `regions`: True computes every contact's common region "
+      "(Contact.region_brep, region_mesh) and every interference's overlapping solid (Interference.solid_brep); "
+      "a list of body indices, only those touching these bodies (counted in regions_computed).");
+
+  m.def(
+      "find_common_regions",
+      [](const Assembly& assembly, ContactsResult& result, std::optional<std::vector<int>> bodies, int threads) {
+        const Status status = guarded([&] {
+          return find_common_regions(assembly, result, bodies.value_or(std::vector<int>{}), threads);
+        });
+        raise_if_failed(status);
+        return result.regions_computed;
+      },
+      py::arg("assembly"), py::arg("result"), py::arg("bodies") = py::none(), py::arg("threads") = 0,
+      "Computes the common regions of `result`'s contacts (and interferences' solids) touching `bodies` "
+      "(None: all), in place; returns how many were computed.");
 
   m.def(
       "common_area",

@@ -16,12 +16,15 @@ import numpy
 from pivy import coin
 
 from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, TYPE_NAMES
+from contactwb.document.identify import is_interference
+from contactwb.objects import regions
 from contactwb.gui.overlay.coin_nodes import (legend_node, line_material, material, polygon_offset,
                                               set_stripe_period, stripes)
 from contactwb.gui.overlay.colours import TYPE_COLOURS, legend_colours, selection_colour, type_colour
 from contactwb.gui.overlay.faces import FaceSource, circle_points
 from contactwb.gui.settings import paint_style
 
+INTERFERENCE_COLOUR = (0.9, 0.05, 0.05)  # as the Interference objects are drawn
 CIRCLE_FACE_TRANSPARENCY = 0.6  # the ball and its seat, behind the circle
 CIRCLE_WIDTH = 4  # pixels
 
@@ -111,18 +114,23 @@ class ContactOverlay:
         self.faces = 0
         self.circles = 0
         self.common_contacts = 0  # contacts drawn as their common area
+        self.core_contacts = 0  # of which the core's regions
+        self.interferences = 0  # counted in the legend
+        self.region_generation = None  # of the analysis' regions drawn (contactwb.objects.regions)
         self.colours = dict(TYPE_COLOURS)
         self.legend = None
         self.failures = []
 
-    def build(self, contacts, common_area=None, fuzzy=1e-3):
+    def build(self, contacts, common_area=None, fuzzy=1e-3, group=None):
         """(Re)builds the drawing of `contacts` (Contact document objects):
         the area each contact's sides share (common_area, default the
-        preferences' paint style) or their whole faces."""
+        preferences' paint style) or their whole faces. The shared areas
+        come from the core's regions cached with `group` (their analysis),
+        else from a Boolean of the faces here."""
         if common_area is None:
             common_area = paint_style() == "Common area"
         self.colours = legend_colours()
-        self.common_contacts = 0
+        self.common_contacts = self.core_contacts = 0
         self.root.removeAllChildren()
         self.switches, self.sides, self.face_keys, self.visible = {}, {}, {}, {}
         self.highlighted, self.bodies, self.path_names = set(), {}, set()
@@ -142,6 +150,7 @@ class ContactOverlay:
             self.root.addChild(node)
         highlight_material = material(selection_colour())
         highlight_offset = polygon_offset(0.0, -3.0)  # over the same face drawn unselected
+
         highlight_circle = line_material(selection_colour())
         source = FaceSource()
         layers = {}
@@ -154,7 +163,11 @@ class ContactOverlay:
             sides, face_keys = [], set()
             common = None
             if common_area and kind not in CIRCLE_TYPES:
-                common = source.common_meshes(contact, fuzzy)
+                common = source.core_meshes(group, contact)
+                if common is not None:
+                    self.core_contacts += 1
+                else:
+                    common = source.common_meshes(contact, fuzzy)
                 if common is not None:
                     self.common_contacts += 1
             for side_index, links in enumerate((contact.FacesA, contact.FacesB)):
@@ -193,7 +206,10 @@ class ContactOverlay:
             # selection colour; both share the side nodes (Coin graphs are DAGs).
             switch = coin.SoSwitch()
             switch.setName(contact.Name)
-            normal, highlight = coin.SoSeparator(), coin.SoSeparator()
+            # A selected contact shows through the parts around it (a screw's
+            # bore inside the covers): an annotation, drawn after the scene
+            # without the depth test.
+            normal, highlight = coin.SoSeparator(), coin.SoAnnotation()
             highlight.addChild(highlight_material)
             highlight.addChild(highlight_offset)
             for branch, circle_material in ((normal, layer.circle_material), (highlight, highlight_circle)):
@@ -217,10 +233,14 @@ class ContactOverlay:
             self.root.addChild(layers[key].node)
         kinds = [k for k in CONTACT_TYPES if any(key[0] == k for key in layers)]
         counts = {k: sum(1 for c in contacts if c.ContactType == k) for k in kinds}
-        self.legend = legend_node([(f"{k} {TYPE_NAMES[k]} ({counts[k]})", type_colour(k, False, self.colours))
-                                   for k in kinds], stack=(self.doc_name, ("analysis", id(self))))
+        entries = [(f"{k} {TYPE_NAMES[k]} ({counts[k]})", type_colour(k, False, self.colours)) for k in kinds]
+        self.interferences = sum(1 for child in getattr(group, "Group", []) if is_interference(child))
+        if self.interferences:
+            entries.append((f"Interferences ({self.interferences})", INTERFERENCE_COLOUR))
+        self.legend = legend_node(entries, stack=(self.doc_name, ("analysis", id(self))))
         self.root.addChild(self.legend)
         self.names = tuple(c.Name for c in contacts)
+        self.region_generation = regions.generation(group) if group is not None else None
         self.failures = source.failures
         self.update_bodies()
 

@@ -109,6 +109,38 @@ class FaceSource:
                                                             box.XMax, box.YMax, box.ZMax))))
         return tuple(key)
 
+    def core_meshes(self, group, contact):
+        """common_meshes_now()'s answer from the core's regions, cached with
+        the analysis (contactwb.objects.regions): computed by the core at
+        the analysis' recompute (or now, once, after a file was opened).
+        None for a snapshot analysis (UpdateOnRecompute off: its bodies
+        may have moved since) or when the core has none."""
+        from contactwb.objects import regions
+        from contactwb.objects.contact_objects import compute_regions, key_of_contact
+        if group is None or not getattr(group, "UpdateOnRecompute", False):
+            return None
+        try:
+            if not regions.has_regions(group):
+                compute_regions(group)
+            found = regions.meshes_of(group, key_of_contact(contact))
+        except Exception as error:  # drawing only: the Booleans below instead
+            self.failures.append(f"{contact.Label}: core region: {error}")
+            return None
+        if not found:
+            return None
+        meshes = ([], [])
+        for k, (points, triangles, deflection) in enumerate(found):
+            if not len(triangles):
+                continue
+            low, high = points.min(axis=0), points.max(axis=0)
+            box = FreeCAD.BoundBox(*low, *high)
+            triangles = triangles.astype(numpy.int64)
+            # oriented out of side A: pushed out of A along it, out of B against it
+            for side, sign in ((0, 1.0), (1, -1.0)):
+                meshes[side].append(((contact.Name, side, k),
+                                     (pushed_out(points, triangles, sign * deflection), triangles, box)))
+        return meshes if meshes[0] else None
+
     def common_meshes(self, contact, fuzzy):
         """common_meshes_now(), from the cache when the contact's faces have
         not moved or changed since it was last computed."""

@@ -90,10 +90,22 @@ class OverlayWatcher:
         self._document_settled(doc)
 
     def slotUndoDocument(self, doc):
+        self._forget_regions(doc)
         self._document_settled(doc)
 
     def slotRedoDocument(self, doc):
+        self._forget_regions(doc)
         self._document_settled(doc)
+
+    @staticmethod
+    def _forget_regions(doc):
+        # the bodies are back where the undo put them, without a recompute:
+        # the cached regions may be those of a later placement
+        from contactwb.objects import regions
+        regions.forget_document(doc.Name)
+
+    def slotDeletedDocument(self, doc):
+        self._forget_regions(doc)
 
     def slotDeletedObject(self, obj):
         # a body deleted: its contacts lose their links; redraw without them

@@ -9,7 +9,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 
 from contactwb.core.kinds import CONTACT_TYPES
 from contactwb.document import units
-from contactwb.document.identify import is_contact, is_joint
+from contactwb.document.identify import is_contact, is_interference, is_joint
 from contactwb.gui.overlay.colours import legend_colours
 from contactwb.gui.panels import contact_extent
 
@@ -18,6 +18,7 @@ COLUMNS = ["#", "Type", "Part A", "Part B", "Area", "Span / DOF", "Radius", "Ext
 NUMERIC = {0, 4, 5, 6}
 PARTIAL_COLUMN = 8
 DOCK_NAME = "ContactsTable"
+INTERFERENCE_COLOUR = "#e60d0d"  # as the Interference objects are drawn
 SORT_KEY = QtCore.Qt.UserRole + 2  # the Type column's key: type, then pair, then number
 # The dock's share of the main window's width at most: the 3D view keeps the rest.
 DOCK_WIDTH_SHARE = 0.3
@@ -163,7 +164,8 @@ class ContactTable(QtWidgets.QWidget):
         colours = legend_colours()
         self._syncing = True
         self.table.setSortingEnabled(False)
-        self.table.setRowCount(len(self.contacts) + len(joints))
+        interferences = [i for g in groups for i in g.Group if is_interference(i)]
+        self.table.setRowCount(len(self.contacts) + len(joints) + len(interferences))
         for row, contact in enumerate(self.contacts):
             group = next((p for p in contact.InList if p in groups), None)
             kind = contact.ContactType
@@ -196,6 +198,20 @@ class ContactTable(QtWidgets.QWidget):
             for column, item in enumerate(cells):
                 item.setData(QtCore.Qt.UserRole, joint.Name)
                 self.table.setItem(row, column, item)
+        # overlapping material: its common volume in the area column
+        for row, overlap in enumerate(interferences, start=len(self.contacts) + len(joints)):
+            group = next((p for p in overlap.InList if p in groups), None)
+            volume = overlap.Volume.Value
+            number = overlap.Label.split(":", 1)[0].replace("Interference ", "I")  # "I2"
+            type_cell = _cell("Interference", colour=INTERFERENCE_COLOUR)
+            type_cell.setData(SORT_KEY, _sort_key("Interference", overlap.BodyA, overlap.BodyB,
+                                                  int(number[1:]) if number[1:].isdigit() else 0))
+            cells = [_cell(number), type_cell, _cell(overlap.BodyA), _cell(overlap.BodyB),
+                     _cell(f"{volume:.4g} mm\u00b3", volume), _cell(""), _cell(""), _cell(""), _cell(""),
+                     _cell(group.Label if group else "")]
+            for column, item in enumerate(cells):
+                item.setData(QtCore.Qt.UserRole, overlap.Name)
+                self.table.setItem(row, column, item)
         self.table.setSortingEnabled(True)  # sorts by the header's column: type then pair at first
         self.table.resizeColumnsToContents()
         self._syncing = False
@@ -213,6 +229,8 @@ class ContactTable(QtWidgets.QWidget):
                          + (f", {joints} joints" if joints else "")
                          + (" <i>(out of date: recompute)</i>" if "Touched" in group.State else ""))
             lines.append("By type: " + (", ".join(group.Summary) or "none"))
+            if getattr(group, "InterferenceCount", 0):
+                lines.append(f"Interferences: {group.InterferenceCount} (overlapping material)")
             if group.PairSummary:
                 lines.append("By pair: " + "; ".join(group.PairSummary))
             if getattr(group, "Mobility", None):
@@ -258,7 +276,7 @@ class ContactTable(QtWidgets.QWidget):
             if is_joint(obj):
                 if obj.Contacts:
                     return obj.Contacts[0]
-            else:
+            elif is_contact(obj):  # (an interference has no faces to zoom to)
                 return obj
         return None
 

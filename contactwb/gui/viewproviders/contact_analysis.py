@@ -33,7 +33,7 @@ class ViewProviderContactAnalysis(ViewProvider):
         self.overlay = ContactOverlay(vobj.Object.Document.Name)
         # weak: the overlay must not keep a closed document's view provider alive
         self.overlay.on_body_changed = weakref.WeakMethod(self.schedule_rebuild)
-        self.overlay.on_recomputed = weakref.WeakMethod(self.update_switch)
+        self.overlay.on_recomputed = weakref.WeakMethod(self.after_recompute)
         self.switch = coin.SoSwitch()
         self.switch.setName("ContactsSwitch")
         self.switch.addChild(self.overlay.root)
@@ -64,6 +64,23 @@ class ViewProviderContactAnalysis(ViewProvider):
             return
         shown = self.Object.ViewObject.Visibility and not self.is_stale()
         switch.whichChild.setValue(coin.SO_SWITCH_ALL if shown else coin.SO_SWITCH_NONE)
+
+    def after_recompute(self):
+        """After a recompute, an undo or a redo: the paint shown while the
+        analysis is current, and drawn again if the core's regions changed
+        since it was drawn (a part moved, its contacts kept) or a drawing
+        waited for the recompute."""
+        self.update_switch()
+        overlay = getattr(self, "overlay", None)
+        if overlay is None or self.is_stale():
+            return
+        from contactwb.objects import regions
+        try:
+            changed = regions.generation(self.Object) not in (None, overlay.region_generation)
+        except Exception:  # the group deleted
+            return
+        if self._stale or changed:
+            self.schedule_rebuild()
 
     def updateData(self, obj, prop):
         # Contacts deleted, added or found again (Bodies is set by every run):
@@ -112,7 +129,7 @@ class ViewProviderContactAnalysis(ViewProvider):
         self.update_switch()
         fuzzy = max(10 * self.Object.LinearTolerance.Value, 1e-4)
         try:
-            self.overlay.build(contacts, fuzzy=fuzzy)
+            self.overlay.build(contacts, fuzzy=fuzzy, group=self.Object)
         except Exception as error:  # a drawing problem must not break the document
             FreeCAD.Console.PrintError(f"Contacts: cannot draw '{self.Object.Label}': {error}\n")
             return

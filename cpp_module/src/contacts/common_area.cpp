@@ -397,6 +397,8 @@ void planar_fit(int ia, const Partition& a, int ib, const Partition& b, const Pa
   record(c, ctx, out);
 }
 
+}  // namespace
+
 // ------------------------------------------------ exact common regions
 
 // The region two faces on the same surface have in common, by OCCT's Boolean
@@ -461,6 +463,8 @@ bool is_angle_axial_rectangle(const TopoDS_Face& face, const gp_Pnt& origin, con
   }
   return true;
 }
+
+namespace {
 
 // Cylinders (CLJ) and cones (CJU), face by face in the frame of partition a:
 // faces bounded by parallels and meridians meet in the product of their axial
@@ -618,10 +622,16 @@ void ball_fit(int i_ball, const Partition& ball, int i_seat, const Partition& se
   const gp_Dir y = circle_axis.Crossed(x);
   std::vector<AngularInterval> on_both;
   for (int fs : ball.faces) {
-    FaceProbe ball_probe(face_of(ctx.parts[i_ball], fs));
+    const FaceInfo& ball_face = face_of(ctx.parts[i_ball], fs);
+    FaceProbe ball_probe(ball_face);
+    // A face that is the whole sphere holds every point of the circle: only
+    // the seat is asked (half the classifications of a ball in its raceway).
+    const double sphere_area = 4 * kPi * ps.radius * ps.radius;
+    const bool whole_sphere = std::abs(ball_face.area - sphere_area) <= 1e-9 * sphere_area;
     for (int fc : seat.faces) {
       FaceProbe seat_probe(face_of(ctx.parts[i_seat], fc));
-      std::vector<FaceProbe*> probes{&ball_probe, &seat_probe};
+      std::vector<FaceProbe*> probes{&seat_probe};
+      if (!whole_sphere) probes.push_back(&ball_probe);
       auto hits = circle_on_faces(ps.location, circle_axis, ps.radius, probes, probe_tol, kCircleSamples);
       if (hits.empty()) continue;
       // The runs' ends to the probes' precision (the samples are 5 degrees

@@ -78,6 +78,16 @@ struct CommonRegion {
 };
 CommonRegion common_region(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol);
 
+// The region two faces on the same surface have in common (OCCT's Boolean
+// common of the two faces, fuzzy by the linear tolerance, arguments left
+// untouched), each piece typed; a failed Boolean is a failed Status.
+Status boolean_common(const TopoDS_Face& a, const TopoDS_Face& b, const Tolerances& tol,
+                      std::vector<FaceInfo>& pieces);
+
+// Whether a revolution face is bounded by parallels (constant axial
+// coordinate) and meridians (constant angle) about the axis only.
+bool is_angle_axial_rectangle(const TopoDS_Face& face, const gp_Pnt& origin, const gp_Dir& axis, double tol);
+
 // Tests one candidate pair (a from body ia, b from body ib, ia < ib) and
 // appends the contact it makes, if any, to `out` (side a = body ia).
 // A failed test (OCCT's Boolean common of two faces, or typing a piece of it)

@@ -492,6 +492,13 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       result.status = interferences;
       return result;
     }
+    if (options.regions) {
+      const Status regions = find_common_regions(assembly, result, options.region_bodies, threads, progress);
+      if (!regions.ok()) {
+        result.status = regions;
+        return result;
+      }
+    }
   } catch (const Standard_OutOfMemory&) {
     result.status = Status::failure(StatusCode::OutOfMemory, "out of memory");
   } catch (const std::bad_alloc&) {

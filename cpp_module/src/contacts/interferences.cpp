@@ -8,6 +8,8 @@
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Common.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
@@ -200,6 +202,23 @@ struct PairOutcome {
   std::string message;
 };
 
+// A ball (one convex sphere partition) shares no material with a body whose
+// boundary stays at least its radius (less the tolerance) from its centre,
+// the centre outside that body: then no point of the body lies in the ball
+// (a segment from the centre to it would cross the body's boundary inside
+// the ball). One distance query, where the general test classifies samples
+// and intersects a sphere with tori (balls in their raceways).
+bool ball_apart(const BodyPartitions& ball, const TopoDS_Shape& other, const Tolerances& tol) {
+  if (ball.partitions.size() != 1) return false;
+  const Partition& sphere = ball.partitions.front();
+  if (sphere.params.kind != SurfaceKind::Sphere || sphere.side != MaterialSide::Convex) return false;
+  BRepExtrema_DistShapeShape distance(BRepBuilderAPI_MakeVertex(sphere.params.location).Vertex(), other);
+  if (!distance.IsDone() || distance.NbSolution() == 0) return false;
+  if (distance.InnerSolution() || distance.Value() < sphere.params.radius - tol.linear) return false;
+  BRepClass3d_SolidClassifier centre(other, sphere.params.location, tol.linear);
+  return centre.State() == TopAbs_OUT;
+}
+
 PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, int a, int b) {
   const BodyPartitions& pa = result.partitions[a];
   const BodyPartitions& pb = result.partitions[b];
@@ -221,6 +240,7 @@ PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, in
   if (provably_apart(pa, outlines(a), pb, outlines(b), tol)) return out;
   const TopoDS_Shape& shape_a = assembly.bodies[a].shape;
   const TopoDS_Shape& shape_b = assembly.bodies[b].shape;
+  if (ball_apart(pa, shape_b, tol) || ball_apart(pb, shape_a, tol)) return out;
   // No sample strictly inside: they share volume only if their boundaries
   // cross (boundary_crossing.h, complete for solids).
   if (!sample_inside(shape_a, shape_b, pb.box, tol.linear) && !sample_inside(shape_b, shape_a, pa.box, tol.linear) &&

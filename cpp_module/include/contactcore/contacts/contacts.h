@@ -11,6 +11,9 @@
 #include <utility>
 #include <vector>
 
+#include <TopoDS_Compound.hxx>
+#include <TopoDS_Shape.hxx>
+
 #include "contactcore/bodies/bodies.h"
 #include "contactcore/partitions/partitions.h"
 
@@ -48,6 +51,14 @@ struct Contact {
   // on every side). What makes a ball in a cup or an open groove one-sided.
   gp_Dir region_axis;
   double region_angle = M_PI;
+  // The common region itself, as faces (for drawing it): the part of the
+  // contact's faces both sides share, oriented as side a's faces (their
+  // normals out of body_a), placed as the bodies are. Null unless asked for
+  // (ContactOptions::regions, find_common_regions); stays null for the
+  // circle contacts (LAF, SPT), whose region is a circle. Its area is the
+  // contact's area (the same Boolean common the area test uses, or a face
+  // of one side where it lies wholly on the other's).
+  TopoDS_Compound region;
 };
 
 // Point and line contacts (higher pairs), reported apart from the surface
@@ -96,6 +107,12 @@ struct ContactOptions {
   // For tests: called before each candidate pair's test (bodies, partitions);
   // what it throws skips that pair as a failing test would.
   std::function<void(int, int, int, int)> candidate_hook;
+  // Also compute each contact's common region (Contact::region) and each
+  // interference's overlapping solid (Interference::solid): for the contacts
+  // and interferences touching `region_bodies` only, or every one when it is
+  // empty (find_common_regions).
+  bool regions = false;
+  std::vector<int> region_bodies;
 };
 
 // Found beside contacts, never counted as contacts.
@@ -103,6 +120,7 @@ struct ContactOptions {
 struct Interference {
   int body_a = 0, body_b = 0;  // body_a < body_b
   double volume = 0;           // mm^3 of the common solid
+  TopoDS_Shape solid;          // the common solid; null unless asked for (ContactOptions::regions)
 };
 // A body whose solid is not valid (validity.h: a self-intersecting boundary,
 // open, inside out, zero volume, ...): its contacts and areas may be wrong.
@@ -131,6 +149,7 @@ struct SkippedPair {
 struct StageTimes {
   double partitions = 0, broad_phase = 0, candidates = 0, area = 0;
   double validity = 0, interferences = 0;  // the solid checks, the interference pass
+  double regions = 0;                      // the common regions (ContactOptions::regions)
 };
 
 struct ContactsResult {
@@ -153,6 +172,9 @@ struct ContactsResult {
   std::vector<SkippedPair> skipped;
   std::vector<std::string> messages;  // what was skipped or doubtful, for the user
   StageTimes times;
+  // Common regions and interference solids computed by the last
+  // find_common_regions (ContactOptions::regions) on this result.
+  std::size_t regions_computed = 0;
 };
 
 // The solid checks of find_contacts (validity.h) on bodies partitioned
@@ -181,6 +203,26 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, const std::vector<doub
 // Area of the intersection of two polygon sets (outer loops counter-clockwise,
 // holes clockwise) in the same 2D frame.
 double common_area(const std::vector<Polygon2>& a, const std::vector<Polygon2>& b, double tol);
+
+// Fills Contact::region of the contacts and Interference::solid of the
+// interferences touching `bodies` (every one when empty) of a result of
+// find_contacts on `assembly`, on `threads` threads (progress "regions");
+// counts them in result.regions_computed. A region whose Boolean fails is
+// left null and named in result.messages (drawing only: the rest go on).
+// Status Cancelled when the progress asks to stop.
+Status find_common_regions(const Assembly& assembly, ContactsResult& result, const std::vector<int>& bodies,
+                           int threads = 0, Progress* progress = nullptr);
+
+// Triangles of a region (Contact::region) for drawing: xyz of each point,
+// three 0-based point indices per triangle wound counter-clockwise seen
+// from the side its face's normal points to (out of body_a). Meshes the
+// region (BRepMesh, `deflection` mm, `angular` radians) where it has no
+// triangulation that fine yet.
+struct RegionMesh {
+  std::vector<double> points;
+  std::vector<int> triangles;
+};
+Status mesh_region(const TopoDS_Shape& region, double deflection, double angular, RegionMesh& mesh);
 
 // The whole stage on an assembly. Partitions each body (progress "partitions"),
 // then broad phase, candidates ("candidates") and area ("contacts"), the

@@ -1,0 +1,147 @@
+"""The common regions of an analysis' contacts and the overlapping solids of
+its interferences, as the core computes them (contactcore.find_contacts
+with `regions`, Contact.region_mesh, Interference.solid_brep), cached with
+the analysis for the paint (contactwb.gui.overlay).
+
+Each body the analysis ran on has a fingerprint (its path, placement, box,
+area and face count): a recompute asks the core for the regions of the
+bodies whose fingerprint changed only (a moved part: its contacts), and
+keeps the others' from the cache. The cache lives with the session, not in
+the file: after opening a file the first paint asks the core for all of them
+(region_meshes_of)."""
+import math
+
+from contactwb import core
+from contactwb.core.kinds import CIRCLE_TYPES
+
+# The deflection of the regions' triangles: FreeCAD's for a body's view
+# (ViewProviderPartExt: the box's size sum / 300 * Deviation %, Deviation 0.5
+# by default), so that a region's triangles sag as the body's own faces do.
+DEFAULT_DEVIATION = 0.5
+ANGULAR_DEFLECTION = math.radians(28.5)  # FreeCAD's default AngularDeflection
+
+_caches = {}  # (document name, analysis name) -> RegionCache
+
+
+def body_deflection(shape, deviation=DEFAULT_DEVIATION):
+    box = shape.BoundBox
+    size = box.XLength + box.YLength + box.ZLength if box.isValid() else 1.0
+    return max(size / 300.0 * deviation, 1e-4)
+
+
+def fingerprint(body):
+    """Where a body is and what it is, cheaply: a move or a change of shape
+    changes it."""
+    shape = body.shape
+    box = shape.BoundBox
+    return (body.root.Name, body.subname, tuple(round(v, 9) for v in shape.Placement.toMatrix().A),
+            tuple(round(v, 9) for v in (box.XMin, box.YMin, box.ZMin, box.XMax, box.YMax, box.ZMax)),
+            round(shape.Area, 9), len(shape.Faces))
+
+
+class RegionCache:
+    """One analysis' regions: {contact key: [(points, triangles, deflection)]}
+    (two contacts may share a key), interference solids by pair (BRep text),
+    the bodies' fingerprints and settings they were computed with, and how
+    many the core computed at the last recompute (`computed`)."""
+
+    def __init__(self):
+        self.meshes = {}
+        self.solids = {}
+        self.fingerprints = {}
+        self.settings = None
+        self.computed = 0
+        self.pending = {}  # the fingerprints of the bodies of the recompute under way
+        self.generation = 0  # stored results so far: a paint built from an older one is redrawn
+
+    def changed_bodies(self, bodies, settings):
+        """Indices of the bodies whose regions must be computed again (every
+        one when the settings changed)."""
+        self.pending = {b.name: fingerprint(b) for b in bodies}
+        if settings != self.settings:
+            return list(range(len(bodies)))
+        return [i for i, b in enumerate(bodies) if self.fingerprints.get(b.name) != self.pending[b.name]]
+
+
+def cache_of(group):
+    key = (group.Document.Name, group.Name)
+    if key not in _caches:
+        _caches[key] = RegionCache()
+    return _caches[key]
+
+
+def forget(group):
+    """Drops an analysis' regions (it was deleted, or its document closed)."""
+    _caches.pop((group.Document.Name, group.Name), None)
+
+
+def forget_document(doc_name):
+    """Drops a document's regions: an undo or redo moved its bodies back
+    without a recompute (the next paint asks the core again)."""
+    for key in [k for k in _caches if k[0] == doc_name]:
+        del _caches[key]
+
+
+def region_bodies(group, bodies, settings):
+    """find_contacts' `regions` for a recompute of `group` on `bodies`."""
+    changed = cache_of(group).changed_bodies(bodies, settings)
+    return True if len(changed) == len(bodies) else changed
+
+
+def store(group, bodies, settings, assembly, raw, records, contact_key):
+    """Keeps the regions of a core result `raw` (found with region_bodies'
+    `regions`) for `records` (its contacts as analysis records, in order):
+    the new ones replace the changed bodies'; a contact whose region is
+    neither new nor cached (first seen between unchanged bodies) is computed
+    now. Returns the cache."""
+    cache = cache_of(group)
+    if settings != cache.settings:
+        cache.meshes, cache.solids = {}, {}
+    computed = raw.regions_computed
+    now = {b.name: cache.pending.get(b.name) or fingerprint(b) for b in bodies}
+    changed = {name for name, fp in now.items() if cache.fingerprints.get(name) != fp}
+    missing = {c.body_a for c, r in zip(raw.contacts, records)
+               if not c.has_region and r.type not in CIRCLE_TYPES and
+               (r.a in changed or r.b in changed or contact_key(r) not in cache.meshes)}
+    if missing:
+        computed += core.contactcore.find_common_regions(assembly, raw, sorted(missing))
+    kept = {}
+    for contact, record in zip(raw.contacts, records):
+        key = contact_key(record)
+        if contact.has_region:
+            deflection = body_deflection(bodies[contact.body_a].shape)
+            points, triangles = contact.region_mesh(deflection, ANGULAR_DEFLECTION)
+            kept.setdefault(key, []).append((points, triangles, deflection))
+        elif key in cache.meshes and key not in kept:
+            kept[key] = cache.meshes[key]
+    names = [b.name for b in bodies]
+    solids = {}
+    for overlap in raw.interferences:
+        pair = (names[overlap.body_a], names[overlap.body_b])
+        if overlap.has_solid:
+            solids[pair] = overlap.solid_brep
+        elif pair in cache.solids and pair[0] not in changed and pair[1] not in changed:
+            solids[pair] = cache.solids[pair]
+    cache.meshes, cache.solids = kept, solids
+    cache.fingerprints, cache.pending = now, {}
+    cache.settings = settings
+    cache.computed = computed
+    cache.generation += 1
+    return cache
+
+
+def meshes_of(group, key):
+    """[(points, triangles, deflection)] of a contact key, [] when none is cached."""
+    cache = _caches.get((group.Document.Name, group.Name))
+    return cache.meshes.get(key, []) if cache is not None else []
+
+
+def generation(group):
+    """How many results the analysis' cache has stored (None: no cache)."""
+    cache = _caches.get((group.Document.Name, group.Name))
+    return cache.generation if cache is not None else None
+
+
+def has_regions(group):
+    cache = _caches.get((group.Document.Name, group.Name))
+    return cache is not None and cache.settings is not None
