@@ -6,6 +6,8 @@ import math
 import FreeCAD
 from pivy import coin
 
+from contactwb.gui.overlay.coin_nodes import unlit_polyline
+
 ROTATION_COLOUR = (0.75, 0.05, 0.1)
 TRANSLATION_COLOUR = (0.1, 0.6, 0.15)
 RIGID_COLOUR = (0.45, 0.45, 0.45)
@@ -16,17 +18,8 @@ def _line(points, colour, width=GLYPH_WIDTH):
     node = coin.SoSeparator()
     material = coin.SoMaterial()
     material.diffuseColor.setValue(*colour)
-    style = coin.SoDrawStyle()
-    style.lineWidth.setValue(width)
-    light = coin.SoLightModel()
-    light.model.setValue(coin.SoLightModel.BASE_COLOR)
-    coordinates = coin.SoCoordinate3()
-    coordinates.point.setValues(0, len(points), points)
-    lines = coin.SoLineSet()
-    lines.numVertices.setValue(len(points))
-    for child in (material, style, light, coordinates, lines):
-        node.addChild(child)
-    return node
+    node.addChild(material)
+    return unlit_polyline(points, width, node)
 
 
 def _ring(centre, axis, radius, segments=48):

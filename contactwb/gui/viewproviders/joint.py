@@ -9,11 +9,12 @@ from pivy import coin
 
 import contactwb
 from contactwb.gui.overlay.joint_glyphs import joint_glyphs
-from contactwb.gui.viewproviders.base import ViewProvider
+from contactwb.gui.viewproviders.base import OneDisplayMode, ViewProvider
 
 
-class ViewProviderJoint(ViewProvider):
+class ViewProviderJoint(OneDisplayMode, ViewProvider):
     """Draws its Joint's glyphs (over the bodies: an annotation)."""
+    DISPLAY_MODE = "Glyphs"
 
     def attach(self, vobj):
         super().attach(vobj)
@@ -21,15 +22,6 @@ class ViewProviderJoint(ViewProvider):
         self.glyphs.setName("JointGlyphs")
         self.axes = self.arrows = 0
         vobj.addDisplayMode(self.glyphs, "Glyphs")
-
-    def getDisplayModes(self, vobj):
-        return ["Glyphs"]
-
-    def getDefaultDisplayMode(self):
-        return "Glyphs"
-
-    def setDisplayMode(self, mode):
-        return mode
 
     def updateData(self, obj, prop):
         if prop in ("AxisPoints", "AxisDirections", "Translations", "Centre", "GlyphLength"):
