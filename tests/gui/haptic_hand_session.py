@@ -40,12 +40,7 @@ def run():
     view.viewFront()
     view.fitAll()
     # Baseline: the panel's display rate without a contact analysis (same drag, 1.5 s).
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(axis)
-    FreeCADGui.runCommand("Contacts_HapticTrial")
-    wait(0.5)
-    FreeCADGui.Selection.clearSelection()
-    panel = haptic_panel.active_panel
+    panel = session_helpers.open_haptic_panel(axis)
     frames_before, start = len(panel.frame_times), time.monotonic()
     for i in range(31):
         panel.hand_sliders["z"].setValue(int(round(5.0 * i / 30 * haptic_panel.SLIDER_STEPS_PER_UNIT)))
@@ -78,12 +73,7 @@ def run():
     view.fitAll()
     wait(0.3)
     original = FreeCAD.Placement(axis.Placement)
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(axis)
-    FreeCADGui.runCommand("Contacts_HapticTrial")
-    wait(0.5)
-    FreeCADGui.Selection.clearSelection()
-    panel = haptic_panel.active_panel
+    panel = session_helpers.open_haptic_panel(axis)
     report["panel_open"] = panel is not None
     if panel is None:
         return

@@ -41,13 +41,7 @@ def grab_window_with_view(name):
 def pick_joints(doc, axis):
     """Reopens the panel, holds the axis to a chosen joint (not the one found)
     and checks that the running loop holds it there, then back to the found one."""
-    from contactwb.gui import haptic_panel
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(axis)
-    FreeCADGui.runCommand("Contacts_HapticTrial")
-    wait(0.5)
-    FreeCADGui.Selection.clearSelection()
-    panel = haptic_panel.active_panel
+    panel = session_helpers.open_haptic_panel(axis)
     report["joint_choices"] = [c["label"] for c in panel.joint_choices]
     report["joint_combo_items"] = [panel.joint_combo.itemText(i) for i in range(panel.joint_combo.count())]
     wait(0.3)

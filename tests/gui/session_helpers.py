@@ -63,3 +63,14 @@ def run_and_report(run, report):
     with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
         json.dump(report, stream, indent=1)
     os._exit(0)
+
+
+def open_haptic_panel(part):
+    """Selects `part`, runs Contacts_HapticTrial, clears the selection: the panel it opened (None: none)."""
+    from contactwb.gui.panels import haptic_panel
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(part)
+    FreeCADGui.runCommand("Contacts_HapticTrial")
+    wait(0.5)
+    FreeCADGui.Selection.clearSelection()
+    return haptic_panel.active_panel
