@@ -124,8 +124,8 @@ def test_misspelt_servo_option_is_named(motor_scene):
     # Spelt right, the same option is taken.
     result = cc.haptics.run_trial(motor_scene, SCRIPT, settle=0.0, rate_hz=500.0, stiffness=2.0)
     # Lockstep: the measured rate is null (issue 20's honest metrics); the ticks say the period.
-    assert result["mode"] == "lockstep" and result["rate_hz"] is None
-    assert result["sim_time_s"] == pytest.approx(result["ticks"] / 500.0)
+    assert result.mode == "lockstep" and result.rate_hz is None
+    assert result.sim_time_s == pytest.approx(result.ticks / 500.0)
 
 
 def test_bad_trial_script_is_an_argument_error(motor_scene):

@@ -159,12 +159,12 @@ def test_spacemouse_report_through_the_binding():
     h = trial.haptics()
     # SpaceMouse Compact: six axes in report 1; HID y/z swapped and inverted (spacenavd).
     parsed = h.parse_spacemouse_report(0x256f, 0xc635, bytes([1, 0x5e, 0x01, 0, 0, 0xa2, 0xfe, 0, 0, 0, 0, 0x5e, 0x01]))
-    assert parsed["understood"] and parsed["model"] == "SpaceMouse Compact"
-    assert parsed["raw"] == [350, 0, -350, 0, 0, 350]
-    assert parsed["axes"] == [1.0, 1.0, -0.0, 0.0, -1.0, -0.0]
-    assert h.parse_spacemouse_report(0x046d, 0xc626, bytes([9, 0, 0]))["understood"] is False
+    assert parsed.understood and parsed.model == "SpaceMouse Compact"
+    assert parsed.raw == [350, 0, -350, 0, 0, 350]
+    assert parsed.axes == [1.0, 1.0, -0.0, 0.0, -1.0, -0.0]
+    assert h.parse_spacemouse_report(0x046d, 0xc626, bytes([9, 0, 0])).understood is False
     # Without hardware (no /dev/hidraw here) an empty list, not an error.
-    assert all(d["vendor"] in (0x046d, 0x256f) for d in h.spacemouse_devices())
+    assert all(d.vendor in (0x046d, 0x256f) for d in h.spacemouse_devices())
 
 
 # ---- engagement on a plane and in a cone: generated cases (written at test time)
@@ -233,7 +233,8 @@ def test_hid_force_feedback_capabilities_from_a_descriptor():
     plain = bytes([0x05, 0x01, 0x09, 0x08, 0xA1, 0x01, 0x85, 0x01, 0x09, 0x30, 0x16, 0xA2, 0xFE,
                    0x26, 0x5E, 0x01, 0x75, 0x10, 0x95, 0x01, 0x81, 0x02, 0xC0])
     caps = h.hid_pid_capabilities(plain)
-    assert caps == {"force_output": False, "why": "no PID usage page (0x0F): no force feedback"}
+    assert caps.to_dict() == {"force_output": False, "why": "no PID usage page (0x0F): no force feedback",
+                              "capabilities": None, "axes": 0}
     # Without hardware: an empty list, not an error.
     assert isinstance(h.hid_force_feedback_devices(), list)
 
@@ -245,4 +246,4 @@ def test_hid_force_feedback_session_without_hardware():
     # No PID device here: the simulated hand, and a message saying why, not an error.
     assert session.message.startswith("No force-feedback device (")
     assert session.message.endswith("using the simulated hand.")
-    assert session.capabilities["name"] == trial.haptics().simulated_capabilities()["name"]
+    assert session.capabilities.name == trial.haptics().simulated_capabilities().name

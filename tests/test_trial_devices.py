@@ -51,7 +51,7 @@ def test_no_device_plugged_exits_3_with_the_devices_seen(device):
     if seen:
         assert "HID devices seen:\n" in done.stderr
         for d in seen:
-            assert d["path"] in done.stderr
+            assert d.path in done.stderr
     else:  # this machine: no /dev/hidraw, and the message says so
         assert "HID devices seen: none" in done.stderr
 
@@ -100,10 +100,10 @@ def test_replayed_silence_stops_the_part_after_the_watchdog_timeout(tmp_path):
     from contactwb import core, trial
     scene = trial.make_scene(core.contactcore.read_step(MOTOR), "Axis")
     result = trial.run(scene, trial.read_script(SCRIPT), device="replay", hid_file=recording)
-    assert result["device"] == "replay"
-    assert "Replaying 2 recorded reports of SpaceMouse Compact" in result["device_message"]
-    assert result["path"][0]["translate"][2] - result["final"]["translate"][2] == pytest.approx(10.0, abs=1e-6)
-    stalled = [p["translate"][2] for p in result["path"] if 0.36 <= p["t"] <= 0.99]
+    assert result.device == "replay"
+    assert "Replaying 2 recorded reports of SpaceMouse Compact" in result.device_message
+    assert result.path[0].translate[2] - result.final.translate[2] == pytest.approx(10.0, abs=1e-6)
+    stalled = [p.translate[2] for p in result.path if 0.36 <= p.t <= 0.99]
     assert len(stalled) > 50 and max(stalled) - min(stalled) < 1e-9  # held still while stale
 
 
@@ -111,9 +111,9 @@ def test_recording_round_trip_and_errors(tmp_path):
     reports = [(0.0125, six_axes(tx=-175)), (0.5, b""), (0.75, b""), (1.25, six_axes())]
     path = write_recording(tmp_path / "r.hid", reports)
     back = haptics().read_hid_recording(path)
-    assert back["kind"] == "spacemouse" and (back["vendor"], back["product"]) == COMPACT
-    assert back["name"] == "SpaceMouse Compact"
-    assert back["reports"] == reports
+    assert back.kind == "spacemouse" and (back.vendor, back.product) == COMPACT
+    assert back.name == "SpaceMouse Compact"
+    assert back.reports == reports
     with open(path) as stream:
         assert stream.readline() == "contacts-hid-recording 1\n"
     bad = tmp_path / "bad.hid"
@@ -131,14 +131,14 @@ def test_panel_session_on_a_recording(tmp_path):
     scene = trial.make_scene(core.contactcore.read_step(MOTOR), "Axis")
     session = haptics().HapticSession(scene, "replay", [0, 0, 30], [0, 0, 0], hid_file=recording)
     assert session.message == "Replaying 2 recorded reports of SpaceMouse Compact."
-    assert session.capabilities["control"] == "rate"
+    assert session.capabilities.control == "rate"
     session.step(1)  # lockstep, thread stopped: captured on the axis
-    z0 = session.snapshot()["translate"][2]
+    z0 = session.snapshot().translate[2]
     session.step(99)
     s = session.snapshot()
     # 40 ticks deflected at 40 mm/s (a collision bisection may keep 1023/1024 of one tick's step).
-    assert z0 - s["translate"][2] == pytest.approx(0.04 * 40, abs=1e-4)
-    assert s["late_wakeups"] == 0 and s["memory_locked"] is False
-    assert s["joint"] == "Cylindrical" and s["stops"] == []  # on the bores' axis; the shaft has no shoulder
+    assert z0 - s.translate[2] == pytest.approx(0.04 * 40, abs=1e-4)
+    assert s.late_wakeups == 0 and s.memory_locked is False
+    assert s.joint == "Cylindrical" and s.stops == []  # on the bores' axis; the shaft has no shoulder
     fallback = haptics().HapticSession(scene, "spacemouse")
     assert fallback.message.startswith("No SpaceMouse found (")

@@ -27,6 +27,22 @@ from contactwb.cli.process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_
 _finite = finite_number
 
 
+# The keys of `contacts trial --json`, in order: other tools read them. Each is
+# the TrialResult field of that name (to_dict()), except joints_engaged, of
+# which only "with" and "type" are written.
+JSON_FIELDS = ("mode", "ticks", "sim_time_s", "rate_hz", "step_us", "jitter_us", "overruns", "realtime_priority",
+               "success", "failure", "joints_engaged", "final", "max_penetration_mm", "start_penetration_mm",
+               "final_penetration_mm", "max_force_n")
+
+
+def trial_json(result):
+    """What `contacts trial --json` prints of a TrialResult."""
+    fields = result.to_dict()
+    out = {key: fields[key] for key in JSON_FIELDS}
+    out["joints_engaged"] = [{"with": j["with"], "type": j["type"]} for j in fields["joints_engaged"]]
+    return out
+
+
 def main(argv, own_process=False):
     return run_command("contacts trial", lambda: _trial(argv), own_process)
 
@@ -109,7 +125,7 @@ def _trial(argv):
     except MemoryError:
         print(f"contacts trial: out of memory (file '{file}')", file=sys.stderr)
         return EXIT_FAILED
-    path = result.pop("path")
+    path = [sample.to_dict() for sample in result.path]
     if args.record:
         try:
             with output_files.replaced(args.record) as temporary:
@@ -118,37 +134,31 @@ def _trial(argv):
             print(f"contacts trial: cannot write '{args.record}': {error.strerror}", file=sys.stderr)
             return EXIT_FAILED
     if args.json:
-        out = {k: result[k] for k in ("mode", "ticks", "sim_time_s", "rate_hz", "step_us", "jitter_us",
-                                      "overruns", "realtime_priority", "success", "failure")}
-        out["joints_engaged"] = [{"with": j["with"], "type": j["type"]} for j in result["joints_engaged"]]
-        out["final"] = result["final"]
-        for key in ("max_penetration_mm", "start_penetration_mm", "final_penetration_mm", "max_force_n"):
-            out[key] = result[key]
-        json.dump(out, sys.stdout, indent=2)
+        json.dump(trial_json(result), sys.stdout, indent=2)
         sys.stdout.write("\n")
     else:
-        final = result["final"]
-        if result["mode"] == "realtime":
-            print(f"Trial of '{escape_controls(args.part)}' in {escape_controls(file)} (realtime): {result['ticks']} ticks at "
-                  f"{result['rate_hz']:.0f} Hz, step p50 {result['step_us']['p50']:.1f} us, "
-                  f"p99 {result['step_us']['p99']:.1f} us, jitter p99 {result['jitter_us']['p99']:.1f} us, "
-                  f"{result['overruns']} overruns")
+        final = result.final
+        if result.mode == "realtime":
+            print(f"Trial of '{escape_controls(args.part)}' in {escape_controls(file)} (realtime): {result.ticks} ticks at "
+                  f"{result.rate_hz:.0f} Hz, step p50 {result.step_us.p50:.1f} us, "
+                  f"p99 {result.step_us.p99:.1f} us, jitter p99 {result.jitter_us.p99:.1f} us, "
+                  f"{result.overruns} overruns")
         else:
-            print(f"Trial of '{escape_controls(args.part)}' in {escape_controls(file)} (lockstep): {result['ticks']} ticks, "
-                  f"{result['sim_time_s']:.3f} s simulated")
-        for j in result["joints_engaged"]:
-            print(f"  engaged {j['type']} ({j['joint']}) with {escape_controls(j['with'])} "
-                  f"at t = {j['t']:.3f} s")
-        print("  final offset: translate [" + ", ".join(f"{v:.4f}" for v in final["translate"]) + "] mm, rotate ["
-              + ", ".join(f"{v:.4f}" for v in final["rotate_deg"]) + "] deg")
-        print(f"  max penetration {result['max_penetration_mm']:.4f} mm, max force {result['max_force_n']:.2f} N")
+            print(f"Trial of '{escape_controls(args.part)}' in {escape_controls(file)} (lockstep): {result.ticks} ticks, "
+                  f"{result.sim_time_s:.3f} s simulated")
+        for j in result.joints_engaged:
+            print(f"  engaged {j.type} ({j.joint}) with {escape_controls(j.with_body)} "
+                  f"at t = {j.t:.3f} s")
+        print("  final offset: translate [" + ", ".join(f"{v:.4f}" for v in final.translate) + "] mm, rotate ["
+              + ", ".join(f"{v:.4f}" for v in final.rotate_deg) + "] deg")
+        print(f"  max penetration {result.max_penetration_mm:.4f} mm, max force {result.max_force_n:.2f} N")
         if args.record:
             print(f"  path ({len(path)} samples) saved to {args.record}")
         if args.device != "sim":
-            print(f"  device: {result['device_message']}")
+            print(f"  device: {result.device_message}")
         if args.record_hid:
             print(f"  raw HID reports saved to {args.record_hid}")
-    if not result["success"]:  # the trial ran, but its path is not acceptable: the analysis failed
-        print(f"contacts trial: failed: {result['failure']} (file '{escape_controls(file)}')", file=sys.stderr)
+    if not result.success:  # the trial ran, but its path is not acceptable: the analysis failed
+        print(f"contacts trial: failed: {result.failure} (file '{escape_controls(file)}')", file=sys.stderr)
         return EXIT_FAILED
     return EXIT_OK

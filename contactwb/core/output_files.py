@@ -63,6 +63,14 @@ def _temporary_beside(path):
     raise OSError(errno.EEXIST, "cannot make a temporary file", path)
 
 
+def _forget(temporary):
+    """A temporary no longer pending, and gone (renamed into place or removed)."""
+    with _lock:
+        _pending.discard(temporary)
+    with contextlib.suppress(FileNotFoundError):
+        os.unlink(temporary)
+
+
 @contextlib.contextmanager
 def replaced(path):
     """Yields the name of a new temporary file beside `path` for a writer
@@ -74,10 +82,7 @@ def replaced(path):
         yield temporary
         os.replace(temporary, path)
     finally:
-        with _lock:
-            _pending.discard(temporary)
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(temporary)
+        _forget(temporary)
 
 
 @contextlib.contextmanager
@@ -90,7 +95,4 @@ def output_file(path, mode="w", **open_args):
             yield stream
         os.replace(temporary, path)
     finally:
-        with _lock:
-            _pending.discard(temporary)
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(temporary)
+        _forget(temporary)

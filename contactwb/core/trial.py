@@ -160,7 +160,9 @@ DEVICES = ("sim", "spacemouse", "hid-ff", "replay")
 
 def run(scene, script, realtime=False, record_every=10, device="sim", hid_file=None, record_hid=None,
         duration=None, **options):
-    """The trial's result dict (see `contacts trial --json`) with its 'path'.
+    """The trial's result: a contactcore.haptics.TrialResult (documented
+    read-only fields; to_dict() gives what `contacts trial --json` picks from,
+    with its 'path').
 
     device: 'sim' (the scripted simulated hand), 'spacemouse' or 'hid-ff'
     (hardware, real time; `record_hid` a file for the raw reports), 'replay'
@@ -176,10 +178,10 @@ def run(scene, script, realtime=False, record_every=10, device="sim", hid_file=N
 
 
 def describe_devices_seen(devices):
-    """One line per HID device seen (for "no device" messages), or a line saying there were none."""
+    """One line per HID device seen (contactcore.haptics.HidDeviceSeen) (for "no device" messages), or a line saying there were none."""
     if not devices:
         return "no HID devices seen"
-    return "\n".join(f"{d['vendor']:04x}:{d['product_id']:04x} {d['manufacturer']} {d['product']} ({d['path']})"
+    return "\n".join(f"{d.vendor:04x}:{d.product_id:04x} {d.manufacturer} {d.product} ({d.path})"
                      for d in devices)
 
 

@@ -1,6 +1,8 @@
 """make_simulation_model(): a body's view or collision model as a document
 object (headless; the GUI command wraps it in a transaction). The model is
 computed by the object's recompute (contactwb.objects.simulation_model)."""
+import math
+
 from contactwb.objects import gui_hooks
 from contactwb.objects.simulation_model import (SimulationModel, followed_partitions,  # noqa: F401
                                                 shape_of, update_simulation_model)
@@ -18,7 +20,7 @@ def make_simulation_model(doc, body, model="Collision", followed=None, switched_
                           angle=0.5, max_edge=0.0, feature_size=0.0, envelope=0.0, name="SimulationModel"):
     """A SimulationModel object for `body` (an object, or (top-level object, subname)), computed at once.
     `followed`: the other part of the joint being followed (its contact partitions switched off);
-    `switched_off`: further partition ids."""
+    `switched_off`: further partition ids; `deflection` mm, `angle` radians (shown in degrees)."""
     obj = doc.addObject("App::FeaturePython", name)
     SimulationModel(obj)
     obj.Body = _link(body)
@@ -26,7 +28,7 @@ def make_simulation_model(doc, body, model="Collision", followed=None, switched_
         obj.FollowedPart = _link(followed)
     obj.Model = model
     obj.Deflection = deflection
-    obj.AngularDeflection = angle * 180 / 3.141592653589793
+    obj.AngularDeflection = math.degrees(angle)  # `angle` in radians, the property in degrees
     obj.MaxEdgeLength = max_edge
     obj.FeatureSize = feature_size
     obj.Envelope = envelope

@@ -18,6 +18,16 @@ def add_property(obj, kind, name, group, doc, mode=None):
         obj.setEditorMode(name, mode)
 
 
+def add_read_only_group(obj, group, properties):
+    """Adds the (kind, name, doc) properties of `group` where missing, and makes
+    every property of the group read-only (results a recompute writes)."""
+    for kind, name, doc in properties:
+        add_property(obj, kind, name, group, doc)
+    for name in obj.PropertiesList:
+        if obj.getGroupOfProperty(name) == group:
+            obj.setEditorMode(name, 1)
+
+
 def versioned(obj, proxy_type):
     """Adds the type and version records; returns the version the object was
     saved with (1: before they existed)."""

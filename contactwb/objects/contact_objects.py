@@ -23,7 +23,8 @@ from contactwb.document import bodies as document_bodies
 from contactwb.document.identify import is_contact, is_contact_analysis, is_interference, is_joint  # noqa: F401
 from contactwb.document.shapes import assembly_from_shapes, shape_from_brep
 from contactwb.objects import gui_hooks, regions
-from contactwb.objects.base import PROXY_VERSION, VersionedProxy, add_property, versioned  # noqa: F401
+from contactwb.objects.base import (PROXY_VERSION, VersionedProxy, add_property, add_read_only_group,  # noqa: F401
+                                     versioned)
 from contactwb.objects.body_watcher import (pending_removal, remove_after_recompute,  # noqa: F401
                                             watch_document)
 
@@ -142,23 +143,21 @@ class ContactAnalysis:
 
 
 def _contact_properties(obj):
-    add_property(obj, "App::PropertyString", "ContactType", "Contact",
-                 ", ".join(CONTACT_TYPES[:-1]) + " or " + CONTACT_TYPES[-1])
-    add_property(obj, "App::PropertyInteger", "Number", "Contact", "Number of the contact in its label")
-    add_property(obj, "App::PropertyString", "BodyA", "Contact", "First body")
-    add_property(obj, "App::PropertyString", "BodyB", "Contact", "Second body")
-    add_property(obj, "App::PropertyXLinkSubList", "FacesA", "Contact", "Faces of the first body in contact")
-    add_property(obj, "App::PropertyXLinkSubList", "FacesB", "Contact", "Faces of the second body in contact")
-    add_property(obj, "App::PropertyArea", "Area", "Contact", "Common area (0 for circle contacts)")
-    add_property(obj, "App::PropertyBool", "Partial", "Contact", "Revolution contact spanning under 180 degrees")
-    add_property(obj, "App::PropertyAngle", "Span", "Contact", "Common angular span")
-    add_property(obj, "App::PropertyLength", "Radius", "Contact", "Radius (cylinder, sphere, ball)")
-    add_property(obj, "App::PropertyAngle", "HalfAngle", "Contact", "Half-angle of the cone (CJU)")
-    add_property(obj, "App::PropertyVector", "Point", "Contact", "A point of the contact (axis point, centre)")
-    add_property(obj, "App::PropertyVector", "Direction", "Contact", "Normal of the first body, or axis")
-    for name in obj.PropertiesList:
-        if obj.getGroupOfProperty(name) == "Contact":
-            obj.setEditorMode(name, 1)
+    add_read_only_group(obj, "Contact", [
+        ("App::PropertyString", "ContactType", ", ".join(CONTACT_TYPES[:-1]) + " or " + CONTACT_TYPES[-1]),
+        ("App::PropertyInteger", "Number", "Number of the contact in its label"),
+        ("App::PropertyString", "BodyA", "First body"),
+        ("App::PropertyString", "BodyB", "Second body"),
+        ("App::PropertyXLinkSubList", "FacesA", "Faces of the first body in contact"),
+        ("App::PropertyXLinkSubList", "FacesB", "Faces of the second body in contact"),
+        ("App::PropertyArea", "Area", "Common area (0 for circle contacts)"),
+        ("App::PropertyBool", "Partial", "Revolution contact spanning under 180 degrees"),
+        ("App::PropertyAngle", "Span", "Common angular span"),
+        ("App::PropertyLength", "Radius", "Radius (cylinder, sphere, ball)"),
+        ("App::PropertyAngle", "HalfAngle", "Half-angle of the cone (CJU)"),
+        ("App::PropertyVector", "Point", "A point of the contact (axis point, centre)"),
+        ("App::PropertyVector", "Direction", "Normal of the first body, or axis"),
+    ])
 
 
 class Contact(VersionedProxy):
@@ -168,22 +167,20 @@ class Contact(VersionedProxy):
 
 
 def _joint_properties(obj):
-    add_property(obj, "App::PropertyString", "JointType", "Joint",
-         "ISO 3952 name: rigid, revolute, prismatic, helical, cylindrical, spherical, planar, ...")
-    add_property(obj, "App::PropertyInteger", "DOF", "Joint", "Degrees of freedom of body B relative to body A")
-    add_property(obj, "App::PropertyString", "BodyA", "Joint", "First body")
-    add_property(obj, "App::PropertyString", "BodyB", "Joint", "Second body (moving relative to the first)")
-    add_property(obj, "App::PropertyVectorList", "AxisPoints", "Joint", "A point of each rotation axis (mm)")
-    add_property(obj, "App::PropertyVectorList", "AxisDirections", "Joint", "Direction of each rotation axis")
-    add_property(obj, "App::PropertyVectorList", "Translations", "Joint", "Directions of free translation")
-    add_property(obj, "App::PropertyVectorList", "FreeDirections", "Joint",
-         "Generators of the cone of directions in which B can leave A")
-    add_property(obj, "App::PropertyVector", "Centre", "Joint", "Centre of the pair's contacts (where glyphs are drawn)")
-    add_property(obj, "App::PropertyLength", "GlyphLength", "Joint", "Length of the axis glyphs")
-    add_property(obj, "App::PropertyLinkListHidden", "Contacts", "Joint", "The contacts making this joint")
-    for name in obj.PropertiesList:
-        if obj.getGroupOfProperty(name) == "Joint":
-            obj.setEditorMode(name, 1)
+    add_read_only_group(obj, "Joint", [
+        ("App::PropertyString", "JointType",
+         "ISO 3952 name: rigid, revolute, prismatic, helical, cylindrical, spherical, planar, ..."),
+        ("App::PropertyInteger", "DOF", "Degrees of freedom of body B relative to body A"),
+        ("App::PropertyString", "BodyA", "First body"),
+        ("App::PropertyString", "BodyB", "Second body (moving relative to the first)"),
+        ("App::PropertyVectorList", "AxisPoints", "A point of each rotation axis (mm)"),
+        ("App::PropertyVectorList", "AxisDirections", "Direction of each rotation axis"),
+        ("App::PropertyVectorList", "Translations", "Directions of free translation"),
+        ("App::PropertyVectorList", "FreeDirections", "Generators of the cone of directions in which B can leave A"),
+        ("App::PropertyVector", "Centre", "Centre of the pair's contacts (where glyphs are drawn)"),
+        ("App::PropertyLength", "GlyphLength", "Length of the axis glyphs"),
+        ("App::PropertyLinkListHidden", "Contacts", "The contacts making this joint"),
+    ])
 
 
 class Joint(VersionedProxy):
@@ -193,13 +190,11 @@ class Joint(VersionedProxy):
 
 
 def _interference_properties(obj):
-    add_property(obj, "App::PropertyString", "BodyA", "Interference", "First body")
-    add_property(obj, "App::PropertyString", "BodyB", "Interference", "Second body")
-    add_property(obj, "App::PropertyVolume", "Volume", "Interference",
-                 "Volume of the material both bodies occupy (its solid is the Shape)")
-    for name in obj.PropertiesList:
-        if obj.getGroupOfProperty(name) == "Interference":
-            obj.setEditorMode(name, 1)
+    add_read_only_group(obj, "Interference", [
+        ("App::PropertyString", "BodyA", "First body"),
+        ("App::PropertyString", "BodyB", "Second body"),
+        ("App::PropertyVolume", "Volume", "Volume of the material both bodies occupy (its solid is the Shape)"),
+    ])
 
 
 class Interference(VersionedProxy):

@@ -8,6 +8,8 @@ permanent name. The mesh is stored in the object (hidden properties), so a
 re-opened file shows it without meshing again; the view provider only draws
 it (contactwb/gui/viewproviders/simulation_model.py). The model is computed
 here (update_simulation_model: the proxy's execute)."""
+import math
+
 import FreeCAD
 
 from contactwb import core
@@ -99,8 +101,8 @@ def update_simulation_model(obj):
     else:
         assembly = assembly_from_shapes([("body", shape)])
     deflection = max(float(obj.Deflection.Value), 1e-4)
-    angle_degrees = float(obj.AngularDeflection.Value)
-    angle = angle_degrees * 3.141592653589793 / 180 if angle_degrees > 0 else 0.5
+    angle_deg = float(obj.AngularDeflection.Value)  # the property is in degrees, the core takes radians
+    angle = math.radians(angle_deg) if angle_deg > 0 else 0.5
     feature_size = float(obj.FeatureSize.Value)
     envelope = float(obj.Envelope.Value)
     (models,) = meshes.simulation_models(assembly, deflection, angle, float(obj.MaxEdgeLength.Value),

@@ -2,18 +2,15 @@
 // headless scripted trial, and a live session (device + 1 kHz loop on its own
 // thread) for the panel. The loop never touches Python: the session's
 // methods exchange values with it through atomics and a snapshot.
-#include "common.h"
-
+// Results are classes (haptic_results.h/.cpp).
 #include <algorithm>
-#include <iterator>
+#include <functional>
 #include <memory>
+#include <utility>
 
-#include "contactcore/haptics/device_factory.h"
-#include "contactcore/haptics/hid_pid_device.h"
-#include "contactcore/haptics/hid_recording.h"
 #include "contactcore/haptics/joint_adapter.h"
-#include "contactcore/haptics/spacemouse.h"
-#include "contactcore/haptics/trial.h"
+#include "contactcore/haptics/pose_math.h"
+#include "haptic_results.h"
 
 namespace contactcore::bindings {
 
@@ -21,16 +18,19 @@ using namespace contactcore::haptics;
 
 namespace {
 
-py::list vec(const Vec3& v) {
-  py::list out;
-  for (int i = 0; i < 3; ++i) out.append(v[i]);
-  return out;
-}
-
 Vec3 vec_from(const py::handle& value, const char* what) {
   auto seq = value.cast<std::vector<double>>();
   if (seq.size() != 3) raise_argument_error(std::string(what) + ": three numbers expected");
   return {seq[0], seq[1], seq[2]};
+}
+
+// The pose of an offset (translate mm, rotate_deg degrees about x, y, z)
+// from the assembled placement, about `centre`.
+Pose pose_from(const Vec3& translate, const Vec3& rotate_deg, const Vec3& centre) {
+  return offset_pose(translate, Vec3(rad(rotate_deg.x()), rad(rotate_deg.y()), rad(rotate_deg.z())), centre);
+}
+Pose pose_from(const py::handle& translate, const py::handle& rotate_deg, const Vec3& centre) {
+  return pose_from(vec_from(translate, "translate"), vec_from(rotate_deg, "rotate_deg"), centre);
 }
 
 ScriptKey key_from(const py::dict& d, bool timed) {
@@ -41,39 +41,18 @@ ScriptKey key_from(const py::dict& d, bool timed) {
   return k;
 }
 
-py::dict offset_dict(const Pose& pose, const Vec3& centre) {
-  Vec3 t, r;
-  offset_of(pose, centre, t, r);
-  py::dict d;
-  d["translate"] = vec(t);
-  d["rotate_deg"] = vec(Vec3(deg(r.x()), deg(r.y()), deg(r.z())));
-  return d;
-}
-
-py::list matrix_rows(const Pose& pose) {
-  py::list rows;
-  for (int i = 0; i < 4; ++i) {
-    py::list row;
-    for (int j = 0; j < 4; ++j) row.append(pose.matrix()(i, j));
-    rows.append(row);
+// (arrival s, bytes) pairs as recorded reports.
+std::vector<RecordedReport> reports_from(const py::handle& pairs) {
+  std::vector<RecordedReport> reports;
+  for (const py::handle& item : pairs.cast<py::list>()) {
+    auto pair = item.cast<py::tuple>();
+    RecordedReport report;
+    report.time = pair[0].cast<double>();
+    const std::string b = pair[1].cast<py::bytes>();
+    report.bytes.assign(b.begin(), b.end());
+    reports.push_back(std::move(report));
   }
-  return rows;
-}
-
-py::dict capabilities_dict(const DeviceCapabilities& c) {
-  py::dict d;
-  d["name"] = c.name;
-  d["input_dof"] = c.input_dof;
-  d["force_output"] = c.force_output;
-  d["torque_output"] = c.torque_output;
-  d["control"] = to_string(c.control);
-  d["max_force"] = c.max_force;
-  d["max_torque"] = c.max_torque;
-  d["max_stiffness"] = c.max_stiffness;
-  d["max_angular_stiffness"] = c.max_angular_stiffness;
-  d["max_damping"] = c.max_damping;
-  d["hid_force_feedback"] = c.hid_force_feedback;
-  return d;
+  return reports;
 }
 
 bool joint_of_pair(TrialScene& scene, const PairJoint& pair, JointState& joint) {
@@ -88,28 +67,12 @@ py::object& device_unavailable_error() {
   return error;
 }
 
-py::list devices_seen_list(const std::vector<HidDeviceSeen>& seen) {
-  py::list out;
-  for (const HidDeviceSeen& s : seen) {
-    py::dict d;
-    d["path"] = s.path;
-    d["manufacturer"] = s.manufacturer;
-    d["product"] = s.product;
-    d["vendor"] = s.vendor;
-    d["product_id"] = s.product_id;
-    d["usage_page"] = s.usage_page;
-    d["usage"] = s.usage;
-    out.append(d);
-  }
-  return out;
-}
-
 // A failed device request as an exception: DeviceUnavailable carries the
-// HID devices seen (`devices`), others go through raise_if_failed.
+// HID devices seen (`devices`, [HidDeviceSeen]), others go through raise_if_failed.
 [[noreturn]] void raise_device_error(const DeviceResult& r) {
   if (r.device_missing) {
     py::object error = device_unavailable_error()(r.status.describe());
-    error.attr("devices") = devices_seen_list(r.seen);
+    error.attr("devices") = py::cast(r.seen);
     error.attr("reason") = r.message;
     PyErr_SetObject(device_unavailable_error().ptr(), error.ptr());
     throw py::error_already_set();
@@ -134,7 +97,7 @@ class HapticSession {
                 const ServoConfig& config, HidRecording replay)
       : scene_(scene) {
     const Vec3 c = scene.centre();
-    start_ = offset_pose(translate, Vec3(rad(rotate_deg.x()), rad(rotate_deg.y()), rad(rotate_deg.z())), c);
+    start_ = pose_from(translate, rotate_deg, c);
     DeviceRequest request;
     request.kind = device;
     request.centre = c;
@@ -171,63 +134,27 @@ class HapticSession {
 
   void set_hand_target(const Vec3& t, const Vec3& r_deg) {
     if (!hand_) return;
-    hand_->set_live_target(offset_pose(t, Vec3(rad(r_deg.x()), rad(r_deg.y()), rad(r_deg.z())), scene_.centre()));
+    hand_->set_live_target(pose_from(t, r_deg, scene_.centre()));
   }
 
-  py::dict snapshot() {
-    const ServoSnapshot s = loop_->snapshot();
-    return snapshot_dict(s);
-  }
-  py::dict snapshot_dict(const ServoSnapshot& s) {
+  SessionSnapshot snapshot() const {
+    SessionSnapshot out;
+    const ServoSnapshot& s = out.loop = loop_->snapshot();
     const Vec3 c = scene_.centre();
-    py::dict d = offset_dict(s.proxy, c);
-    d["matrix"] = matrix_rows(s.proxy);
-    d["target"] = offset_dict(s.target, c);
-    d["force"] = vec(s.wrench.force);
-    d["torque"] = vec(s.wrench.torque);
-    d["force_n"] = s.wrench.force.norm();
-    d["engaged"] = s.engaged;
-    d["held"] = s.held;
-    d["joint"] = s.engaged ? to_string(s.joint.kind) : "Free";
-    d["joint_axis"] = vec(s.joint.axis);
-    d["joint_point"] = vec(s.joint.point);
-    py::list with;
-    for (int k = 0; s.engaged && k < s.joint.body_count; ++k) with.append(scene_.body_names()[s.joint.bodies[k]]);
-    d["joint_with"] = with;
+    out.offset = offset_from(s.proxy, c);
+    out.target = offset_from(s.target, c);
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) out.matrix[i][j] = s.proxy.matrix()(i, j);
+    for (int k = 0; s.engaged && k < s.joint.body_count; ++k) out.joint_with.push_back(scene_.body_names()[s.joint.bodies[k]]);
     // The joint's one-sided stops (n . c <= limit on the reference point),
     // active when the part is on them (within 1 um): the panel's readout.
-    py::list stops;
     const Vec3 reference = s.proxy * c;
     for (int k = 0; s.engaged && k < s.joint.stop_count; ++k) {
-      py::dict stop;
-      stop["normal"] = vec(s.joint.stops[k].normal);
-      stop["gap"] = s.joint.stops[k].limit - s.joint.stops[k].normal.dot(reference);
-      stop["active"] = s.joint.stops[k].limit - s.joint.stops[k].normal.dot(reference) < 1e-3;
-      stops.append(stop);
+      const double gap = s.joint.stops[k].limit - s.joint.stops[k].normal.dot(reference);
+      out.stops.push_back({triple(s.joint.stops[k].normal), gap, gap < 1e-3});
     }
-    d["stops"] = stops;
-    d["insertion_depth"] = s.insertion_depth;
-    d["penetration"] = s.penetration;
-    d["max_penetration"] = s.max_penetration;
-    d["max_force"] = s.max_force;
-    d["rate_hz"] = s.rate_hz;
-    d["jitter_us"] = s.jitter_us;
-    d["step_us"] = s.last_step_us;
-    d["ticks"] = s.ticks;
-    d["overruns"] = s.overruns;
-    d["watchdog"] = to_string(s.watchdog);
-    d["connected"] = s.device_connected;
-    d["enabled"] = s.enabled;
-    d["blocked"] = s.blocked;
-    py::list axes;
-    for (int i = 0; i < 6; ++i) axes.append(s.axes[i]);
-    d["axes"] = axes;
-    d["time"] = s.time;
-    d["realtime_priority"] = loop_->got_realtime_priority();
-    d["late_wakeups"] = s.late_wakeups;
-    d["max_wake_latency_us"] = s.max_wake_latency_us;
-    d["memory_locked"] = s.memory_locked;
-    return d;
+    out.realtime_priority = loop_->got_realtime_priority();
+    return out;
   }
 
   TrialScene& scene_;
@@ -238,36 +165,95 @@ class HapticSession {
   std::string message_;
 };
 
-// The servo loop's keyword options, each checked by name: a misspelt one is
-// an ArgumentError naming it, never silently the default.
+// The servo loop's keyword options, each read by name from one table: a
+// misspelt one is an ArgumentError naming it, never silently the default.
+template <class Value>
+std::pair<const char*, std::function<void(ServoConfig&, const py::handle&)>> option(const char* name,
+                                                                                    Value ServoConfig::*member) {
+  return {name, [member](ServoConfig& c, const py::handle& value) { c.*member = value.cast<Value>(); }};
+}
+
 ServoConfig config_from(const py::kwargs& kw) {
-  static const char* const kOptions[] = {"stiffness", "angular_stiffness", "damping", "angular_damping",
-                                         "max_speed", "breakaway_force",   "rate_hz", "realtime_priority"};
+  static const std::vector<std::pair<const char*, std::function<void(ServoConfig&, const py::handle&)>>> kOptions = {
+      option("stiffness", &ServoConfig::stiffness),         option("angular_stiffness", &ServoConfig::angular_stiffness),
+      option("damping", &ServoConfig::damping),             option("angular_damping", &ServoConfig::angular_damping),
+      option("max_speed", &ServoConfig::max_speed),         option("breakaway_force", &ServoConfig::breakaway_force),
+      option("rate_hz", &ServoConfig::rate_hz),             option("realtime_priority", &ServoConfig::realtime_priority)};
+  ServoConfig c;
   for (const auto& item : kw) {
     const std::string key = py::str(item.first);
-    if (std::none_of(std::begin(kOptions), std::end(kOptions), [&](const char* option) { return key == option; })) {
-      std::string known;
-      for (const char* option : kOptions) known += (known.empty() ? "" : ", ") + std::string(option);
-      raise_argument_error("unknown keyword option '" + key + "' (the options: " + known + ")");
+    const auto known = std::find_if(kOptions.begin(), kOptions.end(), [&](const auto& o) { return key == o.first; });
+    if (known == kOptions.end()) {
+      std::string names;
+      for (const auto& o : kOptions) names += (names.empty() ? "" : ", ") + std::string(o.first);
+      raise_argument_error("unknown keyword option '" + key + "' (the options: " + names + ")");
     }
+    known->second(c, item.second);
   }
-  ServoConfig c;
-  if (kw.contains("stiffness")) c.stiffness = kw["stiffness"].cast<double>();
-  if (kw.contains("angular_stiffness")) c.angular_stiffness = kw["angular_stiffness"].cast<double>();
-  if (kw.contains("damping")) c.damping = kw["damping"].cast<double>();
-  if (kw.contains("angular_damping")) c.angular_damping = kw["angular_damping"].cast<double>();
-  if (kw.contains("max_speed")) c.max_speed = kw["max_speed"].cast<double>();
-  if (kw.contains("breakaway_force")) c.breakaway_force = kw["breakaway_force"].cast<double>();
-  if (kw.contains("rate_hz")) c.rate_hz = kw["rate_hz"].cast<double>();
-  if (kw.contains("realtime_priority")) c.realtime_priority = kw["realtime_priority"].cast<int>();
-  if (kw.contains("lock_memory")) c.lock_memory = kw["lock_memory"].cast<bool>();
   return c;
+}
+
+// run_trial: the scripted simulated hand, or a device from the factory.
+TrialRun run_trial_binding(TrialScene& scene, const py::dict& script, bool realtime, int record_every, double settle,
+                           const std::string& device, const py::object& hid_file, const py::object& record_hid,
+                           const py::object& duration, const py::kwargs& kw) {
+  TrialScript s;
+  if (script.contains("start")) s.start = key_from(script["start"].cast<py::dict>(), false);
+  const bool scripted_hand = device == "sim";
+  if (scripted_hand && !script.contains("hand")) raise_argument_error("script: 'hand' (a list of keys) is missing");
+  if (script.contains("hand"))
+    for (const py::handle& k : script["hand"].cast<py::list>()) s.hand.push_back(key_from(k.cast<py::dict>(), true));
+  if (scripted_hand && s.hand.empty()) raise_argument_error("script: 'hand' is empty");
+  TrialOptions options;
+  options.servo = config_from(kw);
+  options.record_every = record_every;
+  options.settle = settle;
+  // Any other device comes from the factory; the run lasts `duration`
+  // (a replay: its last report + settle; a live device: the script's
+  // keys + settle, or 10 s).
+  DeviceResult opened;
+  if (!scripted_hand) {
+    DeviceRequest request;
+    request.kind = device;
+    request.centre = scene.centre();
+    request.start = pose_from(s.start.translate, s.start.rotate_deg, scene.centre());
+    if (device == "replay") {
+      if (hid_file.is_none()) raise_argument_error("--device replay needs a recording (hid_file)");
+      request.replay = recording_from(hid_file);
+    }
+    request.record = !record_hid.is_none();
+    {
+      py::gil_scoped_release release;
+      opened = open_device(request);
+    }
+    if (!opened.status.ok()) raise_device_error(opened);
+    options.device = opened.device.get();
+    if (!duration.is_none()) options.duration = duration.cast<double>();
+    else if (device == "replay" && !request.replay.reports.empty())
+      options.duration = request.replay.reports.back().time + settle;
+    else options.duration = (s.hand.empty() ? 10.0 : s.hand.back().t + settle);
+    if (options.duration <= 0) raise_argument_error("duration must be > 0 s");
+    // Hardware runs on the wall clock; a replay is deterministic in lockstep.
+    if (device == "spacemouse" || device == "hid-ff") realtime = true;
+  } else if (!record_hid.is_none()) {
+    raise_argument_error("--record-hid records a HID device (spacemouse, hid-ff), not the simulated hand");
+  }
+  TrialRun run;
+  run.result = call_guarded([&] { return run_trial(scene, s, options, realtime); });
+  if (opened.recorder) {
+    opened.device.reset();  // the reader thread stops: the recording is complete
+    raise_if_failed(write_hid_recording(opened.recorder->recording(), record_hid.cast<std::string>()));
+  }
+  run.device = device;
+  run.device_message = opened.message.empty() ? std::string("Simulated hand.") : opened.message;
+  return run;
 }
 
 }  // namespace
 
 void bind_haptics(py::module_& root) {
   py::module_ m = root.def_submodule("haptics", "Haptic trials: devices, the 1 kHz servo loop, real-time contacts");
+  bind_haptic_results(m);
 
   m.def(
       "parse_spacemouse_report",
@@ -276,115 +262,63 @@ void bind_haptics(py::module_& root) {
         const SpaceMouseModel model = known ? *known : generic_model(vendor, product);
         const std::string data = report;
         SpaceMouseState state;
-        py::dict d;
-        d["understood"] = parse_report(reinterpret_cast<const std::uint8_t*>(data.data()), data.size(), model, state);
-        py::list raw, axes;
+        SpaceMouseReport out;
+        out.understood = parse_report(reinterpret_cast<const std::uint8_t*>(data.data()), data.size(), model, state);
         for (int i = 0; i < 6; ++i) {
-          raw.append(state.raw[i]);
-          axes.append(state.axes[i]);
+          out.raw[i] = state.raw[i];
+          out.axes[i] = state.axes[i];
         }
-        d["raw"] = raw;
-        d["axes"] = axes;
-        d["buttons"] = state.buttons;
-        d["model"] = model.name;
-        return d;
+        out.buttons = state.buttons;
+        out.model = model.name;
+        return out;
       },
       py::arg("vendor"), py::arg("product"), py::arg("report"),
-      "Parses one SpaceMouse HID input report (report ID first) from a fresh state.");
+      "Parses one SpaceMouse HID input report (report ID first) from a fresh state: a SpaceMouseReport.");
 
   m.def("spacemouse_devices", [] {
-    py::list out;
-    std::vector<HidSpaceMouse::Found> found;
-    {
-      py::gil_scoped_release release;
-      found = HidSpaceMouse::enumerate();
-    }
-    for (const auto& f : found) {
-      py::dict d;
-      d["name"] = f.name;
-      d["path"] = f.path;
-      d["vendor"] = f.vendor;
-      d["product"] = f.product;
-      out.append(d);
-    }
-    return out;
-  }, "The 3Dconnexion 6-DOF devices hidapi sees now (empty without hardware).");
+    py::gil_scoped_release release;
+    return HidSpaceMouse::enumerate();
+  }, "The 3Dconnexion 6-DOF devices hidapi sees now ([SpaceMouseFound], empty without hardware).");
 
   m.def("hid_force_feedback_devices", [] {
-    py::list out;
-    std::vector<HidPidFound> found;
-    {
-      py::gil_scoped_release release;
-      found = enumerate_hid_pid_devices();
-    }
-    for (const auto& f : found) {
-      py::dict d;
-      d["name"] = f.name;
-      d["path"] = f.path;
-      d["vendor"] = f.vendor;
-      d["product"] = f.product;
-      d["axes"] = f.axes;
-      out.append(d);
-    }
-    return out;
-  }, "HID devices whose report descriptor offers PID constant force (empty without hardware).");
+    py::gil_scoped_release release;
+    return enumerate_hid_pid_devices();
+  }, "HID devices whose report descriptor offers PID constant force ([HidPidFound], empty without hardware).");
 
   m.def(
       "hid_pid_capabilities",
       [](const py::bytes& descriptor, double full_scale_force) {
         const std::string data = descriptor;
         PidLayout layout;
-        std::string why;
-        py::dict d;
-        if (!find_pid_layout(reinterpret_cast<const std::uint8_t*>(data.data()), data.size(), layout, &why)) {
-          d["force_output"] = false;
-          d["why"] = why;
-          return d;
-        }
+        PidCapabilities out;
+        if (!find_pid_layout(reinterpret_cast<const std::uint8_t*>(data.data()), data.size(), layout, &out.why))
+          return out;
         PidForceConfig config;
         config.full_scale_force = full_scale_force;
         config.start_thread = false;
         HidPidDevice device(nullptr, layout, config);
-        d = capabilities_dict(device.capabilities());
-        d["axes"] = layout.axis_count();
-        return d;
+        out.capabilities = device.capabilities();
+        out.force_output = out.capabilities->force_output;
+        out.axes = layout.axis_count();
+        return out;
       },
       py::arg("descriptor"), py::arg("full_scale_force") = 3.0,
-      "What a device with this HID report descriptor can render (force output through the PID page or why not).");
+      "What a device with this HID report descriptor can render (PidCapabilities: force output through the "
+      "PID page, or why not).");
 
-  m.def("simulated_capabilities", [] { return capabilities_dict(simulated_capabilities()); });
+  m.def("simulated_capabilities", [] { return simulated_capabilities(); }, "The simulated hand's DeviceCapabilities.");
 
   device_unavailable_error() = py::reinterpret_borrow<py::object>(py::handle(PyErr_NewException(
       "contactcore.haptics.DeviceUnavailable", root.attr("ContactsError").ptr(), nullptr)));
   m.attr("DeviceUnavailable") = device_unavailable_error();
 
   m.def("hid_devices_seen", [] {
-    std::vector<HidDeviceSeen> seen;
-    {
-      py::gil_scoped_release release;
-      seen = enumerate_hid_devices();
-    }
-    return devices_seen_list(seen);
-  }, "Every HID device hidapi lists now (path, manufacturer, product, vendor, product_id, usage_page, usage).");
+    py::gil_scoped_release release;
+    return enumerate_hid_devices();
+  }, "Every HID device hidapi lists now ([HidDeviceSeen]).");
 
-  m.def(
-      "read_hid_recording",
-      [](const std::string& path) {
-        const HidRecording r = recording_from(py::str(path));
-        py::dict d;
-        d["kind"] = r.kind;
-        d["vendor"] = r.vendor;
-        d["product"] = r.product;
-        d["name"] = r.name;
-        d["descriptor"] = py::bytes(reinterpret_cast<const char*>(r.descriptor.data()), r.descriptor.size());
-        py::list reports;
-        for (const RecordedReport& report : r.reports)
-          reports.append(py::make_tuple(report.time, py::bytes(reinterpret_cast<const char*>(report.bytes.data()),
-                                                               report.bytes.size())));
-        d["reports"] = reports;
-        return d;
-      },
-      py::arg("path"), "A HID recording (--record-hid): device kind, ids, descriptor and (arrival s, bytes) reports.");
+  m.def("read_hid_recording", [](const std::string& path) { return recording_from(py::str(path)); }, py::arg("path"),
+        "A HID recording (--record-hid): a HidRecording (device kind, ids, descriptor and (arrival s, bytes) reports).");
 
   m.def(
       "write_hid_recording",
@@ -397,14 +331,7 @@ void bind_haptics(py::module_& root) {
         r.name = name;
         const std::string desc = descriptor;
         r.descriptor.assign(desc.begin(), desc.end());
-        for (const py::handle& item : reports) {
-          auto pair = item.cast<py::tuple>();
-          RecordedReport report;
-          report.time = pair[0].cast<double>();
-          const std::string b = pair[1].cast<py::bytes>();
-          report.bytes.assign(b.begin(), b.end());
-          r.reports.push_back(std::move(report));
-        }
+        r.reports = reports_from(reports);
         raise_if_failed(write_hid_recording(r, path));
       },
       py::arg("path"), py::arg("kind"), py::arg("vendor"), py::arg("product"), py::arg("name"), py::arg("reports"),
@@ -435,181 +362,50 @@ void bind_haptics(py::module_& root) {
       .def_property_readonly("moving", &TrialScene::moving, "Index of the moving part in the assembly.")
       .def(
           "joint_of_pair",
-          [](TrialScene& s, const PairJoint& pair) -> py::object {
+          [](TrialScene& s, const PairJoint& pair) -> std::optional<HeldJoint> {
             JointState j;
-            if (!joint_of_pair(s, pair, j)) return py::none();
-            py::dict d;
-            d["kind"] = to_string(j.kind);
-            d["axis"] = vec(j.axis);
-            d["point"] = vec(j.point);
-            d["stops"] = j.stop_count;
-            d["collision_group"] = j.group;
-            return d;
+            if (!joint_of_pair(s, pair, j)) return std::nullopt;
+            return HeldJoint{to_string(j.kind), triple(j.axis), triple(j.point), j.stop_count, j.group};
           },
           py::arg("pair"),
-          "The joint the loop would hold the part to for this assembled pair (kind, axis, point, stops), "
+          "The joint the loop would hold the part to for this assembled pair (a HeldJoint), "
           "or None when the pair does not involve the part or the loop cannot hold its type.")
-      .def_property_readonly("centre", [](const TrialScene& s) { return vec(s.centre()); })
+      .def_property_readonly("centre", [](const TrialScene& s) { return triple(s.centre()); })
       .def_property_readonly("body_names", &TrialScene::body_names)
       .def_property_readonly("setup_seconds", &TrialScene::setup_seconds)
       .def_property_readonly("triangles", [](TrialScene& s) { return s.collision().triangle_count(); })
       .def(
           "contacts_at",
-          [](TrialScene& s, const std::vector<double>& translate, const std::vector<double>& rotate_deg) {
-            const Pose pose = offset_pose(Vec3(translate[0], translate[1], translate[2]),
-                                          Vec3(rad(rotate_deg[0]), rad(rotate_deg[1]), rad(rotate_deg[2])), s.centre());
+          [](TrialScene& s, const py::object& translate, const py::object& rotate_deg) {
             std::vector<LiveContact> live(256);
-            const int n = s.contacts().update(pose, live.data(), 256);
-            py::list out;
-            for (int i = 0; i < n; ++i) {
-              py::dict d;
-              d["type"] = to_string(live[i].type);
-              d["with"] = s.body_names()[live[i].body];
-              d["distance"] = live[i].distance;
-              d["angle_deg"] = deg(live[i].angle);
-              out.append(d);
-            }
+            const int n = s.contacts().update(pose_from(translate, rotate_deg, s.centre()), live.data(), 256);
+            std::vector<LiveContactSeen> out;
+            for (int i = 0; i < n; ++i)
+              out.push_back({to_string(live[i].type), s.body_names()[live[i].body], live[i].distance, deg(live[i].angle)});
             return out;
           },
           py::arg("translate"), py::arg("rotate_deg"),
-          "Real-time contacts of the part displaced by (translate mm, rotate_deg) from its placement.")
+          "Real-time contacts ([LiveContact]) of the part displaced by (translate mm, rotate_deg) from its placement.")
       .def(
           "collides",
-          [](TrialScene& s, const std::vector<double>& translate, const std::vector<double>& rotate_deg) {
-            const Pose pose = offset_pose(Vec3(translate[0], translate[1], translate[2]),
-                                          Vec3(rad(rotate_deg[0]), rad(rotate_deg[1]), rad(rotate_deg[2])), s.centre());
-            return s.collision().collides(pose, -1);
+          [](TrialScene& s, const py::object& translate, const py::object& rotate_deg) {
+            return s.collision().collides(pose_from(translate, rotate_deg, s.centre()), -1);
           },
           py::arg("translate"), py::arg("rotate_deg"));
 
-  m.def(
-      "run_trial",
-      [](TrialScene& scene, const py::dict& script, bool realtime, int record_every, double settle,
-         const std::string& device, py::object hid_file, py::object record_hid, py::object duration,
-         const py::kwargs& kw) {
-        TrialScript s;
-        if (script.contains("start")) s.start = key_from(script["start"].cast<py::dict>(), false);
-        const bool scripted_hand = device == "sim";
-        if (scripted_hand && !script.contains("hand")) raise_argument_error("script: 'hand' (a list of keys) is missing");
-        if (script.contains("hand"))
-          for (const py::handle& k : script["hand"].cast<py::list>()) s.hand.push_back(key_from(k.cast<py::dict>(), true));
-        if (scripted_hand && s.hand.empty()) raise_argument_error("script: 'hand' is empty");
-        TrialOptions options;
-        options.servo = config_from(kw);
-        options.record_every = record_every;
-        options.settle = settle;
-        // Any other device comes from the factory; the run lasts `duration`
-        // (a replay: its last report + settle; a live device: the script's
-        // keys + settle, or 10 s).
-        DeviceResult opened;
-        if (!scripted_hand) {
-          DeviceRequest request;
-          request.kind = device;
-          request.centre = scene.centre();
-          const ScriptKey& k = s.start;
-          request.start = offset_pose(k.translate, Vec3(rad(k.rotate_deg.x()), rad(k.rotate_deg.y()), rad(k.rotate_deg.z())),
-                                      scene.centre());
-          if (device == "replay") {
-            if (hid_file.is_none()) raise_argument_error("--device replay needs a recording (hid_file)");
-            request.replay = recording_from(hid_file);
-          }
-          request.record = !record_hid.is_none();
-          {
-            py::gil_scoped_release release;
-            opened = open_device(request);
-          }
-          if (!opened.status.ok()) raise_device_error(opened);
-          options.device = opened.device.get();
-          if (!duration.is_none()) options.duration = duration.cast<double>();
-          else if (device == "replay" && !request.replay.reports.empty())
-            options.duration = request.replay.reports.back().time + settle;
-          else options.duration = (s.hand.empty() ? 10.0 : s.hand.back().t + settle);
-          if (options.duration <= 0) raise_argument_error("duration must be > 0 s");
-          // Hardware runs on the wall clock; a replay is deterministic in lockstep.
-          if (device == "spacemouse" || device == "hid-ff") realtime = true;
-        } else if (!record_hid.is_none()) {
-          raise_argument_error("--record-hid records a HID device (spacemouse, hid-ff), not the simulated hand");
-        }
-        const TrialResult r = call_guarded([&] { return run_trial(scene, s, options, realtime); });
-        if (opened.recorder) {
-          opened.device.reset();  // the reader thread stops: the recording is complete
-          raise_if_failed(write_hid_recording(opened.recorder->recording(), record_hid.cast<std::string>()));
-        }
-        py::dict out;
-        // Timing from wall time in realtime mode only; null in lockstep.
-        out["mode"] = r.realtime ? "realtime" : "lockstep";
-        out["ticks"] = r.ticks;
-        out["sim_time_s"] = r.sim_time_s;
-        if (r.realtime) {
-          out["rate_hz"] = r.rate_hz;
-          py::dict step;
-          step["p50"] = r.step_p50_us;
-          step["p99"] = r.step_p99_us;
-          step["max"] = r.step_max_us;
-          out["step_us"] = step;
-          py::dict jitter;
-          jitter["p50"] = r.jitter_p50_us;
-          jitter["p99"] = r.jitter_p99_us;
-          out["jitter_us"] = jitter;
-        } else {
-          out["rate_hz"] = py::none();
-          out["step_us"] = py::none();
-          out["jitter_us"] = py::none();
-        }
-        out["overruns"] = r.overruns;
-        out["long_steps"] = r.long_steps;
-        out["late_wakeups"] = r.late_wakeups;
-        out["realtime_priority"] = r.realtime_priority;
-        out["success"] = r.status.ok();
-        out["failure"] = r.status.ok() ? py::object(py::none()) : py::object(py::str(r.status.message));
-        out["memory_locked"] = r.memory_locked;
-        out["device"] = device;
-        out["device_message"] = opened.message.empty() ? std::string("Simulated hand.") : opened.message;
-        py::list joints;
-        for (const auto& j : r.joints_engaged) {
-          py::dict d;
-          d["with"] = j.with;
-          d["type"] = j.type;
-          d["joint"] = j.joint;
-          d["t"] = j.time;
-          joints.append(d);
-        }
-        out["joints_engaged"] = joints;
-        py::dict final_offset;
-        final_offset["translate"] = vec(r.final_translate);
-        final_offset["rotate_deg"] = vec(r.final_rotate_deg);
-        out["final"] = final_offset;
-        out["max_penetration_mm"] = r.max_penetration_mm;
-        out["start_penetration_mm"] = r.start_penetration_mm;
-        out["final_penetration_mm"] = r.final_penetration_mm;
-        out["max_force_n"] = r.max_force_n;
-        py::list path;
-        for (const auto& p : r.path) {
-          py::dict d;
-          d["t"] = p.t;
-          d["translate"] = vec(p.translate);
-          d["rotate_deg"] = vec(p.rotate_deg);
-          d["force"] = vec(p.force);
-          d["engaged"] = p.engaged;
-          d["penetration"] = p.penetration;
-          path.append(d);
-        }
-        out["path"] = path;
-        return out;
-      },
-      py::arg("scene"), py::arg("script"), py::arg("realtime") = false, py::arg("record_every") = 10,
-      py::arg("settle") = 1.5, py::arg("device") = "sim", py::arg("hid_file") = py::none(),
-      py::arg("record_hid") = py::none(), py::arg("duration") = py::none(),
-      "Runs a trial: the scripted simulated hand (device 'sim', lockstep unless realtime), or a device from "
-      "the factory: 'spacemouse', 'hid-ff' (real time; record_hid=FILE keeps their raw reports), 'replay' "
-      "(hid_file=FILE, lockstep), 'sim-hid-ff'. Raises DeviceUnavailable (with .devices) when the hardware "
-      "is not there. Keyword options: "
-      "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz, "
-      "realtime_priority (SCHED_FIFO priority of the loop thread when permitted).");
+  m.def("run_trial", &run_trial_binding, py::arg("scene"), py::arg("script"), py::arg("realtime") = false,
+        py::arg("record_every") = 10, py::arg("settle") = 1.5, py::arg("device") = "sim",
+        py::arg("hid_file") = py::none(), py::arg("record_hid") = py::none(), py::arg("duration") = py::none(),
+        "Runs a trial: the scripted simulated hand (device 'sim', lockstep unless realtime), or a device from "
+        "the factory: 'spacemouse', 'hid-ff' (real time; record_hid=FILE keeps their raw reports), 'replay' "
+        "(hid_file=FILE, lockstep), 'sim-hid-ff'. Returns a TrialResult. Raises DeviceUnavailable (with "
+        ".devices) when the hardware is not there. Keyword options: "
+        "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz, "
+        "realtime_priority (SCHED_FIFO priority of the loop thread when permitted).");
 
   py::class_<HapticSession>(m, "HapticSession", "A device and the 1 kHz loop on its own thread.")
-      .def(py::init([](TrialScene& scene, const std::string& device, const std::vector<double>& translate,
-                       const std::vector<double>& rotate_deg, py::object replay, int vendor, int product,
+      .def(py::init([](TrialScene& scene, const std::string& device, const py::object& translate,
+                       const py::object& rotate_deg, py::object replay, int vendor, int product,
                        py::object hid_file, const py::kwargs& kw) {
              // A replay: a recording file, or (time, bytes) pairs of a SpaceMouse (vendor, product).
              HidRecording recording;
@@ -619,17 +415,10 @@ void bind_haptics(py::module_& root) {
                recording.kind = "spacemouse";
                recording.vendor = static_cast<std::uint16_t>(vendor);
                recording.product = static_cast<std::uint16_t>(product);
-               for (const py::handle& item : replay.cast<py::list>()) {
-                 auto pair = item.cast<py::tuple>();
-                 RecordedReport r;
-                 r.time = pair[0].cast<double>();
-                 const std::string b = pair[1].cast<py::bytes>();
-                 r.bytes.assign(b.begin(), b.end());
-                 recording.reports.push_back(std::move(r));
-               }
+               recording.reports = reports_from(replay);
              }
-             return std::make_unique<HapticSession>(scene, device, Vec3(translate[0], translate[1], translate[2]),
-                                                    Vec3(rotate_deg[0], rotate_deg[1], rotate_deg[2]), config_from(kw),
+             return std::make_unique<HapticSession>(scene, device, vec_from(translate, "translate"),
+                                                    vec_from(rotate_deg, "rotate_deg"), config_from(kw),
                                                     std::move(recording));
            }),
            py::arg("scene"), py::arg("device") = "sim", py::arg("translate") = std::vector<double>{0, 0, 0},
@@ -637,7 +426,8 @@ void bind_haptics(py::module_& root) {
            py::arg("vendor") = 0x256f, py::arg("product") = 0xc635, py::arg("hid_file") = py::none(),
            py::keep_alive<1, 2>())
       .def_property_readonly("message", [](const HapticSession& s) { return s.message_; })
-      .def_property_readonly("capabilities", [](const HapticSession& s) { return capabilities_dict(s.device_->capabilities()); })
+      .def_property_readonly("capabilities", [](const HapticSession& s) { return s.device_->capabilities(); },
+                             "The device's DeviceCapabilities.")
       .def("start", [](HapticSession& s) { return s.loop_->start(); })
       .def("stop", [](HapticSession& s) {
         py::gil_scoped_release release;
@@ -652,10 +442,10 @@ void bind_haptics(py::module_& root) {
       .def("set_enabled", [](HapticSession& s, bool on) { s.loop_->set_enabled(on); })
       .def("set_stiffness", [](HapticSession& s, double k, double kr) { s.loop_->set_stiffness(k, kr); })
       .def("set_damping", [](HapticSession& s, double b, double br) { s.loop_->set_damping(b, br); })
-      .def("set_hand_target", [](HapticSession& s, const std::vector<double>& t, const std::vector<double>& r) {
-        s.set_hand_target(Vec3(t[0], t[1], t[2]), Vec3(r[0], r[1], r[2]));
+      .def("set_hand_target", [](HapticSession& s, const py::object& t, const py::object& r) {
+        s.set_hand_target(vec_from(t, "translate"), vec_from(r, "rotate_deg"));
       }, py::arg("translate"), py::arg("rotate_deg"))
-      .def("snapshot", &HapticSession::snapshot, "The loop's latest state (lock-free).")
+      .def("snapshot", &HapticSession::snapshot, "The loop's latest state (lock-free): a SessionSnapshot.")
       .def("hold_to_pair", &HapticSession::hold_to_pair, py::arg("pair"),
            "Holds the part to this assembled pair's joint (a PairJoint of find_joints) instead of the one "
            "engagement finds; False when the loop cannot hold its type.")

@@ -6,8 +6,8 @@ measures the panel's display rate and counts the contact overlay's redraws
 while the part moves, reads the active-constraints readout, replays the
 bundled trial script through the panel's Replay, commits with OK and checks
 the document; writes what it saw to $CONTACTS_GUI_RESULT."""
-import json
 import os
+import sys
 import time
 import traceback
 
@@ -15,38 +15,16 @@ import FreeCAD
 import FreeCADGui
 from PySide2 import QtWidgets
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+from session_helpers import wait  # noqa: E402
+
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
 
 
-def wait(seconds):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        QtWidgets.QApplication.processEvents()
-        time.sleep(0.005)
-
-
 def grab_window_with_view(name):
-    """The main window with the 3D view's own render pasted in (a window grab
-    leaves the OpenGL area blank)."""
-    from PySide2 import QtCore, QtGui
-    main = FreeCADGui.getMainWindow()
-    QtWidgets.QApplication.processEvents()
-    path = os.path.join(out_dir, name)
-    pixmap = main.grab()
-    mdi = main.findChild(QtWidgets.QMdiArea)
-    active = mdi.activeSubWindow() if mdi is not None else None
-    viewers = [w for w in (active or main).findChildren(QtWidgets.QWidget)
-               if w.metaObject().className() == "SIM::Coin3D::Quarter::QuarterWidget" and w.isVisible()]
-    if viewers:
-        area = viewers[0].viewport() if hasattr(viewers[0], "viewport") else viewers[0]
-        rendered = os.path.join(out_dir, "view_" + name)
-        FreeCADGui.activeDocument().activeView().saveImage(rendered, area.width(), area.height(), "Current")
-        painter = QtGui.QPainter(pixmap)
-        painter.drawImage(area.mapTo(main, QtCore.QPoint(0, 0)), QtGui.QImage(rendered))
-        painter.end()
-    pixmap.save(path)
-    return path
+    return session_helpers.grab_window_with_view(out_dir, name)[0]
 
 
 def offset(obj, original):
@@ -55,21 +33,14 @@ def offset(obj, original):
 
 def run():
     main = FreeCADGui.getMainWindow()
-    main.resize(1280, 960)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
-    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
+    doc = session_helpers.open_sample_in_workbench()
     from contactwb.gui.panels import haptic_panel
     axis = next(o for o in doc.Objects if o.Label == "Axis")
     view = FreeCADGui.activeDocument().activeView()
     view.viewFront()
     view.fitAll()
     # Baseline: the panel's display rate without a contact analysis (same drag, 1.5 s).
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(axis)
-    FreeCADGui.runCommand("Contacts_HapticTrial")
-    wait(0.5)
-    FreeCADGui.Selection.clearSelection()
-    panel = haptic_panel.active_panel
+    panel = session_helpers.open_haptic_panel(axis)
     frames_before, start = len(panel.frame_times), time.monotonic()
     for i in range(31):
         panel.hand_sliders["z"].setValue(int(round(5.0 * i / 30 * haptic_panel.SLIDER_STEPS_PER_UNIT)))
@@ -102,12 +73,7 @@ def run():
     view.fitAll()
     wait(0.3)
     original = FreeCAD.Placement(axis.Placement)
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(axis)
-    FreeCADGui.runCommand("Contacts_HapticTrial")
-    wait(0.5)
-    FreeCADGui.Selection.clearSelection()
-    panel = haptic_panel.active_panel
+    panel = session_helpers.open_haptic_panel(axis)
     report["panel_open"] = panel is not None
     if panel is None:
         return
@@ -136,7 +102,7 @@ def run():
     report["redraws_while_moving"] = len(builds) - builds_before
     report["slider_label"] = panel.hand_values["z"].text()
     report["pulled_offset"] = offset(axis, original)
-    report["pulled_snapshot"] = panel.session.snapshot()["translate"]
+    report["pulled_snapshot"] = panel.session.snapshot().translate
     report["constraints_pulled"] = panel.readouts["constraints"].text()
     report["sliders_png"] = grab_window_with_view("haptic_hand_sliders.png")
 
@@ -152,7 +118,7 @@ def run():
     wait(2.0)
     report["replay_rate_hz"] = (len(panel.frame_times) - frames_before) / (time.monotonic() - start)
     report["redraws_while_replaying"] = len(builds) - builds_before - report["redraws_while_moving"]
-    report["replayed_snapshot"] = panel.session.snapshot()["translate"]
+    report["replayed_snapshot"] = panel.session.snapshot().translate
     report["replayed_offset"] = offset(axis, original)
     report["sliders_after_replay"] = list(panel.hand_slider_values()[0]) + list(panel.hand_slider_values()[1])
     report["constraints_seated"] = panel.readouts["constraints"].text()
@@ -171,10 +137,4 @@ def run():
     report["ok_png"] = grab_window_with_view("haptic_hand_ok.png")
 
 
-try:
-    run()
-except Exception:
-    report["errors"].append(traceback.format_exc())
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.run_and_report(run, report)

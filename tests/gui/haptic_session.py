@@ -7,22 +7,18 @@ records the path, takes screenshots on the way and at the end, commits with
 OK, checks the undo, and writes what it saw to $CONTACTS_GUI_RESULT."""
 import json
 import os
-import time
-import traceback
+import sys
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtWidgets
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+from session_helpers import wait  # noqa: E402
+
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
-
-
-def wait(seconds):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        QtWidgets.QApplication.processEvents()
-        time.sleep(0.005)
 
 
 def placement_offset(placement):
@@ -36,52 +32,27 @@ def save_view(name):
 
 
 def grab_window_with_view(name):
-    """The main window as shown: its grab with the 3D view's own render pasted
-    in place (grabbing a window leaves its OpenGL area blank)."""
-    from PySide2 import QtCore, QtGui
-    main = FreeCADGui.getMainWindow()
-    QtWidgets.QApplication.processEvents()
-    path = os.path.join(out_dir, name)
-    pixmap = main.grab()
-    # The active 3D view's widget: Quarter's (FreeCAD 0.20), an OpenGL viewport,
-    # in the active window of the MDI area (other documents' views are hidden tabs).
-    mdi = main.findChild(QtWidgets.QMdiArea)
-    active = mdi.activeSubWindow() if mdi is not None else None
-    viewers = [w for w in (active or main).findChildren(QtWidgets.QWidget)
-               if w.metaObject().className() == "SIM::Coin3D::Quarter::QuarterWidget" and w.isVisible()]
-    if viewers:
-        area = viewers[0].viewport() if hasattr(viewers[0], "viewport") else viewers[0]
-        rendered = os.path.join(out_dir, "view_" + name)
-        FreeCADGui.activeDocument().activeView().saveImage(rendered, area.width(), area.height(), "Current")
-        painter = QtGui.QPainter(pixmap)
-        painter.drawImage(area.mapTo(main, QtCore.QPoint(0, 0)), QtGui.QImage(rendered))
-        painter.end()
+    path, pasted = session_helpers.grab_window_with_view(out_dir, name)
+    if pasted:
         report["view_pasted"] = True
-    pixmap.save(path)
     return path
 
 
 def pick_joints(doc, axis):
     """Reopens the panel, holds the axis to a chosen joint (not the one found)
     and checks that the running loop holds it there, then back to the found one."""
-    from contactwb.gui import haptic_panel
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.Selection.addSelection(axis)
-    FreeCADGui.runCommand("Contacts_HapticTrial")
-    wait(0.5)
-    FreeCADGui.Selection.clearSelection()
-    panel = haptic_panel.active_panel
+    panel = session_helpers.open_haptic_panel(axis)
     report["joint_choices"] = [c["label"] for c in panel.joint_choices]
     report["joint_combo_items"] = [panel.joint_combo.itemText(i) for i in range(panel.joint_combo.count())]
     wait(0.3)
     found = panel.session.snapshot()
-    report["found_joint"] = {"held": found["held"], "with": found["joint_with"], "joint": found["joint"]}
+    report["found_joint"] = {"held": found.held, "with": found.joint_with, "joint": found.joint}
     index = next(i for i, c in enumerate(panel.joint_choices) if c["with"] == "Bearing-back")
     panel.joint_combo.setCurrentIndex(index + 1)  # as the user does
     wait(0.3)
     chosen = panel.session.snapshot()
-    report["chosen_joint"] = {"held": chosen["held"], "with": chosen["joint_with"], "joint": chosen["joint"],
-                              "axis": chosen["joint_axis"], "point": chosen["joint_point"],
+    report["chosen_joint"] = {"held": chosen.held, "with": chosen.joint_with, "joint": chosen.joint,
+                              "axis": chosen.joint_axis, "point": chosen.joint_point,
                               "label": panel.joint_label.text()}
     # The hand pulls it out along the axis and sideways: held, it slides out on the chosen axis.
     panel.session.set_hand_target([0.2, 0.1, 12.0], [0.0, 0.0, 0.0])
@@ -90,16 +61,16 @@ def pick_joints(doc, axis):
     for _ in range(100):
         wait(0.1)
         pulled = panel.session.snapshot()
-        if pulled["translate"][2] > 6.0:
+        if pulled.translate[2] > 6.0:
             break
-    report["chosen_pulled"] = {"translate": pulled["translate"], "rotate_deg": pulled["rotate_deg"],
-                               "held": pulled["held"]}
+    report["chosen_pulled"] = {"translate": pulled.translate, "rotate_deg": pulled.rotate_deg,
+                               "held": pulled.held}
     FreeCADGui.activeDocument().activeView().fitAll()
     report["picker_png"] = grab_window_with_view("haptic_trial_joint_picker.png")
     panel.choose_joint(None)
     wait(0.3)
     back = panel.session.snapshot()
-    report["released_joint"] = {"held": back["held"], "with": back["joint_with"]}
+    report["released_joint"] = {"held": back.held, "with": back.joint_with}
     panel.reject()
     FreeCADGui.updateGui()
 
@@ -138,7 +109,7 @@ def containers():
         panel.session.set_hand_target(hand, [0, 0, 0])
         wait(1.5)
         shot = grab_window_with_view(f"haptic_trial_{selection.Name.lower()}.png")
-        seen = {"object": panel.obj.Name, "global_move": panel.session.snapshot()["translate"], "png": shot}
+        seen = {"object": panel.obj.Name, "global_move": panel.session.snapshot().translate, "png": shot}
         panel.accept()
         FreeCADGui.updateGui()
         return seen
@@ -171,9 +142,7 @@ def containers():
 
 def run():
     main = FreeCADGui.getMainWindow()
-    main.resize(1280, 960)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
-    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
+    doc = session_helpers.open_sample_in_workbench()
     axis = next(o for o in doc.Objects if o.Label == "Axis")
     for o in doc.Objects:  # show the shaft and what it goes through, cut open by hiding the rest
         if o.Label in ("Body", "Stator", "Front-cover", "Back-cover") or o.Label.startswith(("Screw", "Magnet")):
@@ -236,10 +205,4 @@ def run():
     containers()
 
 
-try:
-    run()
-except Exception:
-    report["errors"].append(traceback.format_exc())
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.run_and_report(run, report)

@@ -5,25 +5,19 @@ runs Contacts_ShowSimulationModel, sets the collision model's feature size and
 envelope (the small holes go), reads the Coin scene the view provider built
 (triangles, per-partition colours, the switched-off bore), saves the 3D view,
 undoes, and writes what it saw to $CONTACTS_GUI_RESULT."""
-import json
 import os
-import time
-import traceback
+import sys
 
 import FreeCAD
 import FreeCADGui
-from PySide2 import QtWidgets
 from pivy import coin
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+from session_helpers import wait  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
-
-
-def wait(seconds):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        QtWidgets.QApplication.processEvents()
-        time.sleep(0.005)
 
 
 def named(root, name):
@@ -137,10 +131,4 @@ def run():
     report["undone"] = doc.getObject(name) is None
 
 
-try:
-    run()
-except Exception:
-    report["errors"].append(traceback.format_exc())
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.run_and_report(run, report)

@@ -25,6 +25,24 @@ def line_material(colour):
     return material
 
 
+def unlit_polyline(points, width, group=None):
+    """A polyline through `points`, `width` pixels wide, in the current
+    material's colour unlit (BASE_COLOR): its nodes added to `group` (a new
+    SoGroup when None, for a separator that holds the material)."""
+    group = coin.SoGroup() if group is None else group
+    style = coin.SoDrawStyle()
+    style.lineWidth.setValue(width)
+    light = coin.SoLightModel()
+    light.model.setValue(coin.SoLightModel.BASE_COLOR)
+    coordinates = coin.SoCoordinate3()
+    coordinates.point.setValues(0, len(points), points)
+    lines = coin.SoLineSet()
+    lines.numVertices.setValue(len(points))
+    for child in (style, light, coordinates, lines):
+        group.addChild(child)
+    return group
+
+
 def polygon_offset(factor, units):
     offset = coin.SoPolygonOffset()
     offset.factor.setValue(factor)

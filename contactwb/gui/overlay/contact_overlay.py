@@ -19,7 +19,7 @@ from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, TYPE_NAMES
 from contactwb.document.identify import is_interference
 from contactwb.objects import regions
 from contactwb.gui.overlay.coin_nodes import (legend_node, line_material, material, polygon_offset,
-                                              set_stripe_period, stripes)
+                                              set_stripe_period, stripes, unlit_polyline)
 from contactwb.gui.overlay.colours import TYPE_COLOURS, legend_colours, selection_colour, type_colour
 from contactwb.gui.overlay.faces import FaceSource, circle_points
 from contactwb.gui.settings import paint_style
@@ -260,18 +260,7 @@ class ContactOverlay:
         points = circle_points(contact.Point, contact.Direction, float(contact.Radius.Value))
         if not points:
             return None
-        node = coin.SoGroup()  # under a separator with its material
-        style = coin.SoDrawStyle()
-        style.lineWidth.setValue(CIRCLE_WIDTH)
-        light = coin.SoLightModel()
-        light.model.setValue(coin.SoLightModel.BASE_COLOR)
-        coordinates = coin.SoCoordinate3()
-        coordinates.point.setValues(0, len(points), points)
-        lines = coin.SoLineSet()
-        lines.numVertices.setValue(len(points))
-        for child in (style, light, coordinates, lines):
-            node.addChild(child)
-        return node
+        return unlit_polyline(points, CIRCLE_WIDTH)  # a group: under a separator with its material
 
     def update_bodies(self):
         """Shows each side whose body is shown (after a Visibility change)."""

@@ -14,6 +14,8 @@ from contactwb.gui.palette import JOINT_RIGID as RIGID_COLOUR
 from contactwb.gui.palette import JOINT_ROTATION as ROTATION_COLOUR
 from contactwb.gui.palette import JOINT_TRANSLATION as TRANSLATION_COLOUR
 
+from contactwb.gui.overlay.coin_nodes import unlit_polyline
+
 GLYPH_WIDTH = 4
 LABEL_SIZE = 14  # points
 
@@ -22,17 +24,8 @@ def _line(points, colour, width=GLYPH_WIDTH):
     node = coin.SoSeparator()
     material = coin.SoMaterial()
     material.diffuseColor.setValue(*colour)
-    style = coin.SoDrawStyle()
-    style.lineWidth.setValue(width)
-    light = coin.SoLightModel()
-    light.model.setValue(coin.SoLightModel.BASE_COLOR)
-    coordinates = coin.SoCoordinate3()
-    coordinates.point.setValues(0, len(points), points)
-    lines = coin.SoLineSet()
-    lines.numVertices.setValue(len(points))
-    for child in (material, style, light, coordinates, lines):
-        node.addChild(child)
-    return node
+    node.addChild(material)
+    return unlit_polyline(points, width, node)
 
 
 def _ring(centre, axis, radius, segments=48):

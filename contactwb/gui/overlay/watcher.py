@@ -25,6 +25,15 @@ def follow_body_again(doc_name, obj_name):
                 rebuild()
 
 
+
+def _redraw_faces(overlay):
+    """Redraws an overlay's faces after one of its bodies changed (on_body_changed
+    gives the rebuild to run, or None when there is nothing to redraw)."""
+    method = overlay.on_body_changed
+    rebuild = method() if method is not None else None
+    if rebuild is not None:
+        rebuild()
+
 class OverlayWatcher:
     """The session's one selection and document observer: highlights the
     selected contacts and follows the bodies' Visibility, for every overlay
@@ -112,10 +121,7 @@ class OverlayWatcher:
         try:
             for overlay in list(self.overlays):
                 if overlay.doc_name == obj.Document.Name and obj.Name in overlay.path_names:
-                    method = overlay.on_body_changed
-                    rebuild = method() if method is not None else None
-                    if rebuild is not None:
-                        rebuild()
+                    _redraw_faces(overlay)
         except Exception as error:
             FreeCAD.Console.PrintWarning(f"Contacts: cannot follow the bodies: {error}\n")
 
@@ -132,9 +138,6 @@ class OverlayWatcher:
                 if prop == "Visibility":
                     overlay.update_bodies()
                 else:  # a body moved or changed: redraw its faces
-                    method = overlay.on_body_changed
-                    rebuild = method() if method is not None else None
-                    if rebuild is not None:
-                        rebuild()
+                    _redraw_faces(overlay)
         except Exception as error:
             FreeCAD.Console.PrintWarning(f"Contacts: cannot follow the bodies: {error}\n")

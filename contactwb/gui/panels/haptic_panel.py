@@ -62,9 +62,9 @@ def _joint_choices(assembly, scene, part):
         if held is None:
             continue
         other = record.b if record.a == part else record.a
-        axis = ", ".join(f"{v + 0.0:.3g}" for v in held["axis"])  # + 0.0: no "-0"
-        choices.append({"label": f"{held['kind']} with {other} (axis {axis})", "type": held["kind"],
-                        "with": other, "axis": held["axis"], "pair": pair})
+        axis = ", ".join(f"{v + 0.0:.3g}" for v in held.axis)  # + 0.0: no "-0"
+        choices.append({"label": f"{held.kind} with {other} (axis {axis})", "type": held.kind,
+                        "with": other, "axis": held.axis, "pair": pair})
     return choices
 
 
@@ -240,11 +240,11 @@ class HapticTrialPanel:
         caps = self.session.capabilities
         self.device_message.setText(self.session.message)
         # The sliders drive the simulated hand (none with hardware), from where the part starts.
-        self.hand_box.setEnabled(caps["name"] == h.simulated_capabilities()["name"])
+        self.hand_box.setEnabled(caps.name == h.simulated_capabilities().name)
         self.set_hand_sliders(list(translate) + list(rotate_deg), drive=False)
         # Gains within what the device renders (a rate device renders none: keep the defaults).
-        k_max = caps["max_stiffness"] or 5.0
-        b_max = caps["max_damping"] or 0.05
+        k_max = caps.max_stiffness or 5.0
+        b_max = caps.max_damping or 0.05
         self.stiffness_spin.blockSignals(True)
         self.damping_spin.blockSignals(True)
         self.stiffness_spin.setRange(0.05, k_max)
@@ -323,41 +323,41 @@ class HapticTrialPanel:
         if len(self.frame_times) > 2000:
             del self.frame_times[:1000]
             del self.update_seconds[:1000]
-        self._show_placement(s["matrix"])
-        self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s["axes"]))
-        if s["engaged"]:
-            how = "chosen" if s["held"] else "found"
-            self.joint_label.setText(f"{s['joint']} with {', '.join(s['joint_with'])} ({how})")
+        self._show_placement(s.matrix)
+        self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s.axes))
+        if s.engaged:
+            how = "chosen" if s.held else "found"
+            self.joint_label.setText(f"{s.joint} with {', '.join(s.joint_with)} ({how})")
         else:
             self.joint_label.setText("free (stopped only by collisions)")
         r = self.readouts
         r["constraints"].setText(self.constraints_text(s))
-        r["depth"].setText(f"{s['insertion_depth']:.3f} mm" if s["engaged"] else "-")
-        r["force"].setText(f"{s['force_n']:.2f} N")
-        r["offset"].setText("[" + ", ".join(f"{v:.3f}" for v in s["translate"]) + "] mm")
-        r["penetration"].setText(f"{s['penetration']:.4f} mm (max {s['max_penetration']:.4f})")
-        r["rate"].setText(f"{s['rate_hz']:.0f} Hz")
-        r["jitter"].setText(f"{s['jitter_us']:.0f} us")
-        r["watchdog"].setText(s["watchdog"] if s["watchdog"] != "none" else "ok")
+        r["depth"].setText(f"{s.insertion_depth:.3f} mm" if s.engaged else "-")
+        r["force"].setText(f"{s.force_n:.2f} N")
+        r["offset"].setText("[" + ", ".join(f"{v:.3f}" for v in s.translate) + "] mm")
+        r["penetration"].setText(f"{s.penetration:.4f} mm (max {s.max_penetration:.4f})")
+        r["rate"].setText(f"{s.rate_hz:.0f} Hz")
+        r["jitter"].setText(f"{s.jitter_us:.0f} us")
+        r["watchdog"].setText(s.watchdog if s.watchdog != "none" else "ok")
         self.update_seconds.append(time.monotonic() - began)
         if self.recording is not None:
-            self.recording.append({"t": s["time"], "translate": s["translate"], "rotate_deg": s["rotate_deg"],
-                                   "force": s["force"], "engaged": s["engaged"], "penetration": s["penetration"]})
+            self.recording.append({"t": s.time, "translate": s.translate, "rotate_deg": s.rotate_deg,
+                                   "force": s.force, "engaged": s.engaged, "penetration": s.penetration})
 
     @staticmethod
     def constraints_text(s):
         """The active constraints in words: the joint held (found or chosen)
         with its bodies, and its one-sided stops (active: the part is on it)."""
-        if not s["engaged"]:
-            return "none: free, stopped only by collisions" + (" (blocked)" if s["blocked"] else "")
-        how = "chosen" if s["held"] else "found"
-        text = f"{s['joint']} joint with {', '.join(s['joint_with']) or '?'} ({how})"
-        stops = s.get("stops", [])
+        if not s.engaged:
+            return "none: free, stopped only by collisions" + (" (blocked)" if s.blocked else "")
+        how = "chosen" if s.held else "found"
+        text = f"{s.joint} joint with {', '.join(s.joint_with) or '?'} ({how})"
+        stops = s.stops
         if stops:
-            active = [st for st in stops if st["active"]]
+            active = [st for st in stops if st.active]
             text += f"; stops: {len(active)} of {len(stops)} active"
             for st in active:
-                n = st["normal"]
+                n = st.normal
                 text += f" [n {n[0]:+.2f} {n[1]:+.2f} {n[2]:+.2f}]"
         else:
             text += "; no stops"
@@ -502,7 +502,7 @@ class HapticTrialPanel:
         if self.session is not None:
             self.session.stop()
             s = self.session.snapshot()
-            final = self._local_placement(s["matrix"])
+            final = self._local_placement(s.matrix)
         self._close()
         # The moves shown during the trial are not in the undo stack: one transaction for the result.
         self.obj.Placement = self.original

@@ -30,6 +30,21 @@ class ViewProvider:
         return None
 
 
+class OneDisplayMode:
+    """A view provider drawing in one display mode of its own, DISPLAY_MODE
+    (added by its attach()): FreeCAD lists, defaults to and keeps that mode."""
+    DISPLAY_MODE = None
+
+    def getDisplayModes(self, vobj):
+        return [self.DISPLAY_MODE]
+
+    def getDefaultDisplayMode(self):
+        return self.DISPLAY_MODE
+
+    def setDisplayMode(self, mode):
+        return mode
+
+
 def add_action(menu, text, slot):
     """A context-menu entry running slot()."""
     action = menu.addAction(text)

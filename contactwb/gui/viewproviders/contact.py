@@ -9,7 +9,7 @@ from pivy import coin
 
 import contactwb
 from contactwb.gui import actions
-from contactwb.gui.viewproviders.base import ViewProvider, add_action
+from contactwb.gui.viewproviders.base import OneDisplayMode, ViewProvider, add_action
 
 
 def contact_icon_path(kind):
@@ -26,24 +26,16 @@ def overlays_of(contact):
             yield overlay
 
 
-class ViewProviderContact(ViewProvider):
+class ViewProviderContact(OneDisplayMode, ViewProvider):
     """A contact: drawn by its group's overlay; its Visibility switches its
     part of that drawing."""
+    DISPLAY_MODE = "Overlay"
 
     def attach(self, vobj):
         super().attach(vobj)
         # An empty display mode: without one the tree greys the contact out
         # as if it were hidden.
         vobj.addDisplayMode(coin.SoGroup(), "Overlay")
-
-    def getDisplayModes(self, vobj):
-        return ["Overlay"]
-
-    def getDefaultDisplayMode(self):
-        return "Overlay"
-
-    def setDisplayMode(self, mode):
-        return mode
 
     def getIcon(self):
         return contact_icon_path(getattr(getattr(self, "Object", None), "ContactType", ""))

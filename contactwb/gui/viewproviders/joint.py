@@ -11,7 +11,7 @@ from pivy import coin
 
 import contactwb
 from contactwb.gui.overlay.joint_glyphs import joint_glyphs
-from contactwb.gui.viewproviders.base import ViewProvider
+from contactwb.gui.viewproviders.base import OneDisplayMode, ViewProvider
 
 
 class _SelectionHighlight:
@@ -97,8 +97,9 @@ def _install_highlight():
         FreeCADGui.Selection.addObserver(_highlight)
 
 
-class ViewProviderJoint(ViewProvider):
+class ViewProviderJoint(OneDisplayMode, ViewProvider):
     """Draws its Joint's glyphs (over the bodies: an annotation)."""
+    DISPLAY_MODE = "Glyphs"
 
     def attach(self, vobj):
         super().attach(vobj)
@@ -108,15 +109,6 @@ class ViewProviderJoint(ViewProvider):
         self.highlighted = False
         vobj.addDisplayMode(self.glyphs, "Glyphs")
         _install_highlight()
-
-    def getDisplayModes(self, vobj):
-        return ["Glyphs"]
-
-    def getDefaultDisplayMode(self):
-        return "Glyphs"
-
-    def setDisplayMode(self, mode):
-        return mode
 
     def updateData(self, obj, prop):
         if prop in ("AxisPoints", "AxisDirections", "Translations", "Centre", "GlyphLength", "Label", "JointType"):

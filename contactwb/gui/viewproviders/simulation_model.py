@@ -11,11 +11,12 @@ from pivy import coin
 import contactwb
 from contactwb.gui.overlay.coin_nodes import legend_node
 from contactwb.gui.overlay.simulation_model import STRIPE_COLOUR, model_nodes
-from contactwb.gui.viewproviders.base import ViewProvider
+from contactwb.gui.viewproviders.base import OneDisplayMode, ViewProvider
 
 
-class ViewProviderSimulationModel(ViewProvider):
+class ViewProviderSimulationModel(OneDisplayMode, ViewProvider):
     """Draws a SimulationModel's mesh from its properties (nothing is meshed here)."""
+    DISPLAY_MODE = "Mesh"
 
     def attach(self, vobj):
         super().attach(vobj)
@@ -28,15 +29,6 @@ class ViewProviderSimulationModel(ViewProvider):
 
     def getIcon(self):
         return contactwb.icon_path("Contacts_ShowSimulationModel")
-
-    def getDisplayModes(self, vobj):
-        return ["Mesh"]
-
-    def getDefaultDisplayMode(self):
-        return "Mesh"
-
-    def setDisplayMode(self, mode):
-        return mode
 
     def onChanged(self, vobj, prop):
         if prop == "Visibility":
