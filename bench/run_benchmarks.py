@@ -13,7 +13,12 @@ in the same run (`make bench`):
 2. Brute force: the same files, from shapes in memory, against the way a
    FreeCAD user can script it today and the tests' checker (small files).
 3. partitions: bench_partitions (ours vs OCCT's ShapeUpgrade_UnifySameDomain).
-4. interference and validity checks: bench/bench_interferences.py (the motor,
+4. the haptic loop's collision budget: bench_haptic_query (Google Benchmark):
+   contact query per pair in contact on the motor, servo tick in contact,
+   the loop on its thread in real time; run idle and again beside two busy
+   processes (`yes > /dev/null`), the CPU named (`lscpu`). --haptics-only runs
+   just this part (its own section of docs/benchmarks.md).
+5. interference and validity checks: bench/bench_interferences.py (the motor,
    R08, R01 and five B-spline solids against their bare reads, and the
    whole-solid Boolean pass they replaced).
 
@@ -316,6 +321,99 @@ def brute_table(cases, ours, brute, scripted_times):
     return "\n".join(lines)
 
 
+def cpu_model():
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True).stdout
+    except OSError:
+        return platform.processor() or platform.machine()
+    for line in out.splitlines():
+        if line.startswith("Model name:"):
+            return line.split(":", 1)[1].strip()
+    return platform.processor() or platform.machine()
+
+
+def run_haptic_query(exe, loop_seconds, busy):
+    """bench_haptic_query's benchmarks (name -> counters), with `busy` CPU hogs
+    (`yes`, started here and stopped by their own pids) running alongside."""
+    hogs = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(busy)]
+    try:
+        load = open("/proc/loadavg").read().split()[0]
+        out = subprocess.run([exe, "--benchmark_format=json", "--loop_seconds", str(loop_seconds)],
+                             capture_output=True, text=True)
+    finally:
+        for hog in hogs:
+            hog.kill()
+            hog.wait()
+    if out.returncode != 0:
+        raise RuntimeError(f"{exe} failed: {out.stderr[-2000:]}")
+    data = json.loads(out.stdout)
+    return {b["name"]: b for b in data["benchmarks"]}, load
+
+
+def haptic_query_tables(runs):
+    """Markdown tables of the query, tick and loop rows; `runs` is [(label, results, load)]."""
+    def f(value, digits=1):
+        return "-" if value is None else f"{value:.{digits}f}"
+    lines = ["| machine | load avg at start | pair (part / neighbour) | closed forms: query p50 us | p99 us | "
+             "CPU p99 us | closed-form pairs / query | mesh fallbacks / query | meshes only: p50 us | p99 us | "
+             "p99 ratio |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for label, results, load in runs:
+        for name, row in results.items():
+            if not name.startswith("contact_query/closed_form/"):
+                continue
+            pair = name[len("contact_query/closed_form/"):]
+            mesh = results.get("contact_query/meshes_only/" + pair, {})
+            ratio = mesh.get("p99_us", 0) / row["p99_us"] if row.get("p99_us") else None
+            lines.append(f"| {label} | {load} | {pair} | {f(row['p50_us'])} | {f(row['p99_us'])} | "
+                         f"{f(row['cpu_p99_us'])} | {f(row['closed_pairs'])} | {f(row['mesh_fallbacks'])} | "
+                         f"{f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} | {f(ratio)}x |")
+    lines += ["", "| machine | part | servo tick, closed forms: p50 us | p99 us | CPU p99 us | contacts / tick | "
+              "meshes only: p50 us | p99 us |", "|---|---|---|---|---|---|---|---|"]
+    for label, results, load in runs:
+        for name, row in results.items():
+            if not name.startswith("servo_tick/closed_form/"):
+                continue
+            part = name.split("/")[-1]
+            mesh = results.get("servo_tick/meshes_only/" + part, {})
+            lines.append(f"| {label} | {part} | {f(row['p50_us'])} | {f(row['p99_us'])} | {f(row['cpu_p99_us'])} | "
+                         f"{f(row['contacts'])} | {f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} |")
+    lines += ["", "| machine | part | priority | ticks | rate Hz | jitter p50 us | jitter p99 us | step p50 us | "
+              "step p99 us | overruns | late wake-ups |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for label, results, load in runs:
+        for name, row in results.items():
+            if not name.startswith("realtime_loop/"):
+                continue
+            _, priority, part = name.split("/")[:3]
+            granted = "SCHED_FIFO 80" if row.get("fifo") else ("normal" if priority == "normal" else
+                                                                "SCHED_FIFO refused: normal")
+            lines.append(f"| {label} | {part} | {granted} | {int(row['ticks'])} | {f(row['rate_hz'])} | "
+                         f"{f(row['jitter_p50_us'])} | {f(row['jitter_p99_us'])} | {f(row['step_p50_us'])} | "
+                         f"{f(row['step_p99_us'])} | {int(row['overruns'])} | {int(row['late_wakeups'])} |")
+    return "\n".join(lines)
+
+
+def haptic_query_report(build_dir, loop_seconds):
+    exe = os.path.join(build_dir, "bench", "bench_haptic_query")
+    if not os.path.isfile(exe):
+        return None
+    runs = []
+    for label, busy in (("shared", 0), ("shared + 2 busy", 2)):
+        results, load = run_haptic_query(exe, loop_seconds, busy)
+        runs.append((label, results, load))
+    return "\n".join([
+        f"Measured {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} by `bench/run_benchmarks.py` "
+        f"(bench_haptic_query, Google Benchmark), Release build, CPU: {cpu_model()}, {os.cpu_count()} cores, "
+        "**shared with other engineers' builds** (the load average at the start of each run is in the "
+        "tables). *shared*: the machine as it was; *shared + 2 busy*: the same run again with two "
+        "`yes > /dev/null` processes started by the script. Query and tick rows are wall time on "
+        "CLOCK_MONOTONIC (CPU: the thread's own time) in lockstep (a virtual clock: no sleeping between "
+        "ticks); loop rows are realtime mode (the loop on its own thread, absolute deadlines, "
+        f"{loop_seconds:g} s). *closed forms*: the contact query as the trial runs it (analytic partition "
+        "pairs in closed form, the meshes for the rest); *meshes only*: the same query with the closed "
+        "forms off (the collision stage's meshes alone, as before), in the same process.",
+        "", haptic_query_tables(runs)])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", default=os.path.join(REPO, "build"))
@@ -328,8 +426,17 @@ def main():
     parser.add_argument("--write", help="also write the report to this Markdown file")
     parser.add_argument("--plot", help="also draw time against parts (bare XDE read, ours) into this PNG")
     parser.add_argument("--skip-meshes", action="store_true", help="leave out bench/bench_meshes.py")
+    parser.add_argument("--haptics-only", action="store_true",
+                        help="run only the haptic loop's collision benchmark (bench_haptic_query)")
+    parser.add_argument("--loop-seconds", type=float, default=10, help="the realtime loop's duration")
     args = parser.parse_args()
     build_dir = os.path.abspath(args.build_dir)
+    if args.haptics_only:
+        text = haptic_query_report(build_dir, args.loop_seconds) or "bench_haptic_query not built"
+        print(text)
+        if args.write:
+            write_section(args.write, "haptic query bench", text)
+        return
     data_dir = os.path.join(build_dir, "bench-data")
     os.makedirs(data_dir, exist_ok=True)
 
@@ -386,6 +493,9 @@ def main():
         out = subprocess.run([exe, "--benchmark_min_time=0.05"], capture_output=True, text=True)
         table = [line for line in out.stdout.splitlines() if line.startswith("|")]
         report += ["", "## Partitions (ours vs ShapeUpgrade_UnifySameDomain)", "", *(table or [out.stdout])]
+    haptics = haptic_query_report(build_dir, args.loop_seconds)
+    if haptics:
+        report += ["", "## The haptic loop's collision budget", "", haptics]
     if args.plot:
         plot_read_scaling([("bare XDE read, bolted grid", (200, 40, 40),
                             [(n, ours[path]["bare"]["seconds"]) for n, _, path in grid_cases]),

@@ -258,6 +258,43 @@ TEST(Collision, SwitchedOffPartitionsAreIgnored) {
   EXPECT_TRUE(result.intersecting);
 }
 
+// The per-pair mask: only the bore-shaft pair switched off; the bore still meets
+// the shaft's other partitions and the shaft the block's others.
+TEST(Collision, SwitchedOffPairIsIgnoredAndOnlyIt) {
+  const Body block = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, 0), 20, 20, 10).Shape(),
+                                               BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp::DZ()), 3, 12).Shape())
+                                   .Shape());
+  const Body shaft = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 20).Shape());
+  auto cylinder_partition = [](const Body& body) {
+    for (const Partition& p : body.partitions.partitions)
+      if (p.params.kind == SurfaceKind::Cylinder) return p.id;
+    return -1;
+  };
+  const int bore = cylinder_partition(block), side = cylinder_partition(shaft);
+  CollisionPair pair(block.model, shaft.model);
+  QueryResult result;
+  const double angle = 0.05;
+  RigidTransform turned;
+  turned.rotation = {std::cos(angle), -std::sin(angle), 0, std::sin(angle), std::cos(angle), 0, 0, 0, 1};
+  pair.set_pair_enabled(bore, side, false);
+  EXPECT_FALSE(pair.pair_enabled(bore, side));
+  EXPECT_TRUE(pair.partition_enabled(0, bore));
+  pair.query(RigidTransform::identity(), turned, QueryKind::Intersect, result);
+  // The shaft's side still crosses the block's top and bottom along the bore's rims, not the bore.
+  EXPECT_TRUE(result.intersecting);
+  EXPECT_EQ(std::count(result.partitions_a.begin(), result.partitions_a.end(), bore), 0);
+  ASSERT_EQ(result.partitions_a.size(), 2u);
+  // The rims off too (every pair of the shaft's side with the block): the end discs 5 from the block.
+  for (const Partition& p : block.partitions.partitions) pair.set_pair_enabled(p.id, side, false);
+  pair.query(RigidTransform::identity(), turned, QueryKind::Penetration, result);
+  EXPECT_FALSE(result.intersecting);
+  EXPECT_NEAR(result.distance, 5.0, 1e-9);
+  pair.enable_all();
+  EXPECT_TRUE(pair.pair_enabled(bore, side));
+  pair.query(RigidTransform::identity(), turned, QueryKind::Intersect, result);
+  EXPECT_EQ(result.partitions_a.size(), 3u);
+}
+
 TEST(Collision, EverythingSwitchedOffIsInfinitelyFar) {
   const Body a = make_body(BRepPrimAPI_MakeBox(1, 1, 1).Shape());
   CollisionPair pair(a.model, a.model);

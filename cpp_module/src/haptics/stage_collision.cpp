@@ -63,6 +63,8 @@ bool StageCollision::collides(const Pose& pose, int group) noexcept {
   const RigidTransform still = RigidTransform::identity();
   for (Neighbour& n : neighbours_) {
     if (!box.intersects(n.box)) continue;
+    // The meshes alone, every pair on (contacts() leaves its closed-form pairs off).
+    for (const Neighbour::AnalyticPair& pair : n.analytic) n.pair->set_pair_enabled(pair.moving, pair.other, true);
     n.pair->query(place, still, QueryKind::Intersect, result_);
     if (result_.intersecting) return true;
   }
@@ -112,6 +114,107 @@ Vec3 triangle_centroid(const TaggedMesh& mesh, int triangle, const Pose& pose) {
 }
 }  // namespace
 
+namespace {
+// Bounding sphere of a partition's box (its faces' tolerance included).
+void bounding_sphere(const Partition& p, Vec3& centre, double& radius) {
+  if (p.box.IsVoid()) {
+    centre = Vec3::Zero();
+    radius = -1;
+    return;
+  }
+  double x0, y0, z0, x1, y1, z1;
+  p.box.Get(x0, y0, z0, x1, y1, z1);
+  centre = Vec3(x0 + x1, y0 + y1, z0 + z1) / 2;
+  radius = 0.5 * Vec3(x1 - x0, y1 - y0, z1 - z0).norm();
+}
+
+// Kinds analytic_contact() has a closed form for (it still says no where the
+// closest pair leaves the bounds).
+bool closed_form_kinds(const AnalyticPatch& a, const AnalyticPatch& b) {
+  using K = SurfaceKind;
+  if (a.kind == K::Other || b.kind == K::Other) return false;
+  if (a.kind == K::Plane || b.kind == K::Plane) {
+    const AnalyticPatch& other = a.kind == K::Plane ? b : a;
+    return other.kind == K::Plane || ((other.kind == K::Cylinder || other.kind == K::Sphere) &&
+                                      other.side == MaterialSide::Convex);
+  }
+  if (a.kind == K::Cone || b.kind == K::Cone)
+    return a.kind == K::Cone && b.kind == K::Cone && convex_against_concave(a.side, b.side);
+  if (a.side == MaterialSide::Convex && b.side == MaterialSide::Convex) return true;
+  if (!convex_against_concave(a.side, b.side)) return false;
+  const AnalyticPatch& inner = a.side == MaterialSide::Convex ? a : b;
+  const AnalyticPatch& outer = a.side == MaterialSide::Convex ? b : a;
+  return inner.kind == K::Sphere || (inner.kind == K::Cylinder && outer.kind == K::Cylinder && outer.radius >= inner.radius - 0.5);
+}
+}  // namespace
+
+void StageCollision::use_analytic(const std::vector<BodyPartitions>& partitions) {
+  if (partitions.size() != models_.size() || !models_[moving_]) return;
+  const BodyPartitions& moving = partitions[moving_];
+  if (static_cast<int>(moving.partitions.size()) != models_[moving_]->partition_count()) return;
+  moving_patches_.clear();
+  moving_centres_.clear();
+  moving_radii_.clear();
+  for (const Partition& p : moving.partitions) {
+    moving_patches_.push_back(analytic_patch(p));
+    Vec3 c;
+    double r;
+    bounding_sphere(p, c, r);
+    moving_centres_.push_back(c);
+    moving_radii_.push_back(r);
+  }
+  moving_placed_ = moving_patches_;
+  for (Neighbour& n : neighbours_) {
+    n.analytic.clear();
+    const BodyPartitions& other = partitions[n.body];
+    if (static_cast<int>(other.partitions.size()) != models_[n.body]->partition_count()) continue;
+    for (std::size_t j = 0; j < other.partitions.size(); ++j) {
+      const AnalyticPatch patch = analytic_patch(other.partitions[j]);
+      for (std::size_t i = 0; i < moving_patches_.size(); ++i) {
+        if (moving_radii_[i] < 0 || !closed_form_kinds(moving_patches_[i], patch)) continue;
+        Neighbour::AnalyticPair pair;
+        pair.moving = static_cast<int>(i);
+        pair.other = static_cast<int>(j);
+        pair.other_patch = patch;
+        bounding_sphere(other.partitions[j], pair.other_centre, pair.other_radius);
+        if (pair.other_radius < 0) continue;
+        n.analytic.push_back(std::move(pair));
+      }
+    }
+  }
+  analytic_on_ = true;
+}
+
+bool StageCollision::analytic_contact_of(Neighbour& n, const Pose& pose, double reach, ContactPoint& out) noexcept {
+  bool found = false;
+  AnalyticContact c;
+  for (Neighbour::AnalyticPair& pair : n.analytic) {
+    CollisionPair& mesh = *n.pair;
+    if (!mesh.partition_enabled(0, pair.moving) || !mesh.partition_enabled(1, pair.other)) continue;
+    // Bounding spheres farther apart than the reach: neither the meshes nor a closed form need it.
+    const double apart =
+        (pose * moving_centres_[pair.moving] - pair.other_centre).norm() - moving_radii_[pair.moving] - pair.other_radius;
+    if (apart > reach) {
+      mesh.set_pair_enabled(pair.moving, pair.other, false);
+      continue;
+    }
+    if (!analytic_contact(moving_placed_[pair.moving], pair.other_patch, c)) {
+      mesh.set_pair_enabled(pair.moving, pair.other, true);
+      ++fallback_pairs_;
+      continue;
+    }
+    mesh.set_pair_enabled(pair.moving, pair.other, false);
+    ++closed_form_pairs_;
+    if (c.gap > reach || (found && c.gap >= out.gap)) continue;
+    out.point = c.point_a;
+    out.normal = c.normal;
+    out.gap = c.gap;
+    out.body = n.body;
+    found = true;
+  }
+  return found;
+}
+
 int StageCollision::contacts(const Pose& pose, int group, double reach, ContactPoint* out, int capacity) noexcept {
   if (group >= groups_.count()) group = -1;
   switch_to(group);
@@ -121,14 +224,30 @@ int StageCollision::contacts(const Pose& pose, int group, double reach, ContactP
   const RigidTransform still = RigidTransform::identity();
   const TaggedMesh& moving_mesh = models_[moving_]->mesh();
   int n = 0;
+  closed_form_pairs_ = fallback_pairs_ = 0;
+  if (analytic_on_)
+    for (std::size_t i = 0; i < moving_patches_.size(); ++i) {
+      AnalyticPatch& placed_patch = moving_placed_[i];
+      placed_patch.location = pose * moving_patches_[i].location;
+      placed_patch.axis = pose.linear() * moving_patches_[i].axis;
+      placed_patch.ref_dir = pose.linear() * moving_patches_[i].ref_dir;
+    }
   for (Neighbour& nb : neighbours_) {
     if (n >= capacity) break;
     if (!box.intersects(nb.box)) continue;
-    nb.pair->set_distance_limit(reach);
+    ContactPoint closed;
+    const bool closed_found = analytic_on_ && analytic_contact_of(nb, pose, reach, closed);
+    nb.pair->set_distance_limit(closed_found ? std::max(0.0, closed.gap) : reach);
     nb.pair->query(place, still, QueryKind::Penetration, result_);
     ContactPoint& c = out[n];
     c.body = nb.body;
-    if (result_.depth > 0) {
+    // The closed form's contact unless the meshes found one at least as near.
+    const bool mesh_nearer = result_.depth > 0 ? -result_.depth < closed.gap
+                             : result_.intersecting ? 0.0 < closed.gap
+                                                    : std::isfinite(result_.distance) && result_.distance < closed.gap;
+    if (closed_found && !mesh_nearer) {
+      c = closed;
+    } else if (result_.depth > 0) {
       // Overlapping: the deepest point and the way out.
       c.point = Vec3(result_.depth_point_a[0], result_.depth_point_a[1], result_.depth_point_a[2]);
       c.normal = Vec3(result_.direction[0], result_.direction[1], result_.direction[2]);

@@ -104,6 +104,7 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
       }
     }
     scene->collision_ = std::make_unique<StageCollision>(models, moving, scene->groups_);
+    if (options.analytic) scene->collision_->use_analytic(scene->partitions_);
   } catch (const Standard_Failure& failure) {
     status = Status::failure(StatusCode::GeometryError, "OCCT: " + occt_failure_text(failure));
     status.body = part;

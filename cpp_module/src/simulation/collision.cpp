@@ -58,6 +58,7 @@ constexpr unsigned kPullUpEvery = 16;
 struct CollisionPair::State {
   CollisionModelPtr models[2];
   std::vector<char> enabled[2];
+  std::vector<char> pair_enabled;  // a * partitions of B + b
   // Per query: world boxes of the partitions, candidate partition pairs.
   std::vector<Eigen::Vector3d> box_center[2], box_half[2];
   struct Candidate {
@@ -132,6 +133,7 @@ CollisionPair::CollisionPair(CollisionModelPtr a, CollisionModelPtr b) : state_(
     s.stamp[side].assign(s.models[side]->mesh().vertices.size(), 0);
     s.partition_hit[side].assign(partitions, 0);
   }
+  s.pair_enabled.assign(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count(), 1);
   s.candidates.reserve(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count());
   s.stack.reserve(kMaxFloodVertices * 4);
   s.hits.reserve(kMaxContactsPerPair);
@@ -184,8 +186,25 @@ void CollisionPair::set_partition_enabled(int side, int partition, bool enabled)
   state_->clear_fronts();
 }
 
+void CollisionPair::set_pair_enabled(int partition_a, int partition_b, bool enabled) {
+  State& s = *state_;
+  const int na = static_cast<int>(s.enabled[0].size()), nb = static_cast<int>(s.enabled[1].size());
+  if (partition_a < 0 || partition_a >= na || partition_b < 0 || partition_b >= nb) return;
+  char& flag = s.pair_enabled[static_cast<std::size_t>(partition_a) * nb + partition_b];
+  flag = enabled ? 1 : 0;
+  // No front to restart: each front covers its own partition pair, which is skipped while off.
+}
+
+bool CollisionPair::pair_enabled(int partition_a, int partition_b) const {
+  const State& s = *state_;
+  const int na = static_cast<int>(s.enabled[0].size()), nb = static_cast<int>(s.enabled[1].size());
+  if (partition_a < 0 || partition_a >= na || partition_b < 0 || partition_b >= nb) return false;
+  return s.pair_enabled[static_cast<std::size_t>(partition_a) * nb + partition_b] != 0;
+}
+
 void CollisionPair::enable_all() {
   for (auto& flags : state_->enabled) std::fill(flags.begin(), flags.end(), 1);
+  std::fill(state_->pair_enabled.begin(), state_->pair_enabled.end(), 1);
   state_->clear_fronts();
 }
 
@@ -403,7 +422,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   for (std::size_t pa = 0; pa < subs_a.size(); ++pa) {
     if (!s.enabled[0][pa] || !subs_a[pa].bvh) continue;
     for (std::size_t pb = 0; pb < subs_b.size(); ++pb) {
-      if (!s.enabled[1][pb] || !subs_b[pb].bvh) continue;
+      if (!s.enabled[1][pb] || !subs_b[pb].bvh || !s.pair_enabled[pa * subs_b.size() + pb]) continue;
       s.candidates.push_back({box_gap(s.box_center[0][pa], s.box_half[0][pa], s.box_center[1][pb], s.box_half[1][pb]),
                               static_cast<int>(pa), static_cast<int>(pb)});
     }
@@ -545,7 +564,8 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
     int best_pa = -1, best_pb = -1;
     const State::Cached& cached = s.cached_closest;
     if (s.warm_start && cached.partition_a >= 0 && s.enabled[0][cached.partition_a] &&
-        s.enabled[1][cached.partition_b]) {
+        s.enabled[1][cached.partition_b] &&
+        s.pair_enabled[static_cast<std::size_t>(cached.partition_a) * subs_b.size() + cached.partition_b]) {
       best.triangle_a = cached.triangle_a;
       best.triangle_b = cached.triangle_b;
       ++s.traversal.triangle_tests;

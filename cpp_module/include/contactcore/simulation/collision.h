@@ -113,6 +113,12 @@ class CollisionPair {
   void set_partition_enabled(int side, int partition, bool enabled);  // side 0: A, 1: B
   void enable_all();
   bool partition_enabled(int side, int partition) const;
+  // Per partition pair (a of A, b of B): a pair switched off here is skipped by every query while
+  // both partitions stay on for their other pairs (a pair answered in closed form elsewhere, see
+  // analytic_distance.h). Every pair starts enabled; enable_all() restores them too. Ids out of
+  // range are ignored. Allocation-free.
+  void set_pair_enabled(int partition_a, int partition_b, bool enabled);
+  bool pair_enabled(int partition_a, int partition_b) const;
 
   // One query with A placed by `place_a` and B by `place_b`. `out` is reused:
   // pass the same object every tick to stay allocation-free.

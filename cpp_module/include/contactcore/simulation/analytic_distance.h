@@ -1,0 +1,80 @@
+// Stage 5 (simulation): closed-form distance, contact points and normals
+// between two analytic partitions (plane, cylinder, cone, sphere), bounded by
+// the partitions' outlines, axial ranges and angular intervals. The closest
+// pair is found from the surface parameters; it is the answer only when it
+// lies inside both partitions (then no edge or rim can be closer): otherwise,
+// and for tori and free-form surfaces, the caller falls back to the meshes.
+// Plain numbers, no OCCT after set-up, no allocation per query: fit for the
+// haptic loop.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "contactcore/partitions/partitions.h"
+
+namespace contactcore {
+
+// A partition's surface and bounds as numbers (the frame of its body's
+// placement; move it with placed()).
+struct AnalyticPatch {
+  SurfaceKind kind = SurfaceKind::Other;
+  MaterialSide side = MaterialSide::Outward;
+  // As SurfaceParams: plane a point and its outward normal; cylinder a point
+  // on the axis; cone its apex, axis into the opening; sphere its centre.
+  Eigen::Vector3d location{0, 0, 0}, axis{0, 0, 1};
+  Eigen::Vector3d ref_dir{1, 0, 0};  // angles (revolution) and the outline's x (plane)
+  double radius = 0, half_angle = 0;
+  double axial_min = 0, axial_max = 0;  // revolution: along axis from location
+  struct Arc {
+    double start = 0, span = 0;
+  };
+  std::vector<Arc> angular;  // revolution: intervals from ref_dir about axis (empty: none known)
+  // Plane: outline loops in the plane frame (x = ref_dir, y = axis ^ ref_dir),
+  // with each chord's bulge (Point2): a point is judged inside only when it is
+  // farther from every chord than that chord's arc can swing.
+  std::vector<std::vector<Point2>> loops;
+};
+
+// The patch of a partition (kind Other when it has no closed form here).
+AnalyticPatch analytic_patch(const Partition& partition);
+
+// The patch moved by a rigid motion (outlines and angles move with their frame).
+AnalyticPatch placed(const AnalyticPatch& patch, const Eigen::Isometry3d& motion);
+
+struct AnalyticContact {
+  double gap = 0;  // signed: > 0 apart, < 0 overlapping by that much along `normal`
+  Eigen::Vector3d point_a{0, 0, 0}, point_b{0, 0, 0};  // on each surface
+  Eigen::Vector3d normal{0, 0, 1};  // unit, from b towards a: the way out for a
+};
+
+// Tolerances of the closed forms: axes (and plane normals) this close in
+// angle count as parallel; cones this close in half-angle as one angle.
+struct AnalyticTolerances {
+  double parallel = 0.05;  // rad
+  double angle = 1e-3;     // rad
+  // mm: a signed overlap deeper than this is no contact being pushed into
+  // (faces back to back, a shaft beside a bore rather than in it): the
+  // meshes decide. A haptic proxy never lets parts sink this deep.
+  double max_depth = 0.5;
+};
+
+// True and `out` filled when the closest pair of a and b (both placed in one
+// frame) has a closed form here and lies inside both partitions; false when
+// the meshes must answer. Pairs: plane-plane (parallel, facing), plane with
+// a shaft (convex cylinder) or a ball (convex sphere), cylinder-cylinder
+// (shaft in bore with near-parallel axes, two shafts side by side), sphere-
+// sphere (two balls, a ball in a cup), a ball in a bore, cone in cone (a
+// plug on its seat: one half-angle, near-parallel axes). Overlaps are signed
+// gaps along the normal of the contact (a shaft pushed into its bore's wall).
+bool analytic_contact(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                      const AnalyticTolerances& tolerances = {}) noexcept;
+
+// Whether point p (on or near the patch's surface) lies within its bounds:
+// axial range and angular intervals, or inside its outline (with a margin
+// for the arcs). `slack` mm of tolerance on the axial range.
+bool within_patch(const AnalyticPatch& patch, const Eigen::Vector3d& p, double slack = 1e-6) noexcept;
+
+}  // namespace contactcore

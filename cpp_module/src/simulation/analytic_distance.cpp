@@ -1,0 +1,358 @@
+// Closed-form contacts between analytic partitions: the closest pair of the
+// unbounded surfaces (or, for a shaft in a bore and a plug on its seat, the
+// signed gap across the common band), accepted only when both points lie in
+// the partitions' bounds; everything else goes back to the meshes.
+#include "contactcore/simulation/analytic_distance.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace contactcore {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+constexpr double kTwoPi = 6.283185307179586;
+constexpr double kAngularSlack = 1e-9;  // rad, on the angular intervals
+
+Vec3 to_vec(const gp_XYZ& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+
+// Any unit vector perpendicular to `axis`, preferring `ref` when it is.
+Vec3 perpendicular(const Vec3& axis, const Vec3& ref) {
+  Vec3 v = ref - ref.dot(axis) * axis;
+  if (v.norm() < 1e-9) v = axis.unitOrthogonal();
+  return v.normalized();
+}
+
+bool revolution(SurfaceKind k) { return k == SurfaceKind::Cylinder || k == SurfaceKind::Cone || k == SurfaceKind::Sphere; }
+
+// Even-odd test of the plane-frame point q against the loops; false when q is
+// within a chord's possible arc swing of it (the arcs are not known exactly here).
+bool inside_outline(const std::vector<std::vector<Point2>>& loops, double qx, double qy) {
+  bool in = false;
+  for (const auto& loop : loops) {
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2& p = loop[i];
+      const Point2& r = loop[(i + 1) % n];
+      const double ex = r.x - p.x, ey = r.y - p.y, len = std::hypot(ex, ey);
+      // Distance of q from the chord; the arc bulges at most ~3|bulge| / (4 len) off it
+      // (the sagitta of a circular arc up to a half circle, from its area).
+      double t = len > 0 ? ((qx - p.x) * ex + (qy - p.y) * ey) / (len * len) : 0.0;
+      t = std::clamp(t, 0.0, 1.0);
+      const double dist = std::hypot(qx - (p.x + t * ex), qy - (p.y + t * ey));
+      const double swing = len > 0 ? 0.75 * std::abs(p.bulge) / len : std::abs(p.bulge);
+      if (dist <= swing + 1e-9) return false;
+      if ((p.y > qy) != (r.y > qy)) {
+        const double x = p.x + (qy - p.y) / (r.y - p.y) * ex;
+        if (qx < x) in = !in;
+      }
+    }
+  }
+  return in;
+}
+
+// Cylinder axis points: a point on b's axis line at coordinate s.
+Vec3 on_axis(const AnalyticPatch& p, double s) { return p.location + s * p.axis; }
+
+bool swap_result(bool ok, AnalyticContact& out) {
+  if (ok) {
+    std::swap(out.point_a, out.point_b);
+    out.normal = -out.normal;
+  }
+  return ok;
+}
+
+// ---- the pairs (a's role first)
+
+bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
+  if (a.axis.dot(b.axis) > -std::cos(tol.angle)) return false;  // not facing, or tilted: an edge is closest
+  if (a.loops.empty() || b.loops.empty()) return false;
+  const Vec3& n = b.axis;
+  out.gap = (a.location - b.location).dot(n);
+  out.normal = n;
+  // A point of one outline inside the other: the faces overlap there.
+  const Vec3 ax = a.ref_dir, ay = a.axis.cross(a.ref_dir);
+  const Vec3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
+  for (const auto& loop : a.loops)
+    for (const Point2& v : loop) {
+      const Vec3 p = a.location + v.x * ax + v.y * ay;
+      const Vec3 d = p - b.location;
+      if (!inside_outline(b.loops, d.dot(bx), d.dot(by))) continue;
+      out.point_a = p;
+      out.point_b = p - out.gap * n;
+      return true;
+    }
+  for (const auto& loop : b.loops)
+    for (const Point2& v : loop) {
+      const Vec3 p = b.location + v.x * bx + v.y * by;
+      const Vec3 d = p - a.location;
+      if (!inside_outline(a.loops, d.dot(ax), d.dot(ay))) continue;
+      out.point_b = p;
+      out.point_a = p + out.gap * n;
+      return true;
+    }
+  return false;  // only edges crossing, or apart in the plane: the meshes decide
+}
+
+// A convex cylinder or sphere (a) against a plane (b).
+bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
+  if (a.side != MaterialSide::Convex) return false;
+  const Vec3& n = b.axis;
+  Vec3 lowest;
+  if (a.kind == SurfaceKind::Sphere) {
+    lowest = a.location - a.radius * n;
+  } else {
+    const Vec3 w = n - n.dot(a.axis) * a.axis;
+    if (w.norm() < 1e-6) return false;  // axis along the normal: an end circle (an edge) is closest
+    const Vec3 down = w.normalized();
+    // Height along n is linear in the axial coordinate: lowest at an end, or anywhere when parallel.
+    const double slope = a.axis.dot(n);
+    double s;
+    if (std::abs(slope) < 1e-12) s = 0.5 * (a.axial_min + a.axial_max);
+    else s = slope > 0 ? a.axial_min : a.axial_max;
+    lowest = on_axis(a, s) - a.radius * down;
+  }
+  out.gap = (lowest - b.location).dot(n);
+  out.normal = n;
+  out.point_a = lowest;
+  out.point_b = lowest - out.gap * n;
+  return within_patch(a, out.point_a) && within_patch(b, out.point_b);
+}
+
+// A shaft (convex cylinder a) in a bore (concave cylinder b), axes near parallel:
+// the signed radial gap at the end of their common band where the axes are farthest apart.
+bool shaft_in_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
+  const double c = a.axis.dot(b.axis);
+  if (std::abs(c) < std::cos(tol.parallel)) return false;
+  const double base = (a.location - b.location).dot(b.axis);
+  const double s1 = base + a.axial_min * c, s2 = base + a.axial_max * c;
+  const double lo = std::max(std::min(s1, s2), b.axial_min), hi = std::min(std::max(s1, s2), b.axial_max);
+  if (hi - lo <= 1e-9) return false;  // no common band: rims are closest
+  double best_offset = -1;
+  Vec3 best_u, best_shaft, best_s_point;
+  double best_s = lo;
+  for (double s : {lo, hi}) {
+    const double t = (s - base) / c;
+    const Vec3 shaft = on_axis(a, t);
+    const Vec3 offset = shaft - on_axis(b, s);
+    const double e = offset.norm();
+    if (e > best_offset) {
+      best_offset = e;
+      best_u = e > 1e-12 ? Vec3(offset / e) : perpendicular(b.axis, b.ref_dir);
+      best_shaft = shaft;
+      best_s = s;
+    }
+  }
+  (void)best_s_point;
+  if (best_offset > b.radius) return false;  // the shaft's axis outside the bore: not in it
+  out.gap = b.radius - a.radius - best_offset;
+  out.point_a = best_shaft + a.radius * best_u;
+  out.point_b = on_axis(b, best_s) + b.radius * best_u;
+  out.normal = -best_u;
+  // Exact for parallel axes; a tilt moves the contact off the band's end by about r sin(tilt).
+  return within_patch(a, out.point_a, 1e-3) && within_patch(b, out.point_b, 1e-3);
+}
+
+// Closest points of two segments p0 + s d0 (s in [0, l0]) and p1 + t d1; false
+// unless both lie strictly inside (else an end, a rim, is closest) or the lines are parallel.
+bool segment_closest(const Vec3& p0, const Vec3& d0, double l0, const Vec3& p1, const Vec3& d1, double l1,
+                     double& s, double& t) {
+  const Vec3 r = p0 - p1;
+  const double b = d0.dot(d1), c = d0.dot(r), f = d1.dot(r), denom = 1 - b * b;
+  if (denom < 1e-12) {
+    // Parallel: the middle of the common range.
+    const double u0 = f, u1 = f + b * l0;  // p0 and p0 + l0 d0 in d1's coordinate from p1
+    const double lo = std::max(std::min(u0, u1), 0.0), hi = std::min(std::max(u0, u1), l1);
+    if (hi - lo <= 1e-9) return false;
+    t = 0.5 * (lo + hi);
+    s = t * b - c;  // p1 + t d1 projected on d0's line, from p0
+    return s > 0 && s < l0;
+  }
+  s = (b * f - c) / denom;
+  t = (f + b * s);
+  return s > 1e-9 && s < l0 - 1e-9 && t > 1e-9 && t < l1 - 1e-9;
+}
+
+// Two convex revolution primitives reduced to cores (a segment or a point) and radii.
+bool convex_cores(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
+  Vec3 ca, cb;
+  if (a.kind == SurfaceKind::Sphere && b.kind == SurfaceKind::Sphere) {
+    ca = a.location;
+    cb = b.location;
+  } else if (a.kind == SurfaceKind::Cylinder && b.kind == SurfaceKind::Cylinder) {
+    double s, t;
+    if (!segment_closest(on_axis(a, a.axial_min), a.axis, a.axial_max - a.axial_min, on_axis(b, b.axial_min), b.axis,
+                         b.axial_max - b.axial_min, s, t))
+      return false;
+    ca = on_axis(a, a.axial_min + s);
+    cb = on_axis(b, b.axial_min + t);
+  } else if (a.kind == SurfaceKind::Sphere && b.kind == SurfaceKind::Cylinder) {
+    ca = a.location;
+    const double t = (ca - b.location).dot(b.axis);
+    if (t <= b.axial_min || t >= b.axial_max) return false;
+    cb = on_axis(b, t);
+  } else if (a.kind == SurfaceKind::Cylinder && b.kind == SurfaceKind::Sphere) {
+    return swap_result(convex_cores(b, a, out), out);
+  } else {
+    return false;
+  }
+  const Vec3 d = ca - cb;
+  const double dist = d.norm();
+  if (dist < 1e-9) return false;  // concentric: every direction ties
+  const Vec3 u = d / dist;
+  out.gap = dist - a.radius - b.radius;
+  out.normal = u;
+  out.point_a = ca - a.radius * u;
+  out.point_b = cb + b.radius * u;
+  return within_patch(a, out.point_a) && within_patch(b, out.point_b);
+}
+
+// A ball (convex sphere a) in a cup (concave sphere) or a bore (concave cylinder b).
+bool ball_inside(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
+  Vec3 centre;
+  if (b.kind == SurfaceKind::Sphere) {
+    centre = b.location;
+  } else {
+    const double t = (a.location - b.location).dot(b.axis);
+    centre = on_axis(b, t);
+  }
+  const Vec3 d = a.location - centre;
+  const double e = d.norm();
+  if (e > b.radius) return false;  // the ball's centre outside the cup or bore
+  const Vec3 u = e > 1e-12 ? Vec3(d / e) : perpendicular(b.axis, b.ref_dir);
+  out.gap = b.radius - a.radius - e;
+  out.normal = -u;
+  out.point_a = a.location + a.radius * u;
+  out.point_b = centre + b.radius * u;
+  return within_patch(a, out.point_a) && within_patch(b, out.point_b);
+}
+
+// A plug (convex cone a) on its seat (concave cone b) of one half-angle, axes near parallel.
+bool cone_seat(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
+  if (std::abs(a.half_angle - b.half_angle) > tol.angle) return false;
+  if (a.axis.dot(b.axis) < std::cos(tol.parallel)) return false;  // one opening direction
+  const double alpha = b.half_angle, sin_a = std::sin(alpha), cos_a = std::cos(alpha);
+  const Vec3 apart = a.location - b.location;
+  const double delta = apart.dot(b.axis);
+  const Vec3 lateral = apart - delta * b.axis;
+  const double e = lateral.norm();
+  const Vec3 u = e > 1e-12 ? Vec3(lateral / e) : perpendicular(b.axis, b.ref_dir);
+  // a's band in b's axial coordinate (parallel axes: shifted by delta).
+  const double lo = std::max(a.axial_min + delta, b.axial_min), hi = std::min(a.axial_max + delta, b.axial_max);
+  if (hi - lo <= 1e-9) return false;  // chamfers at different radii: no band in common
+  if (e > lo * std::tan(alpha)) return false;  // the plug's axis outside the seat
+  // The tilt between the axes moves a's generator on side u; take the end of the band nearer the seat.
+  double best = 1e300;
+  for (double s : {lo, hi}) {
+    const Vec3 seat = on_axis(b, s) + s * std::tan(alpha) * u;
+    const Vec3 n = -cos_a * u + sin_a * b.axis;  // the seat's normal into the cavity
+    // a's surface point on side u at this height: its axis point plus its radius there.
+    const double t = (on_axis(b, s) - a.location).dot(a.axis);
+    const Vec3 side = perpendicular(a.axis, u);
+    const Vec3 plug = a.location + t * a.axis + t * std::tan(a.half_angle) * side;
+    const double gap = (plug - seat).dot(n);
+    if (gap < best) {
+      best = gap;
+      out.gap = gap;
+      out.normal = n;
+      out.point_b = seat;
+      out.point_a = seat + gap * n;
+    }
+  }
+  return within_patch(a, out.point_a, 1e-3) && within_patch(b, out.point_b, 1e-3);
+}
+
+bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                 const AnalyticTolerances& tol) noexcept;
+
+}  // namespace
+
+AnalyticPatch analytic_patch(const Partition& partition) {
+  AnalyticPatch p;
+  const SurfaceParams& s = partition.params;
+  p.kind = s.kind;
+  if (s.kind == SurfaceKind::Torus || s.kind == SurfaceKind::Other) {
+    p.kind = SurfaceKind::Other;
+    return p;
+  }
+  p.side = partition.side;
+  p.location = to_vec(s.location.XYZ());
+  p.axis = to_vec(s.axis.XYZ());
+  p.ref_dir = to_vec(partition.extent.ref_dir.XYZ());
+  p.radius = s.radius;
+  p.half_angle = s.half_angle;
+  p.axial_min = partition.extent.axial_min;
+  p.axial_max = partition.extent.axial_max;
+  for (const AngularInterval& i : partition.extent.angular) p.angular.push_back({i.start, i.span});
+  for (const Polygon2& loop : partition.extent.outline) p.loops.push_back(loop);
+  if (s.kind == SurfaceKind::Plane && p.loops.empty()) p.kind = SurfaceKind::Other;  // no outline: no bounds
+  if (revolution(s.kind) && p.angular.empty()) p.kind = SurfaceKind::Other;
+  return p;
+}
+
+AnalyticPatch placed(const AnalyticPatch& patch, const Eigen::Isometry3d& motion) {
+  AnalyticPatch out = patch;
+  out.location = motion * patch.location;
+  out.axis = motion.linear() * patch.axis;
+  out.ref_dir = motion.linear() * patch.ref_dir;
+  return out;
+}
+
+bool within_patch(const AnalyticPatch& patch, const Eigen::Vector3d& p, double slack) noexcept {
+  const Vec3 d = p - patch.location;
+  if (patch.kind == SurfaceKind::Plane) {
+    const Vec3 y = patch.axis.cross(patch.ref_dir);
+    return inside_outline(patch.loops, d.dot(patch.ref_dir), d.dot(y));
+  }
+  if (!revolution(patch.kind)) return false;
+  const double axial = d.dot(patch.axis);
+  if (axial < patch.axial_min - slack || axial > patch.axial_max + slack) return false;
+  const Vec3 y = patch.axis.cross(patch.ref_dir);
+  const double x = d.dot(patch.ref_dir), yy = d.dot(y);
+  if (std::hypot(x, yy) < 1e-12) return true;  // on the axis (a pole): every angle
+  double angle = std::atan2(yy, x);
+  if (angle < 0) angle += kTwoPi;
+  for (const AnalyticPatch::Arc& arc : patch.angular) {
+    if (arc.span >= kTwoPi - kAngularSlack) return true;
+    double from = angle - arc.start;
+    from -= kTwoPi * std::floor(from / kTwoPi);
+    if (from <= arc.span + kAngularSlack || from >= kTwoPi - kAngularSlack) return true;
+  }
+  return false;
+}
+
+bool analytic_contact(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                      const AnalyticTolerances& tol) noexcept {
+  if (!closed_form(a, b, out, tol)) return false;
+  return out.gap >= -tol.max_depth;
+}
+
+namespace {
+bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                 const AnalyticTolerances& tol) noexcept {
+  using K = SurfaceKind;
+  const K ka = a.kind, kb = b.kind;
+  if (ka == K::Other || kb == K::Other) return false;
+  if (ka == K::Plane && kb == K::Plane) return plane_plane(a, b, out, tol);
+  if (kb == K::Plane && (ka == K::Cylinder || ka == K::Sphere)) return convex_on_plane(a, b, out);
+  if (ka == K::Plane && (kb == K::Cylinder || kb == K::Sphere)) return swap_result(convex_on_plane(b, a, out), out);
+  const bool convex_a = a.side == MaterialSide::Convex, convex_b = b.side == MaterialSide::Convex;
+  if (ka == K::Cone || kb == K::Cone) {
+    if (ka != K::Cone || kb != K::Cone || convex_a == convex_b) return false;
+    return convex_a ? cone_seat(a, b, out, tol) : swap_result(cone_seat(b, a, out, tol), out);
+  }
+  if (convex_a && convex_b) return convex_cores(a, b, out);
+  if (convex_a == convex_b) return false;  // two concave surfaces: never the closest pair of solids
+  // One convex inside one concave.
+  const AnalyticPatch& inner = convex_a ? a : b;
+  const AnalyticPatch& outer = convex_a ? b : a;
+  bool ok = false;
+  if (inner.kind == K::Cylinder && outer.kind == K::Cylinder) ok = shaft_in_bore(inner, outer, out, tol);
+  else if (inner.kind == K::Sphere) ok = ball_inside(inner, outer, out);
+  else return false;  // a shaft in a cup: its rim is closest
+  return convex_a ? ok : swap_result(ok, out);
+}
+}  // namespace
+
+}  // namespace contactcore

@@ -1,0 +1,310 @@
+// Closed-form contacts between analytic partitions (analytic_distance.h),
+// judged against OCCT's BRepExtrema_DistShapeShape on the partitions' faces:
+// hand-placed cases (a pin in a bore with clearance, a shaft on a plane, a
+// ball on a plane, a plug on its conical seat) and poses of the motor's Axis.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepBuilderAPI_MakeVertex.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepExtrema_DistShapeShape.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRep_Builder.hxx>
+#include <TopoDS_Compound.hxx>
+#include <gp_Ax2.hxx>
+#include <gp_Trsf.hxx>
+
+#include "contactcore/bodies/bodies.h"
+#include "contactcore/simulation/analytic_distance.h"
+#include "test_helpers.h"
+
+using namespace contactcore;
+using Eigen::Vector3d;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Partitioned {
+  TopoDS_Shape shape;
+  BodyPartitions parts;
+};
+
+Partitioned partitioned(const TopoDS_Shape& shape) {
+  return {shape, partition_shape(shape, Tolerances{})};
+}
+
+// The faces of a partition as one compound (what OCCT measures).
+TopoDS_Shape faces_of(const BodyPartitions& parts, const Partition& p) {
+  BRep_Builder builder;
+  TopoDS_Compound compound;
+  builder.MakeCompound(compound);
+  for (int f : p.faces) builder.Add(compound, parts.faces[f - 1].face);
+  return compound;
+}
+
+const Partition& find(const BodyPartitions& parts, SurfaceKind kind, MaterialSide side, double radius = -1) {
+  for (const Partition& p : parts.partitions)
+    if (p.params.kind == kind && p.side == side && (radius < 0 || std::abs(p.params.radius - radius) < 1e-6)) return p;
+  ADD_FAILURE() << "no such partition";
+  return parts.partitions.front();
+}
+
+// The plane partition whose outward normal is `normal`.
+const Partition& plane_facing(const BodyPartitions& parts, const gp_Dir& normal) {
+  for (const Partition& p : parts.partitions)
+    if (p.params.kind == SurfaceKind::Plane && p.params.axis.IsEqual(normal, 1e-9)) return p;
+  ADD_FAILURE() << "no such plane";
+  return parts.partitions.front();
+}
+
+Eigen::Isometry3d isometry(const gp_Trsf& t) {
+  Eigen::Isometry3d m = Eigen::Isometry3d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m.linear()(r, c) = t.Value(r + 1, c + 1);
+    m.translation()[r] = t.Value(r + 1, 4);
+  }
+  return m;
+}
+
+struct Measured {
+  bool handled = false;
+  AnalyticContact analytic;
+  double occt = 0;
+  Vector3d occt_a{0, 0, 0}, occt_b{0, 0, 0};
+  int occt_solutions = 0;
+};
+
+// Partition `pa` of `a` moved by `move` against partition `pb` of b: closed form and OCCT.
+Measured measure(const Partitioned& a, const Partition& pa, const gp_Trsf& move, const Partitioned& b,
+                 const Partition& pb) {
+  Measured m;
+  const AnalyticPatch patch_a = placed(analytic_patch(pa), isometry(move));
+  const AnalyticPatch patch_b = analytic_patch(pb);
+  m.handled = analytic_contact(patch_a, patch_b, m.analytic);
+  const TopoDS_Shape moved = BRepBuilderAPI_Transform(faces_of(a.parts, pa), move, true).Shape();
+  BRepExtrema_DistShapeShape dist(moved, faces_of(b.parts, pb));
+  EXPECT_TRUE(dist.IsDone());
+  m.occt = dist.Value();
+  m.occt_solutions = dist.NbSolution();
+  const gp_Pnt p1 = dist.PointOnShape1(1), p2 = dist.PointOnShape2(1);
+  m.occt_a = Vector3d(p1.X(), p1.Y(), p1.Z());
+  m.occt_b = Vector3d(p2.X(), p2.Y(), p2.Z());
+  return m;
+}
+
+gp_Trsf translation(double x, double y, double z) {
+  gp_Trsf t;
+  t.SetTranslation(gp_Vec(x, y, z));
+  return t;
+}
+
+// Distance of a point from a shape (OCCT): is the closed form's point on the face?
+double off_shape(const Vector3d& p, const TopoDS_Shape& shape) {
+  BRepExtrema_DistShapeShape dist(BRepBuilderAPI_MakeVertex(gp_Pnt(p.x(), p.y(), p.z())).Vertex(), shape);
+  return dist.Value();
+}
+
+}  // namespace
+
+// A pin of radius 5 in a bore of radius 5.05 (0.05 mm radial clearance),
+// pushed off the axis: gap 0.05 - e on the side it was pushed to.
+TEST(AnalyticDistance, PinInBoreWithClearanceMatchesOcct) {
+  TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, 0), 20, 20, 20).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), 5.05, 22).Shape())
+              .Shape();
+  const Partitioned bore = partitioned(block);
+  const Partitioned pin = partitioned(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 5), gp_Dir(0, 0, 1)), 5, 25).Shape());
+  const Partition& shaft = find(pin.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  const Partition& hole = find(bore.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
+  for (const Vector3d& offset : {Vector3d(0.02, 0.01, 0), Vector3d(-0.03, 0.0, 2.0), Vector3d(0, -0.049, -3)}) {
+    const Measured m = measure(pin, shaft, translation(offset.x(), offset.y(), offset.z()), bore, hole);
+    ASSERT_TRUE(m.handled);
+    const double expected = 0.05 - offset.head<2>().norm();  // by hand
+    EXPECT_NEAR(m.analytic.gap, expected, 1e-12);
+    EXPECT_NEAR(m.analytic.gap, m.occt, 1e-6);
+    // The contact's lateral position is unique (the side pushed to), its height is not.
+    EXPECT_NEAR((m.analytic.point_a - m.occt_a).head<2>().norm(), 0.0, 1e-5);
+    EXPECT_NEAR((m.analytic.point_b - m.occt_b).head<2>().norm(), 0.0, 1e-5);
+    EXPECT_NEAR(off_shape(m.analytic.point_a, BRepBuilderAPI_Transform(faces_of(pin.parts, shaft),
+                                                                      translation(offset.x(), offset.y(), offset.z()))
+                                                  .Shape()),
+                0.0, 1e-6);
+    EXPECT_NEAR(off_shape(m.analytic.point_b, faces_of(bore.parts, hole)), 0.0, 1e-6);
+    // The way out for the pin: back towards the bore's axis.
+    EXPECT_NEAR(m.analytic.normal.dot(-Vector3d(offset.x(), offset.y(), 0).normalized()), 1.0, 1e-12);
+  }
+  // Pushed 0.08 into the wall: a signed overlap of 0.03 (OCCT says only "touching").
+  const Measured in = measure(pin, shaft, translation(0.08, 0, 0), bore, hole);
+  ASSERT_TRUE(in.handled);
+  EXPECT_NEAR(in.analytic.gap, -0.03, 1e-12);
+  EXPECT_NEAR(in.occt, 0.0, 1e-7);
+  // Above the block: no band in common, the rims are closest: left to the meshes.
+  EXPECT_FALSE(measure(pin, shaft, translation(0, 0, 20.5), bore, hole).handled);
+}
+
+// A shaft of radius 3 lying on a 20 x 20 face, 0.4 above it, then tilted by 5 degrees.
+TEST(AnalyticDistance, CylinderOnAPlaneMatchesOcct) {
+  const Partitioned base = partitioned(BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -5), 20, 20, 5).Shape());
+  const Partitioned shaft =
+      partitioned(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-6, 0, 3.4), gp_Dir(1, 0, 0)), 3, 12).Shape());
+  const Partition& top = plane_facing(base.parts, gp_Dir(0, 0, 1));
+  const Partition& side = find(shaft.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  const Measured flat = measure(shaft, side, gp_Trsf(), base, top);
+  ASSERT_TRUE(flat.handled);
+  EXPECT_NEAR(flat.analytic.gap, 0.4, 1e-12);
+  EXPECT_NEAR(flat.occt, 0.4, 1e-7);
+  EXPECT_NEAR(flat.analytic.point_a.z(), 0.4, 1e-12);
+  EXPECT_NEAR(flat.analytic.point_b.z(), 0.0, 1e-12);
+  EXPECT_NEAR(flat.analytic.normal.z(), 1.0, 1e-12);
+  // Tilted 5 degrees down about y through the shaft's start and lifted 1: its far end is lowest, a unique point.
+  gp_Trsf tilt;
+  tilt.SetRotation(gp_Ax1(gp_Pnt(-6, 0, 3.4), gp_Dir(0, 1, 0)), 5 * kPi / 180);
+  const Measured tilted = measure(shaft, side, translation(0, 0, 1) * tilt, base, top);
+  ASSERT_TRUE(tilted.handled);
+  const double by_hand = 4.4 - 12 * std::sin(5 * kPi / 180) - 3 * std::cos(5 * kPi / 180);
+  EXPECT_NEAR(tilted.analytic.gap, by_hand, 1e-12);
+  EXPECT_NEAR(tilted.analytic.gap, tilted.occt, 1e-6);
+  EXPECT_NEAR((tilted.analytic.point_a - tilted.occt_a).norm(), 0.0, 1e-4);
+  // Beyond the face's edge (the lowest line off the outline): not a closed form.
+  EXPECT_FALSE(measure(shaft, side, translation(0, 14, 0), base, top).handled);
+}
+
+// A ball of radius 4 at (3, 2, 5) over the face z = 0: gap 1 at (3, 2, 1).
+TEST(AnalyticDistance, SphereOnAPlaneMatchesOcct) {
+  const Partitioned base = partitioned(BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -5), 20, 20, 5).Shape());
+  const Partitioned ball = partitioned(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 4).Shape());
+  const Partition& top = plane_facing(base.parts, gp_Dir(0, 0, 1));
+  const Partition& sphere = find(ball.parts, SurfaceKind::Sphere, MaterialSide::Convex);
+  const Measured m = measure(ball, sphere, translation(3, 2, 5), base, top);
+  ASSERT_TRUE(m.handled);
+  EXPECT_NEAR(m.analytic.gap, 1.0, 1e-12);
+  EXPECT_NEAR(m.occt, 1.0, 1e-7);
+  EXPECT_NEAR((m.analytic.point_a - Vector3d(3, 2, 1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((m.analytic.point_a - m.occt_a).norm(), 0.0, 1e-5);
+  EXPECT_NEAR((m.analytic.point_b - m.occt_b).norm(), 0.0, 1e-5);
+  // The same from the plane's side: the normal turns round.
+  AnalyticContact reverse;
+  ASSERT_TRUE(analytic_contact(analytic_patch(top), placed(analytic_patch(sphere), isometry(translation(3, 2, 5))),
+                               reverse));
+  EXPECT_NEAR(reverse.gap, 1.0, 1e-12);
+  EXPECT_NEAR(reverse.normal.z(), -1.0, 1e-12);
+}
+
+// Two shafts side by side (parallel, radii 2 and 3, axes 6 apart: gap 1), then
+// crossed at right angles 7 apart (gap 2); their ends past each other: rims, not a closed form.
+TEST(AnalyticDistance, ShaftsSideBySideMatchOcct) {
+  const Partitioned one = partitioned(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2, 10).Shape());
+  const Partitioned two = partitioned(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(6, 0, 3), gp_Dir(0, 0, 1)), 3, 10).Shape());
+  const Partition& a = find(one.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  const Partition& b = find(two.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  const Measured parallel = measure(one, a, gp_Trsf(), two, b);
+  ASSERT_TRUE(parallel.handled);
+  EXPECT_NEAR(parallel.analytic.gap, 1.0, 1e-12);
+  EXPECT_NEAR(parallel.occt, 1.0, 1e-7);
+  EXPECT_NEAR(parallel.analytic.normal.x(), -1.0, 1e-12);
+  EXPECT_NEAR(parallel.analytic.point_a.x(), 2.0, 1e-12);
+  EXPECT_NEAR(parallel.analytic.point_b.x(), 3.0, 1e-12);
+  // Crossed: the first shaft turned to lie along y at height 8, x = -1: axes 7 apart at (-1, 0, 8) / (6, 0, 8).
+  gp_Trsf cross;
+  cross.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 0, 0)), -kPi / 2);
+  gp_Trsf lift;
+  lift.SetTranslation(gp_Vec(-1, -5, 8));
+  const Measured crossed = measure(one, a, lift * cross, two, b);
+  ASSERT_TRUE(crossed.handled);
+  EXPECT_NEAR(crossed.analytic.gap, 2.0, 1e-12);
+  EXPECT_NEAR(crossed.occt, 2.0, 1e-7);
+  EXPECT_NEAR((crossed.analytic.point_a - crossed.occt_a).norm(), 0.0, 1e-5);
+  EXPECT_NEAR((crossed.analytic.point_b - crossed.occt_b).norm(), 0.0, 1e-5);
+  gp_Trsf past;
+  past.SetTranslation(gp_Vec(-1, -20, 8));
+  EXPECT_FALSE(measure(one, a, past * cross, two, b).handled);
+}
+
+// A 45-degree plug over its 45-degree countersink: lifted h, gap h sin 45;
+// also pushed sideways by e, gap h sin 45 - e cos 45.
+TEST(AnalyticDistance, ConeSeatMatchesOcct) {
+  // The seat: a block with a cone cut from radius 2 at z = 0 to 8 at z = 6 (45 degrees).
+  TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(-15, -15, -5), 30, 30, 11).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2, 8, 6).Shape()).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -6), gp_Dir(0, 0, 1)), 2, 7).Shape()).Shape();
+  const Partitioned seat = partitioned(block);
+  // The plug: radius 3 at z = 1 to 6 at z = 4 (the same cone surface, a band inside the seat's).
+  const Partitioned plug =
+      partitioned(BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 1), gp_Dir(0, 0, 1)), 3, 6, 3).Shape());
+  const Partition& seat_cone = find(seat.parts, SurfaceKind::Cone, MaterialSide::Concave);
+  const Partition& plug_cone = find(plug.parts, SurfaceKind::Cone, MaterialSide::Convex);
+  const double s45 = std::sin(kPi / 4);
+  for (const auto& [h, e] : {std::pair{0.5, 0.0}, std::pair{1.0, 0.3}, std::pair{2.0, 0.0}}) {
+    const Measured m = measure(plug, plug_cone, translation(e, 0, h), seat, seat_cone);
+    ASSERT_TRUE(m.handled) << h << " " << e;
+    EXPECT_NEAR(m.analytic.gap, h * s45 - e * s45, 1e-9) << h << " " << e;
+    EXPECT_NEAR(m.analytic.gap, m.occt, 1e-6) << h << " " << e;
+    EXPECT_NEAR(m.analytic.normal.z(), s45, 1e-9);
+  }
+  // Two chamfers of one angle at radii 3.6..4 and 8..8.4 (one apex): no band in common, no seat.
+  const Partitioned small =
+      partitioned(BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 1.6), gp_Dir(0, 0, 1)), 3.6, 4, 0.4).Shape());
+  const Partitioned big_block = partitioned(BRepAlgoAPI_Cut(
+      BRepPrimAPI_MakeBox(gp_Pnt(-15, -15, 0), 30, 30, 8.4).Shape(),
+      BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 8), gp_Dir(0, 0, 1)), 8, 8.4, 0.4).Shape()).Shape());
+  AnalyticContact none;
+  for (double z = -1; z <= 1 + 1e-9; z += 0.25)
+    EXPECT_FALSE(analytic_contact(placed(analytic_patch(find(small.parts, SurfaceKind::Cone, MaterialSide::Convex)),
+                                         isometry(translation(0, 0, z))),
+                                  analytic_patch(find(big_block.parts, SurfaceKind::Cone, MaterialSide::Concave)), none))
+        << z;
+}
+
+// The motor's Axis, lifted 0.3 mm and pushed 0.01 mm aside: every pair of its
+// partitions with a neighbour's that has a closed form and a positive gap
+// agrees with OCCT on the faces.
+TEST(AnalyticDistance, MotorAxisPosesMatchOcct) {
+  const auto read = read_step(contactcore::testing::sample("motor.step"));
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  std::vector<Partitioned> bodies;
+  int axis = -1;
+  for (std::size_t i = 0; i < read.assembly.bodies.size(); ++i) {
+    bodies.push_back(partitioned(read.assembly.bodies[i].shape));
+    if (read.assembly.bodies[i].name == "Axis") axis = static_cast<int>(i);
+  }
+  ASSERT_GE(axis, 0);
+  int compared = 0, handled_touching = 0;
+  for (const gp_Trsf& move : {translation(0.01, 0, 0.3), translation(0, -0.004, 1.5)}) {
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      if (static_cast<int>(b) == axis) continue;
+      for (const Partition& pa : bodies[axis].parts.partitions)
+        for (const Partition& pb : bodies[b].parts.partitions) {
+          AnalyticContact c;
+          const AnalyticPatch a = placed(analytic_patch(pa), isometry(move));
+          if (!analytic_contact(a, analytic_patch(pb), c)) continue;
+          if (c.gap > 2.0) continue;  // only near pairs: OCCT's time
+          const Measured m = measure(bodies[axis], pa, move, bodies[b], pb);
+          const bool planes = pa.params.kind == SurfaceKind::Plane && pb.params.kind == SurfaceKind::Plane;
+          if (planes && c.gap < -1e-6) {  // parallel faces overlapping: OCCT gives their separation
+            EXPECT_NEAR(m.occt, -c.gap, 1e-5) << read.assembly.bodies[b].name;
+            ++compared;
+            continue;
+          }
+          if (c.gap <= 1e-6) {
+            ++handled_touching;
+            EXPECT_NEAR(m.occt, 0.0, 1e-6) << read.assembly.bodies[b].name;
+            continue;
+          }
+          ++compared;
+          EXPECT_NEAR(c.gap, m.occt, 1e-5) << read.assembly.bodies[b].name << " partitions " << pa.id << " "
+                                           << pb.id;
+        }
+    }
+  }
+  std::printf("[ measured ] %d pairs compared with OCCT, %d touching or overlapping\n", compared, handled_touching);
+  EXPECT_GT(compared, 0);
+  EXPECT_GT(handled_touching, 0);  // the Axis in its line-to-line bores, pushed aside
+}
