@@ -100,6 +100,8 @@ test-gui: deps-test build
 SANITIZE_DIR ?= build-sanitize
 FUZZ_DIR     ?= build-fuzz
 FUZZ_SECONDS ?= 60
+# fuzz_step's own time (a child process per job, fuzz/run_fuzzers.sh); 600 s is a run that matters.
+FUZZ_STEP_SECONDS ?= $(FUZZ_SECONDS)
 CHECK_FLAGS  := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
   -DCONTACTS_BUILD_PYTHON=OFF -DCONTACTS_BUILD_BENCH=OFF $(LAUNCHER)
 
@@ -119,7 +121,7 @@ sanitize: deps-test
 fuzz: deps-test
 	CC=clang-14 CXX=clang++-14 cmake -S . -B $(FUZZ_DIR) -DCONTACTS_FUZZ=ON -DCONTACTS_BUILD_TESTS=OFF $(CHECK_FLAGS)
 	cmake --build $(FUZZ_DIR) -j $(JOBS) --target fuzz_step fuzz_brep fuzz_hid
-	bash fuzz/run_fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
+	FUZZ_STEP_SECONDS=$(FUZZ_STEP_SECONDS) bash fuzz/run_fuzzers.sh $(FUZZ_DIR) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD_DIR)

@@ -6,7 +6,12 @@
 // run's own; times are the best of --repeat runs. Prints one JSON object per
 // line; bench/run_benchmarks.py makes the tables.
 //
-//   bench_contacts [--repeat N] [--threads N] FILE.step...
+//   bench_contacts [--repeat N] [--threads N] [--reference] FILE.step...
+//
+// --reference: the pipeline's child also times the whole-solid Boolean pass
+// the interference pass replaced (whole_solid_interferences, issue 24) on the
+// same result, after the measured run: "reference_interferences" seconds and
+// both passes' interference counts.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -27,6 +32,7 @@
 #include <XCAFApp_Application.hxx>
 
 #include "contactcore/contacts/contacts.h"
+#include "contacts/interferences.h"
 
 using namespace contactcore;
 
@@ -83,7 +89,7 @@ struct CancelAt : Progress {
   double at;
 };
 
-int pipeline(const std::string& path, int threads) {
+int pipeline(const std::string& path, int threads, bool reference) {
   const double start = now();
   const AssemblyResult read = read_step(path);
   const double read_seconds = now() - start;
@@ -109,6 +115,13 @@ int pipeline(const std::string& path, int threads) {
   cancel.at = cancel_start + after_read / 2;
   const ContactsResult stopped = find_contacts(read.assembly, options, &cancel);
   const double cancel_latency = stopped.status.code == StatusCode::Cancelled ? now() - cancel.at : -1;
+  double reference_seconds = -1;
+  std::size_t reference_count = 0;
+  if (reference) {
+    const double reference_start = now();
+    reference_count = whole_solid_interferences(read.assembly, result, threads).size();
+    reference_seconds = now() - reference_start;
+  }
   size_t faces = 0;
   for (const BodyPartitions& body : result.partitions) faces += body.faces.size();
   std::printf(
@@ -116,11 +129,13 @@ int pipeline(const std::string& path, int threads) {
       "\"body_pairs\": %zu, \"candidates\": %zu, \"skipped\": %zu, \"read\": %.6f, \"partitions\": %.6f, "
       "\"broad_phase\": %.6f, \"candidates_time\": %.6f, \"area\": %.6f, \"validity\": %.6f, "
       "\"interferences\": %.6f, \"after_read\": %.6f, "
-      "\"total\": %.6f, \"cancel_latency\": %.6f, \"peak_rss_mb\": %.1f}\n",
+      "\"total\": %.6f, \"cancel_latency\": %.6f, \"peak_rss_mb\": %.1f, \"interference_count\": %zu, "
+      "\"reference_interferences\": %.6f, \"reference_count\": %zu}\n",
       json_escape(path).c_str(), read.assembly.reader.c_str(), read.assembly.bodies.size(), faces, result.contacts.size(),
       result.body_pairs.size(), result.candidates, result.skipped.size(), read_seconds,
       result.times.partitions, result.times.broad_phase, result.times.candidates, result.times.area,
-      result.times.validity, result.times.interferences, after_read, total, cancel_latency, peak);
+      result.times.validity, result.times.interferences, after_read, total, cancel_latency, peak,
+      result.interferences.size(), reference_seconds, reference_count);
   return 0;
 }
 
@@ -143,10 +158,13 @@ bool in_child(Work&& work) {
 
 int main(int argc, char** argv) {
   int repeat = 3, threads = 0;
+  bool reference = false;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
       repeat = std::max(1, std::atoi(argv[++i]));
+    } else if (std::strcmp(argv[i], "--reference") == 0) {
+      reference = true;
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       threads = std::max(0, std::atoi(argv[++i]));
     } else {
@@ -154,7 +172,7 @@ int main(int argc, char** argv) {
     }
   }
   if (files.empty()) {
-    std::fprintf(stderr, "usage: %s [--repeat N] [--threads N] FILE.step...\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [--repeat N] [--threads N] [--reference] FILE.step...\n", argv[0]);
     return 2;
   }
   int failures = 0;
@@ -162,7 +180,7 @@ int main(int argc, char** argv) {
     // Interleaved, so a burst of load on the machine hits both alike.
     for (int r = 0; r < repeat; ++r) {
       failures += !in_child([&] { return bare_read(file); });
-      failures += !in_child([&] { return pipeline(file, threads); });
+      failures += !in_child([&] { return pipeline(file, threads, reference); });
     }
   }
   return failures ? 1 : 0;

@@ -18,6 +18,9 @@ in the same run (`make bench`):
    the loop on its thread in real time; run idle and again beside two busy
    processes (`yes > /dev/null`), the CPU named (`lscpu`). --haptics-only runs
    just this part (its own section of docs/benchmarks.md).
+5. interference and validity checks: bench/bench_interferences.py (the motor,
+   R08, R01 and five B-spline solids against their bare reads, and the
+   whole-solid Boolean pass they replaced).
 
 Prints Markdown tables; --write FILE also saves them (docs/benchmarks.md)."""
 import argparse
@@ -505,6 +508,9 @@ def main():
     print(text)
     if args.write:
         write_section(args.write, "contacts bench", "`make bench` (bench/run_benchmarks.py) prints these tables.\n\n" + text)
+    # Interference and validity checks against the read: their own program and section (issue 24).
+    subprocess.run([sys.executable, os.path.join(REPO, "bench", "bench_interferences.py"), "--build-dir", build_dir,
+                    "--repeat", str(args.repeat)] + (["--write", args.write] if args.write else []), check=True)
     # Meshes, collision and disassembly: their own program and section (bench/bench_meshes.py).
     if args.skip_meshes:
         return

@@ -205,3 +205,43 @@ def test_collision_query_from_python_matches_hand_values():
         assert warm_result.distance == pytest.approx(cold_result.distance, abs=1e-12)
         assert warm_result.intersecting == cold_result.intersecting
     assert all(count > 0 for count in pair.counts())
+
+
+def test_collision_margin_from_python():
+    # Issue 25 item 7: a security margin on the pair. The taper pin lifted 1 mm out of its seat: the
+    # plain query says apart at the meshes' distance d (within both deflections of FreeCAD's exact
+    # distance); with a margin just above d the pair is intersecting (intersect and penetration), with
+    # one just below it is not. Lifted 3 mm, apart with a margin of 0.1. Bad margins are ArgumentError.
+    assembly = core.contactcore.read_step(os.path.join(SAMPLES, "cases", "taper_pin.step"))
+    results = meshes.mesh_assembly(assembly, deflection=0.05)
+    block = core.contactcore.build_collision_model(results[0].mesh)
+    pin = core.contactcore.build_collision_model(results[1].mesh)
+    plain = core.contactcore.CollisionPair(block, pin)
+    assert plain.margin is None
+    shapes = [document_shapes.shape_from_brep(body.brep) for body in assembly.bodies]
+    import FreeCAD
+    lift = ((1, 0, 0, 0, 1, 0, 0, 0, 1), (0, 0, 1.0))
+    moved = shapes[1].copy()
+    moved.translate(FreeCAD.Vector(0, 0, 1.0))
+    exact = shapes[0].distToShape(moved)[0]
+    d = plain.query(None, lift, "distance").distance
+    assert not plain.query(None, lift, "intersect").intersecting
+    assert d > 0 and d == pytest.approx(exact, abs=0.1)
+    above = core.contactcore.CollisionPair(block, pin, margin=d * 1.01)
+    assert above.margin == pytest.approx(d * 1.01)
+    assert above.query(None, lift, "intersect").intersecting
+    assert above.query(None, lift, "penetration").intersecting
+    below = core.contactcore.CollisionPair(block, pin, margin=d * 0.99)
+    assert not below.query(None, lift, "intersect").intersecting
+    assert not below.query(None, lift, "penetration").intersecting
+    far = ((1, 0, 0, 0, 1, 0, 0, 0, 1), (0, 0, 3.0))
+    above.set_margin(0.1)
+    assert plain.query(None, far, "distance").distance > 0.1
+    assert not above.query(None, far, "intersect").intersecting
+    above.clear_margin()
+    assert above.margin is None
+    for bad in (-1.0, float("nan"), float("inf")):
+        with pytest.raises(core.ArgumentError):
+            plain.set_margin(bad)
+        with pytest.raises(core.ArgumentError):
+            core.contactcore.CollisionPair(block, pin, margin=bad)

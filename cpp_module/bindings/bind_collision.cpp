@@ -69,10 +69,21 @@ void bind_collision(py::module_& m) {
       });
 
   py::class_<CollisionPair>(m, "CollisionPair", "Two models, their switched-off partitions, one query at a time")
-      .def(py::init([](std::shared_ptr<CollisionModel> a, std::shared_ptr<CollisionModel> b) {
-             return call_guarded([&] { return std::make_unique<CollisionPair>(a, b); });
+      .def(py::init([](std::shared_ptr<CollisionModel> a, std::shared_ptr<CollisionModel> b, py::object margin) {
+             auto pair = call_guarded([&] { return std::make_unique<CollisionPair>(a, b); });
+             if (!margin.is_none()) raise_if_failed(pair->set_margin(margin.cast<double>()));
+             return pair;
            }),
-           py::arg("a"), py::arg("b"))
+           py::arg("a"), py::arg("b"), py::arg("margin") = py::none(),
+           "margin: None (triangles must touch) or a security margin in mm (see set_margin)")
+      .def(
+          "set_margin", [](CollisionPair& pair, double margin) { raise_if_failed(pair.set_margin(margin)); },
+          py::arg("margin"),
+          "Conservative intersect/penetration queries (FCL's security margin): intersecting when the meshes "
+          "come within margin mm, or one body lies wholly inside the other; margin >= both meshes' deflections "
+          "together misses no overlap of the exact solids. ArgumentError unless finite and >= 0.")
+      .def("clear_margin", &CollisionPair::clear_margin, "Back to the default: triangles must touch")
+      .def_property_readonly("margin", &CollisionPair::margin, "the security margin in mm, None when none is set")
       .def("set_partition_enabled",
            [](CollisionPair& pair, int side, int partition, bool enabled) {
              call_guarded([&] { pair.set_partition_enabled(side, partition, enabled); });

@@ -401,14 +401,15 @@ TEST(Interferences, SharedPressHasItsThree) {
   ASSERT_EQ(found.size(), 3u);
   for (const auto& [pair, volume] : expected) {
     ASSERT_TRUE(found.count(pair)) << pair.first << " / " << pair.second;
-    EXPECT_NEAR(found[pair], volume, 1e-6 * volume) << pair.first << " / " << pair.second;
+    // The ring is part of what the two share (issue 24: the volume is the
+    // region Boolean's, which also holds what the chamfers beyond the
+    // cylinders share: 503.3, 5105 and 261.7 mm3 for these rings).
+    EXPECT_GE(found[pair], volume * (1 - 1e-9)) << pair.first << " / " << pair.second;
   }
   for (const Interference& i : result.interferences) {
-    // The ring is part of the Boolean common of the two solids, which also
-    // holds what the chamfers beyond the cylinders share.
     const double boolean =
         volume_of(BRepAlgoAPI_Common(read.assembly.bodies[i.body_a].shape, read.assembly.bodies[i.body_b].shape).Shape());
-    EXPECT_LE(i.volume, boolean * (1 + 1e-6));
+    EXPECT_NEAR(i.volume, boolean, 1e-3 * boolean);
   }
   expect_same_serial_and_parallel(read.assembly);
 }

@@ -11,7 +11,9 @@
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
 #include <BRepClass3d_SolidClassifier.hxx>
+#include <BRepBndLib.hxx>
 #include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
@@ -177,6 +179,15 @@ double shape_volume(const TopoDS_Shape& shape) {
   return props.Mass();
 }
 
+// The volume of a common solid, integrated adaptively to 1e-7 relative: OCCT's
+// fixed Gauss points miss on rational B-spline faces (a B-spline copy of a
+// cylinder 5.05 in a bore 5: 8 % off the 15.79 mm3 ring).
+double common_solid_volume(const TopoDS_Shape& shape) {
+  GProp_GProps props;
+  BRepGProp::VolumeProperties(shape, props, 1e-7);
+  return props.Mass();
+}
+
 double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b, double tolerance) {
   // Arguments and tools set apart so the fuzzy value (coincident faces) applies.
   TopTools_ListOfShape arguments, tools;
@@ -192,7 +203,81 @@ double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b, double tolera
   op.SetRunParallel(false);
   op.Build();
   if (!op.IsDone()) return -1;
-  return shape_volume(op.Shape());
+  return common_solid_volume(op.Shape());
+}
+
+double box_volume(const Bnd_Box& box) {
+  if (box.IsVoid()) return 0;
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  return std::max(0.0, x1 - x0) * std::max(0.0, y1 - y0) * std::max(0.0, z1 - z0);
+}
+
+// The common box of two boxes grown by `grow` on every side (void when they miss).
+Bnd_Box common_box(const Bnd_Box& a, const Bnd_Box& b, double grow) {
+  Bnd_Box region;
+  if (a.IsVoid() || b.IsVoid()) return region;
+  double ax0, ay0, az0, ax1, ay1, az1, bx0, by0, bz0, bx1, by1, bz1;
+  a.Get(ax0, ay0, az0, ax1, ay1, az1);
+  b.Get(bx0, by0, bz0, bx1, by1, bz1);
+  const double x0 = std::max(ax0, bx0) - grow, y0 = std::max(ay0, by0) - grow, z0 = std::max(az0, bz0) - grow;
+  const double x1 = std::min(ax1, bx1) + grow, y1 = std::min(ay1, by1) + grow, z1 = std::min(az1, bz1) + grow;
+  if (x1 <= x0 || y1 <= y0 || z1 <= z0) return region;
+  region.Update(x0, y0, z0, x1, y1, z1);
+  return region;
+}
+
+// `shape` cut down to the box: the Boolean common with it (empty shape when it fails).
+TopoDS_Shape clipped(const TopoDS_Shape& shape, const Bnd_Box& box, double tolerance) {
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  const TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), gp_Pnt(x1, y1, z1)).Shape();
+  TopTools_ListOfShape arguments, tools;
+  arguments.Append(shape);
+  tools.Append(block);
+  BRepAlgoAPI_Common op;
+  op.SetArguments(arguments);
+  op.SetTools(tools);
+  op.SetFuzzyValue(tolerance);
+  op.SetNonDestructive(Standard_True);
+  op.SetRunParallel(false);
+  op.Build();
+  if (!op.IsDone() || op.HasErrors()) return TopoDS_Shape();
+  return op.Shape();
+}
+
+// A region Boolean: the material two bodies share lies in the common box of
+// their boxes, so A ^ B = (A ^ C) ^ (B ^ C') for any boxes C, C' holding that
+// common box. When it is a small part of either body's box, each body is
+// first cut down to it (a Boolean against six planes: the faces outside the
+// region drop out before any face of one body meets a face of the other;
+// never the whole of a body of B-spline faces against the whole of the
+// other). B is cut by a box grown further than A's, so that the two cut
+// faces never coincide. Otherwise, or when a cut fails, the whole solids.
+// -1 when the Boolean fails.
+constexpr double kRegionFraction = 0.25;  // region box below this share of a body's box: cut first
+
+double region_common_volume(const TopoDS_Shape& a, const Bnd_Box& box_a, const TopoDS_Shape& b,
+                            const Bnd_Box& box_b, double tolerance) {
+  const double size = std::sqrt(std::max(box_a.SquareExtent(), box_b.SquareExtent()));
+  const double grow = std::max(10 * tolerance, 1e-4 * size);
+  const Bnd_Box region_a = common_box(box_a, box_b, grow);
+  const Bnd_Box region_b = common_box(box_a, box_b, 2 * grow);
+  if (region_a.IsVoid()) return 0;
+  const double region = box_volume(region_b);
+  if (region < kRegionFraction * box_volume(box_a) || region < kRegionFraction * box_volume(box_b)) {
+    const TopoDS_Shape cut_a = clipped(a, region_a, tolerance);
+    const TopoDS_Shape cut_b = cut_a.IsNull() ? TopoDS_Shape() : clipped(b, region_b, tolerance);
+    if (!cut_a.IsNull() && !cut_b.IsNull()) {
+      // Nothing of a body inside the region: nothing shared.
+      if (TopExp_Explorer(cut_a, TopAbs_FACE).More() == Standard_False ||
+          TopExp_Explorer(cut_b, TopAbs_FACE).More() == Standard_False)
+        return 0;
+      const double common = common_volume(cut_a, cut_b, tolerance);
+      if (common >= 0) return common;
+    }
+  }
+  return common_volume(a, b, tolerance);
 }
 
 // What the pass finds for one body pair.
@@ -228,8 +313,15 @@ PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, in
   const bool shaft_in_b = press_fits(pa, pb, tol, volume);
   const bool shaft_in_a = press_fits(pb, pa, tol, volume);
   if (shaft_in_b || shaft_in_a) {
+    // The ring proves the overlap and bounds its volume from below; what the
+    // bodies share beyond the cylinders (a chamfer or counterbore at the
+    // bore's mouth around the shaft: R08's 4848 mm3 ring is 5 % short of the
+    // 5105 mm3 both solids share) is measured by the region Boolean. A failed
+    // or short Boolean (never below the ring it contains) leaves the ring.
     out.kind = PairOutcome::PressFit;
-    out.volume = volume;
+    const double common = region_common_volume(assembly.bodies[a].shape, pa.box, assembly.bodies[b].shape, pb.box,
+                                               tol.linear);
+    out.volume = std::max(volume, common);
     return out;
   }
   // Instances hold no outlines of their own: their source's, same frames.
@@ -246,7 +338,7 @@ PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, in
   if (!sample_inside(shape_a, shape_b, pb.box, tol.linear) && !sample_inside(shape_b, shape_a, pa.box, tol.linear) &&
       !boundaries_cross(shape_a, pa, shape_b, pb, tol))
     return out;
-  const double common = common_volume(shape_a, shape_b, tol.linear);
+  const double common = region_common_volume(shape_a, pa.box, shape_b, pb.box, tol.linear);
   if (common < 0) {
     out.kind = PairOutcome::Failed;
     out.message = "bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
@@ -268,6 +360,42 @@ double press_fit_volume(const BodyPartitions& a, const BodyPartitions& b, const 
   press_fits(a, b, tol, volume);
   press_fits(b, a, tol, volume);
   return volume;
+}
+
+std::vector<Interference> whole_solid_interferences(const Assembly& assembly, const ContactsResult& result,
+                                                    int threads) {
+  const std::size_t n = assembly.bodies.size();
+  std::vector<Bnd_Box> boxes(n);
+  std::vector<double> volumes(n, 0);
+  parallel_for(n, threads, nullptr, "interferences", [&](std::size_t i) {
+    BRepBndLib::Add(assembly.bodies[i].shape, boxes[i]);
+    volumes[i] = std::abs(shape_volume(assembly.bodies[i].shape));
+  });
+  std::vector<std::pair<int, int>> pairs;
+  for (std::size_t a = 0; a < n; ++a) {
+    if (box_thickness(boxes[a]) <= result.partitions[a].tolerances.linear) continue;  // holds no material
+    for (std::size_t b = a + 1; b < n; ++b) {
+      if (box_thickness(boxes[b]) <= result.partitions[b].tolerances.linear) continue;
+      const double linear = pair_tolerances(result.partitions[a], result.partitions[b]).linear;
+      if (box_overlap(boxes[a], boxes[b]) > linear) pairs.push_back({static_cast<int>(a), static_cast<int>(b)});
+    }
+  }
+  std::vector<double> commons(pairs.size(), 0);
+  const OcctGuard guard;
+  parallel_for(pairs.size(), threads, nullptr, "interferences", [&](std::size_t k) {
+    const int a = pairs[k].first, b = pairs[k].second;
+    const double linear = pair_tolerances(result.partitions[a], result.partitions[b]).linear;
+    std::string failure;
+    if (!run_guarded([&] { commons[k] = common_volume(assembly.bodies[a].shape, assembly.bodies[b].shape, linear); },
+                     failure))
+      commons[k] = -1;
+  });
+  std::vector<Interference> found;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const int a = pairs[k].first, b = pairs[k].second;
+    if (commons[k] > kMinRelativeVolume * std::min(volumes[a], volumes[b])) found.push_back({a, b, commons[k]});
+  }
+  return found;
 }
 
 Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads) {

@@ -18,17 +18,33 @@ namespace contactcore {
 // at, on `threads` threads (0: all cores; the result is the same), each by:
 //  1. the same solid twice at one place: its volume;
 //  2. a coaxial press fit (a shaft larger than its bore by at most 5 % of the
-//     bore's radius, over a common axial range): the ring between the radii,
-//     measured from the partitions (press_fit_volume);
+//     bore's radius, over a common axial range): proven by the ring between
+//     the radii, measured from the partitions (press_fit_volume), a lower
+//     bound of the volume; the volume itself by the region Boolean of step 4
+//     (chamfers and counterbores around the shaft share material too), the
+//     ring when that Boolean fails;
 //  3. a proof from the partitions that they share no material (separation.h):
 //     the common case, touching bodies, ends here;
 //  4. otherwise vertices, edge midpoints and face points of each body
 //     classified in the other; none inside: whether their boundaries cross
 //     (boundary_crossing.h, complete for solids). A point inside or a
 //     crossing: the Boolean common gives the volume (below 1e-6 of the
-//     smaller body: a touch).
+//     smaller body: a touch), of the region that can overlap: when the
+//     common box of the two is a small part of a body's box, each body is
+//     first cut down to that box (interferences.cpp, region_common_volume).
 Status find_interferences(const Assembly& assembly, ContactsResult& result, Progress* progress = nullptr,
                           int threads = 0);
+
+// The reference the pass is checked against (tests, benchmarks): the pass as
+// it was before issue 24, every body pair whose boxes (BRepBndLib, not the
+// partitions') overlap deeper than the pair's tolerance settled by the
+// Boolean common of the two whole solids (above 1e-6 of the smaller body's
+// volume: an interference), on `threads` threads. Bodies thinner than their
+// tolerance are left out; copies in place are not singled out (each pair
+// with a copy is measured like any other). Seconds on solids of B-spline
+// faces: never on the analysis path.
+std::vector<Interference> whole_solid_interferences(const Assembly& assembly, const ContactsResult& result,
+                                                    int threads = 0);
 
 // The material two bodies share through coaxial press fits (step 2), mm^3; 0 when none.
 double press_fit_volume(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol);

@@ -294,7 +294,14 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
   if (hits.size() >= limit) return false;
   stack_.clear();
   ++bv_tests;
-  if (!bv_overlap(a, 0, b, 0, rel)) return false;
+  // A wide threshold (a security margin): disjoint boxes closer than it are opened too.
+  const bool wide = touching > kWideTouching;
+  if (wide) {
+    const BoxSeparation root = bv_separation(a, 0, b, 0, rel);
+    if (root.disjoint && root.margin > touching) return false;
+  } else if (!bv_overlap(a, 0, b, 0, rel)) {
+    return false;
+  }
   stack_.push_back({0, 0, 0});
   Vector3d pa, pb;
   while (!stack_.empty()) {
@@ -312,7 +319,7 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
     }
     bv_tests += 2;
     split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, BoxSeparation separation) {
-      if (!separation.disjoint) stack_.push_back({child_a, child_b, 0});
+      if (!separation.disjoint || (wide && separation.margin <= touching)) stack_.push_back({child_a, child_b, 0});
     });
   }
   return hits.size() > before;
@@ -339,6 +346,11 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
   const std::size_t size = front.empty() ? 1 : front.size();
   // Entry::lower holds the margin of a separated pair (>= 0), -1 when the boxes overlap.
   constexpr double kOverlap = -1;
+  // A wide threshold (a security margin): disjoint boxes closer than it are opened too.
+  const bool wide = touching > kWideTouching;
+  auto lower_of = [&](const BoxSeparation& separation) {
+    return separation.disjoint && !(wide && separation.margin <= touching) ? separation.margin : kOverlap;
+  };
   Vector3d pa, pb;
   for (std::size_t i = 0; i < size; ++i) {
     const FrontEntry& start = front.empty() ? root : front[i];
@@ -351,7 +363,7 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
     // Children are pushed right first so that the next front keeps the left-to-right order in which
     // siblings end up adjacent.
     const BoxSeparation separation = bv_separation(a, start.a, b, start.b, rel);
-    stack_.push_back({start.a, start.b, separation.disjoint ? separation.margin : kOverlap});
+    stack_.push_back({start.a, start.b, lower_of(separation)});
     while (!stack_.empty()) {
       const Entry e = stack_.back();
       stack_.pop_back();
@@ -380,7 +392,7 @@ bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& p
       }
       bv_tests += 2;
       split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, BoxSeparation child) {
-        stack_.push_back({child_a, child_b, child.disjoint ? child.margin : kOverlap});
+        stack_.push_back({child_a, child_b, lower_of(child)});
       });
     }
   }

@@ -24,6 +24,10 @@ using Bvh = fcl::BVHModel<fcl::OBBRSSd>;
 constexpr double kTieSlack = 1e-9;
 
 // B's frame expressed in A's: a point x of B is at R x + T in A's frame.
+// Touching thresholds above this (mm) are security margins: the traversals then open disjoint box
+// pairs whose distance bound is within the threshold (below it, disjoint boxes are pruned).
+constexpr double kWideTouching = 1e-9;
+
 struct Relative {
   fcl::Matrix3d R = fcl::Matrix3d::Identity();
   fcl::Vector3d T = fcl::Vector3d::Zero();
@@ -100,7 +104,8 @@ class Traversal {
                            std::vector<FrontEntry>& next, bool& overflow);
 
   // Triangle pairs at most `touching` apart, appended to `hits` until it holds `limit` pairs.
-  // Returns whether any was found.
+  // Returns whether any was found. Above kWideTouching (a security margin), box pairs that are
+  // disjoint but may be closer than `touching` are opened too (their distance bound decides).
   bool touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
                       std::vector<TriangleHit>& hits);
 

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "simulation/bvh_traversal.h"
 #include "simulation/collision_model.h"
@@ -104,6 +105,9 @@ struct CollisionPair::State {
     distance_fronts.clear();
   }
   double distance_limit = std::numeric_limits<double>::infinity();
+  // Security margin (set_margin): < 0 off. Triangles closer than `touching` intersect.
+  double margin = -1;
+  double touching = kTouching;
 
   // Whether the cached touching pair of partitions (pa, pb), or a pair of triangles sharing a corner
   // with it, still touches at the current placements; the touching pair found goes into `hits`.
@@ -226,6 +230,29 @@ void CollisionPair::set_distance_limit(double limit) {
   state_->distance_limit = limit >= 0 ? limit : std::numeric_limits<double>::infinity();
 }
 
+Status CollisionPair::set_margin(double margin) {
+  if (!std::isfinite(margin) || margin < 0)
+    return Status::failure(StatusCode::InvalidArgument,
+                           "a collision margin is a finite length >= 0 (mm), not " + std::to_string(margin));
+  state_->margin = margin;
+  state_->touching = std::max(kTouching, margin);
+  std::fill(state_->cached_hit.begin(), state_->cached_hit.end(), bvh::TriangleHit{-1, -1});
+  state_->clear_fronts();
+  return Status::success();
+}
+
+void CollisionPair::clear_margin() {
+  state_->margin = -1;
+  state_->touching = kTouching;
+  std::fill(state_->cached_hit.begin(), state_->cached_hit.end(), bvh::TriangleHit{-1, -1});
+  state_->clear_fronts();
+}
+
+std::optional<double> CollisionPair::margin() const {
+  if (state_->margin < 0) return std::nullopt;
+  return state_->margin;
+}
+
 CollisionPair::Counts CollisionPair::counts() const {
   return {state_->traversal.bv_tests, state_->traversal.triangle_tests};
 }
@@ -238,7 +265,7 @@ bool CollisionPair::State::touching_near_cache(int pa, int pb) {
   fcl::Vector3d point_a, point_b;
   auto touches = [&](int ta, int tb) {
     ++traversal.triangle_tests;
-    if (bvh::Traversal::triangle_distance(bvh_a, ta, bvh_b, tb, relative, point_a, point_b) > kTouching) return false;
+    if (bvh::Traversal::triangle_distance(bvh_a, ta, bvh_b, tb, relative, point_a, point_b) > touching) return false;
     hits.push_back({ta, tb});
     return true;
   };
@@ -427,7 +454,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
     }
     for (const State::Candidate& c : s.candidates) {
       bvh::TriangleHit& cached_hit = s.cached_hit[static_cast<std::size_t>(c.a) * subs_b.size() + c.b];
-      if (c.lower_bound > kTouching) {
+      if (c.lower_bound > s.touching) {
         cached_hit = {-1, -1};
         continue;
       }
@@ -445,7 +472,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
         const double moved = slot.entries.empty() ? std::numeric_limits<double>::infinity()
                                                   : motion_bound(slot.made_at, s.relative, subs_b[c.b]);
         found = s.traversal.touching_pair_from_front(*subs_a[c.a].bvh, subs_a[c.a].parent, *subs_b[c.b].bvh,
-                                                     subs_b[c.b].parent, s.relative, kTouching, slot.entries, moved,
+                                                     subs_b[c.b].parent, s.relative, s.touching, slot.entries, moved,
                                                      pull_up, s.front_next, overflow, hit);
         if (overflow) {
           slot.entries.clear();
@@ -455,7 +482,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
         }
         if (found) s.hits.push_back(hit);
       } else if (!found) {
-        found = s.traversal.touching_pairs(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, kTouching,
+        found = s.traversal.touching_pairs(*subs_a[c.a].bvh, *subs_b[c.b].bvh, s.relative, s.touching,
                                            want_all ? kMaxContactsPerPair : 1, s.hits);
       }
       if (!found) {
@@ -481,6 +508,38 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
               s.stack.push_back(tb[k] * 2 + 1);
             }
           }
+        }
+      }
+    }
+    if (!any_hit && s.margin >= 0) {
+      // With a margin, overlaps whose boundaries do not meet count too: one body wholly inside the
+      // other. No triangle pair is within the margin, so each connected piece of a body's surface
+      // is wholly inside the other body or wholly outside; one vertex of each enabled partition
+      // settles it (every piece holds a partition). Deeper than the margin: a vertex of a
+      // switched-off partition's neighbour that only grazes the other body's matching,
+      // switched-off partition (a shaft in its bore) is no overlap.
+      for (int side = 0; side < 2 && !any_hit; ++side) {
+        const int other = 1 - side;
+        const auto& impl = s.impl(side);
+        for (std::size_t p = 0; p < impl.subs.size(); ++p) {
+          if (!s.enabled[side][p] || !impl.subs[p].bvh || impl.subs[p].triangle.empty()) continue;
+          const int vertex = impl.mesh.triangles[impl.subs[p].triangle[0]][0];
+          const auto& v = impl.mesh.vertices[vertex];
+          const Eigen::Vector3d point = s.transform[side] * Eigen::Vector3d(v[0], v[1], v[2]);
+          Eigen::Vector3d closest, local;
+          int triangle = -1;
+          const double gap = closest_point(s.impl(other), s.transform[other], s.traversal, point, closest, local,
+                                           triangle);
+          if (triangle < 0 || gap <= s.margin) continue;
+          const Eigen::Vector3d normal = s.transform[other].linear() * pseudo_normal(s.impl(other), triangle, local);
+          if ((point - closest).dot(normal) >= 0) continue;  // outside
+          any_hit = true;
+          s.partition_hit[side][p] = 1;
+          if (want_all && s.stamp[side][vertex] != s.query_stamp) {  // the flood measures the depth from it
+            s.stamp[side][vertex] = s.query_stamp;
+            s.stack.push_back(vertex * 2 + side);
+          }
+          break;
         }
       }
     }

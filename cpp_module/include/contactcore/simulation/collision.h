@@ -15,6 +15,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "contactcore/common/errors.h"
@@ -147,6 +148,19 @@ class CollisionPair {
   // search pruned at the limit. Exact below and at the limit. Default infinity (always exact);
   // a negative limit restores it.
   void set_distance_limit(double limit);
+
+  // Conservative queries on request (as FCL's security margin): Intersect and Penetration then
+  // report "intersecting" when the enabled triangles of the two meshes come within `margin` mm of
+  // each other, and also when one body lies wholly inside the other deeper than the margin
+  // (boundaries that never meet: a pin sunk in a block), so the answer does not rest on any
+  // sample point. A mesh lies within its chordal deflection of the exact surface, so with margin
+  // >= the two meshes' deflections together, no overlap of the exact solids is missed (test:
+  // random poses against OCCT Booleans); a pair reported intersecting is then at most margin
+  // apart. Distance is exact as before. InvalidArgument unless finite and >= 0 (mm).
+  // Default: no margin (triangles must touch; a body wholly inside another is not seen).
+  Status set_margin(double margin);
+  void clear_margin();
+  std::optional<double> margin() const;  // nullopt: none set
 
   // Bounding-volume and triangle tests run by this pair's queries so far: the work of a query,
   // independent of the machine's load (benchmarks, profiling).
