@@ -185,10 +185,10 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     contact_marks, higher_marks = [], []
     if notes is not None:
         contact_marks, higher_marks = annotation_api.resolve(notes, names, raw.contacts, raw.higher_pairs)
-        for record, (intent, fit) in zip(result.contacts, contact_marks):
-            record.intent, record.fit = intent, fit
-    found = cc.find_joints(assembly, raw, contact_intents=[intent for intent, _ in contact_marks],
-                           higher_pair_intents=[intent for intent, _ in higher_marks])
+        for record, (intent, fit, fit_detail) in zip(result.contacts, contact_marks):
+            record.intent, record.fit, record.fit_detail = intent, fit, fit_detail
+    found = cc.find_joints(assembly, raw, contact_intents=[mark[0] for mark in contact_marks],
+                           higher_pair_intents=[mark[0] for mark in higher_marks])
     mobility = cc.assembly_mobility(assembly, raw, found, ground_index)
     records = [JointRecord(
         a=names[j.body_a], b=names[j.body_b], type=j.type, dof=j.dof, rotations=_rotations(j.rotations),
