@@ -154,3 +154,45 @@ def test_motor_example_fits_agree_with_their_intents():
         ("Bearing-back", "Back-cover"): ("N6/h5", "interference", 16.0, [-20, -1]),
         ("Seal", "Front-cover"): ("H8/s7", "interference", 14.0, [-46, -1]),
     }
+
+
+def _pin_in_bore(pin_radius):
+    # A block 40 x 40 x 20 bored r 10 through at (20, 20); a pin of the given
+    # radius through it, 30 long.
+    block = Part.makeBox(40, 40, 20).cut(Part.makeCylinder(10, 40, V(20, 20, -10)))
+    return [("Block", block), ("Pin", Part.makeCylinder(pin_radius, 30, V(20, 20, -5)))]
+
+
+def test_a_small_radial_gap_is_proposed_as_a_clearance_fit():
+    # r 9.95 in r 10: no contact, a 0.05 mm radial gap < 0.1: proposed clearance.
+    result, found = joints.joints_in_shapes(_pin_in_bore(9.95), clearance_gap=0.1)
+    assert result.contacts == [] and result.interferences == []
+    (entry,) = found.clearances
+    assert (entry["a"], entry["b"], entry["kind"], entry["proposed_intent"]) == ("Block", "Pin", "Cylinder",
+                                                                                 "clearance")
+    assert entry["gap"] == pytest.approx(0.05, abs=1e-9)
+    assert "Clearance fits (gap < 0.1 mm, not contacts; proposed intent clearance): 1" in found.table()
+    assert joints.joints_in_shapes(_pin_in_bore(9.95), clearance_gap=0.04)[1].clearances == []
+
+
+def test_an_oversize_coaxial_pin_is_proposed_as_an_interference_fit(tmp_path):
+    # r 10.02 in r 10: the material overlaps (2 pi 10.01 0.02 20 = 25.16 mm3,
+    # the OCCT common checks it), radial overlap 0.02 mm: proposed
+    # interference, a negative gap; through the CLI's --json as well.
+    shapes = _pin_in_bore(10.02)
+    result, found = joints.joints_in_shapes(shapes, clearance_gap=0.1)
+    ((a, b, volume),) = result.interferences
+    assert volume == pytest.approx(shapes[0][1].common(shapes[1][1]).Volume, rel=1e-6)
+    (entry,) = found.clearances
+    assert (entry["kind"], entry["proposed_intent"]) == ("Cylinder", "interference")
+    assert entry["gap"] == pytest.approx(-0.02, abs=1e-9)
+    assert "Coaxial overlaps (radial overlap < 0.1 mm; proposed intent interference): 1" in found.table()
+    assert "Block  <->  Pin    Cylinder overlap 0.02 mm" in found.table()
+    compound = tmp_path / "pin.step"
+    Part.makeCompound([s for _, s in shapes]).exportStep(str(compound))
+    done = subprocess.run([sys.executable, "-m", "contactwb.cli", str(compound), "--joints", "--json",
+                           "--clearance-gap", "0.1"], cwd=REPO, capture_output=True, text=True,
+                          env=dict(os.environ, PYTHONPATH=REPO))
+    assert done.returncode == 0, done.stderr
+    (listed,) = json.loads(done.stdout)["clearances"]
+    assert listed["proposed_intent"] == "interference" and listed["gap"] == pytest.approx(-0.02, abs=1e-6)

@@ -112,9 +112,18 @@ class Joints:
                 lines.append(f"     passive spins: {', '.join(spins)}")
         if self.clearance_gap > 0:
             lines.append("")
-            lines.append(f"Clearance fits (gap < {self.clearance_gap:g} mm, not contacts): {len(self.clearances)}")
-            for c in self.clearances:
+            fits = [c for c in self.clearances if c["gap"] > 0]
+            overlaps = [c for c in self.clearances if c["gap"] < 0]
+            lines.append(f"Clearance fits (gap < {self.clearance_gap:g} mm, not contacts; proposed intent "
+                         f"clearance): {len(fits)}")
+            for c in fits:
                 lines.append(f"  {c['a']:<{width}}  <->  {c['b']:<{width}}  {c['kind']} gap {c['gap']:.4g} mm")
+            if overlaps:
+                lines.append(f"Coaxial overlaps (radial overlap < {self.clearance_gap:g} mm; proposed intent "
+                             f"interference): {len(overlaps)}")
+                for c in overlaps:
+                    lines.append(f"  {c['a']:<{width}}  <->  {c['b']:<{width}}  {c['kind']} overlap "
+                                 f"{-c['gap']:.4g} mm")
         if interferences and self.interferences:
             lines.append("")
             lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
@@ -207,12 +216,24 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     record = Mobility(ground=names[mobility.ground] if mobility.ground >= 0 else "", dof=mobility.dof,
                       passive=mobility.passive, groups=[[names[i] for i in g] for g in mobility.groups],
                       group_joints=group_joints)
-    clearances = [{"a": names[c.body_a], "b": names[c.body_b], "kind": c.kind, "gap": c.gap}
-                  for c in raw.clearances]
+    clearances = [clearance_json(c, names) for c in raw.clearances]
     return result, Joints(source=source, joints=records, mobility=record,
                           dot=cc.liaison_graph_dot(assembly, found, mobility), clearances=clearances,
                           interferences=interferences_of(raw, names), clearance_gap=clearance_gap,
                           raw=(raw, found, mobility), _body_index={name: i for i, name in enumerate(names)})
+
+
+def proposed_intent(gap):
+    """The intent a clearance entry proposes: radii (or planes) a small gap
+    apart are a clearance fit; a convex surface larger than its coaxial
+    concave one (negative gap) an interference fit drawn oversize."""
+    return "clearance" if gap > 0 else "interference"
+
+
+def clearance_json(clearance, names):
+    """A core Clearance as the CLI's JSON entry, with the proposed intent."""
+    return {"a": names[clearance.body_a], "b": names[clearance.body_b], "kind": clearance.kind,
+            "gap": clearance.gap, "proposed_intent": proposed_intent(clearance.gap)}
 
 
 def interferences_of(raw, names):
