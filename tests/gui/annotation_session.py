@@ -185,9 +185,15 @@ def undo_and_redo():
     report["redone"] = {"dof": dof(group), "marked": sum(1 for c in contacts_of(group) if c.Intent != "none")}
 
 
+def identity(contact):
+    """Body pair and faces (a contact found again after being lost is a new object, numbered anew)."""
+    from contactwb.objects.contact_objects import key_of_contact
+    return repr(key_of_contact(contact))
+
+
 def save_reopen_recompute():
     doc, group = state["doc"], state["group"]
-    marks = {c.Label: (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
+    marks = {identity(c): (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
     path = os.path.join(tempfile.mkdtemp(prefix="contacts-annotations-"), "motor_annotated.FCStd")
     name = group.Name
     doc.saveAs(path)
@@ -195,7 +201,7 @@ def save_reopen_recompute():
     doc = FreeCAD.openDocument(path)
     FreeCADGui.updateGui()
     group = doc.getObject(name)
-    reopened = {c.Label: (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
+    reopened = {identity(c): (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
     # move the axis away and back: the contacts are found again (same objects by identity)
     axis = doc.getObjectsByLabel("Axis")[0]
     placement = axis.Placement
@@ -204,7 +210,7 @@ def save_reopen_recompute():
     moved = dof(group)
     axis.Placement = placement
     doc.recompute()
-    recomputed = {c.Label: (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
+    recomputed = {identity(c): (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
     report["reopened"] = {"marks": len(marks), "kept_on_open": reopened == marks,
                           "kept_on_recompute": recomputed == marks, "dof_moved_away": moved,
                           "dof": dof(group), "mobility": list(group.Mobility),
