@@ -187,7 +187,7 @@ def test_an_oversize_coaxial_pin_is_proposed_as_an_interference_fit(tmp_path):
     assert (entry["kind"], entry["proposed_intent"]) == ("Cylinder", "interference")
     assert entry["gap"] == pytest.approx(-0.02, abs=1e-9)
     assert "Coaxial overlaps (radial overlap < 0.1 mm; proposed intent interference): 1" in found.table()
-    assert "Block  <->  Pin    Cylinder overlap 0.02 mm" in found.table()
+    assert "Block  <->  Pin   Cylinder overlap 0.02 mm" in found.table()
     compound = tmp_path / "pin.step"
     Part.makeCompound([s for _, s in shapes]).exportStep(str(compound))
     done = subprocess.run([sys.executable, "-m", "contactwb.cli", str(compound), "--joints", "--json",
