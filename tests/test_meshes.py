@@ -159,8 +159,9 @@ def test_disassembly_json_of_the_taper_pin(capsys):
     path = os.path.join(SAMPLES, "cases", "taper_pin.step")
     assert cli.main([path, "--disassembly", "--json"]) == 0
     document = json.loads(capsys.readouterr().out)
-    assert document["disassembly"] == [{"parts": ["Taper-pin"], "direction": [0.0, 0.0, 1.0]}]
-    assert document["base"] == "Block"
+    assert document["disassembly"] == [{"parts": ["Taper-pin"], "direction": [0.0, 0.0, 1.0], "blocked_before": [],
+                                        "why_free": "nothing blocked it along (0, 0, 1) from the start"}]
+    assert document["base"] == "Block" and document["base_parts"] == ["Block"]
     assert document["complete"] is True
 
 

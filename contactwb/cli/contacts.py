@@ -101,9 +101,13 @@ def _contacts(argv):
                              "\"type\" (optional), \"intent\": clearance|transition|interference|bonded|ignored, "
                              "\"fit\" (optional)}; press fits and bonds make their pairs rigid (implies --joints)")
     parser.add_argument("--clearance-gap", type=finite_number(low=0), default=0.0, metavar="MM",
-                        help="with --joints: also list clearance fits with a gap below MM")
+                        help="with --joints: also list clearance fits with a gap below MM (\"proposed_intent\": "
+                             "\"clearance\") and coaxial overlaps below MM (a press fit drawn oversize: a negative "
+                             "gap, \"proposed_intent\": \"interference\")")
     parser.add_argument("--disassembly", action="store_true",
-                        help="print the removal sequence (with --json: {\"disassembly\": [{\"parts\", \"direction\"}]})")
+                        help="print the removal sequence (with --json: {\"disassembly\": [{\"parts\", \"direction\", "
+                             "\"blocked_before\", \"why_free\", \"released\"}]}); with --annotations, fitted and bonded "
+                             "parts come out as sub-assemblies")
     parser.add_argument("--check-solids", choices=("quick", "full"), default="quick",
                         help="solid checks: quick (default: self-intersecting wires, open or misoriented shells, "
                              "edges off their faces, zero or negative volume) or full (also OCCT's whole "
@@ -134,7 +138,7 @@ def _contacts(argv):
     if args.disassembly:
         from contactwb.cli.mesh import print_disassembly  # the module, not the package: no cycle through cli/__init__
         return print_disassembly(os.fsdecode(args.file), args.json, args.linear, args.angular,
-                                 max_bodies=args.max_bodies)
+                                 max_bodies=args.max_bodies, annotations=args.annotations)
 
     try:
         from contactwb import core

@@ -111,15 +111,17 @@ def _mesh(argv):
 
 
 
-def print_disassembly(path, as_json=False, linear=None, angular=None, max_bodies=None):
-    """`contacts FILE --disassembly [--json]`: the removal sequence; exit code 0, or 4 (the analysis
-    failed) when the parts interlock; 3 unreadable input."""
+def print_disassembly(path, as_json=False, linear=None, angular=None, max_bodies=None, annotations=None):
+    """`contacts FILE --disassembly [--json] [--annotations FILE.json]`: the removal sequence (fitted
+    and bonded parts as sub-assemblies); exit code 0, or 4 (the analysis failed) when the parts
+    interlock; 3 unreadable input; 2 a bad annotations file."""
     from contactwb import core
     from contactwb.core import meshes
     from contactwb.document.files import load_assembly
     try:
         assembly = load_assembly(path, max_bodies)
-        document = meshes.disassembly_json(assembly, meshes.disassemble(assembly, linear=linear, angular=angular))
+        document = meshes.disassembly_json(assembly, meshes.disassemble(assembly, linear=linear, angular=angular,
+                                                                        annotations=annotations))
     except core.ContactsError as error:
         print(f"contacts: {error}", file=sys.stderr)
         return _error_code(core, error)

@@ -95,7 +95,8 @@ class ContactRecord:
     body_a: int = 0
     body_b: int = 0
     intent: str = ""            # the designer's annotation (contactwb.core.annotations), "" when none
-    fit: Optional[str] = None   # its ISO 286 fit code, when given
+    fit: Optional[str] = None   # its ISO 286 fit code, when given (cylindrical contacts)
+    fit_detail: Optional[object] = None  # contactwb.core.iso286.Fit of that code at the contact's diameter
 
     def __str__(self):
         extra = f", partial {self.span:.0f} deg" if self.partial else ""
@@ -216,6 +217,9 @@ def _contact_json(c):
     if c.intent:  # annotated (--annotations): the designer's intent and fit, echoed
         out["intent"] = c.intent
         out["fit"] = c.fit
+        if c.fit_detail is not None:  # the fit's class and limits at this diameter (µm)
+            out["fit_class"] = c.fit_detail.fit_class
+            out["fit_limits"] = c.fit_detail.to_json()
     return out
 
 

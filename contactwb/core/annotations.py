@@ -7,7 +7,9 @@ fits and bonds the CAD model cannot show. A file is a JSON list of
 type (PLF, CLJ, ...) or a point/line contact type (sphere_on_plane, ...):
 without it the entry covers every contact of the pair; "intent" is one of
 clearance, transition, interference, bonded, ignored; "fit" (optional) an
-ISO 286 fit code such as H7/g6, echoed; "note" (optional) free text.
+ISO 286 fit code such as H7/g6: evaluated at each cylindrical contact's
+(CLJ) diameter (contactwb.core.iso286), its class must agree with a
+clearance, transition or interference intent; "note" (optional) free text.
 Interference, transition and bonded contacts make their pair rigid in the
 joints; ignored ones are left out."""
 import json
@@ -15,6 +17,7 @@ import os
 import re
 
 from contactwb import core
+from contactwb.core import iso286
 
 INTENTS = ("clearance", "transition", "interference", "bonded", "ignored")
 _KEYS = {"a", "b", "type", "intent", "fit", "note"}
@@ -60,6 +63,8 @@ def parse(entries, source="annotations"):
         fit = entry.get("fit")
         if fit is not None and not _FIT.match(fit):
             raise core.ArgumentError(f"{where}: '{fit}' is not an ISO 286 fit code such as H7/g6 or H7/p6")
+        if fit is not None and entry["intent"] == "ignored":
+            raise core.ArgumentError(f"{where}: an ignored contact has no fit ('{fit}')")
         out.append(Annotation(entry["a"], entry["b"], entry["intent"], entry.get("type"), fit, entry.get("note"),
                               where=f"{where}"))
     return out
@@ -77,30 +82,67 @@ def load(path):
     return parse(entries, source=f"annotations file '{path}'")
 
 
+# Contact types whose radius is a fit's nominal diameter / 2 (ISO 286: features of size).
+FIT_TYPES = ("CLJ",)
+FIT_INTENTS = ("clearance", "transition", "interference")
+
+
+def evaluate_fit(where, intent, code, contact_type, radius):
+    """The iso286.Fit of `code` at a contact of `contact_type` and `radius`
+    (mm), or None for a contact without a diameter (planes, cones...). An
+    ArgumentError naming `where` for a code the tables refuse (unknown
+    letter, diameter out of range) or a fit whose class contradicts a
+    clearance, transition or interference intent."""
+    if not code or contact_type not in FIT_TYPES:
+        return None
+    try:
+        found = iso286.fit(code, 2 * radius)
+    except iso286.FitError as error:
+        raise core.ArgumentError(f"{where}: fit {code} at the {contact_type} contact of diameter "
+                                 f"{2 * radius:g} mm: {error}") from None
+    if intent in FIT_INTENTS and found.fit_class != intent:
+        low, high = found.clearance
+        raise core.ArgumentError(
+            f"{where}: fit {code} at diameter {found.diameter:g} mm is a {found.fit_class} fit "
+            f"(clearance {low:g} to {high:g} µm: hole {found.hole[0]:+g}/{found.hole[1]:+g}, shaft "
+            f"{found.shaft[0]:+g}/{found.shaft[1]:+g} µm), not {intent}")
+    return found
+
+
 def resolve(annotations, names, contacts, higher_pairs=()):
-    """Per contact and per higher pair, the (intent, fit) the annotations give
-    ("" and None when none): ([(intent, fit)], [(intent, fit)]). `contacts`
-    and `higher_pairs` have .body_a, .body_b and .type_name / .type. An entry
-    that matches no contact, or names an unknown body, is an ArgumentError
-    naming it; a later entry overrides an earlier one."""
+    """Per contact and per higher pair, the (intent, fit, iso286.Fit) the
+    annotations give (("", None, None) when none): ([...], [...]).
+    `contacts` and `higher_pairs` have .body_a, .body_b and .type_name /
+    .type (contacts also .radius). A fit applies to the cylindrical (CLJ)
+    contacts an entry matches, evaluated at their diameter; other contacts
+    of the entry get its intent only. An entry that matches no contact,
+    names an unknown body, gives a fit and matches no cylindrical contact,
+    or whose fit contradicts its intent, is an ArgumentError naming it; a
+    later entry overrides an earlier one."""
     index = {name: i for i, name in enumerate(names)}
-    contact_marks = [("", None)] * len(contacts)
-    higher_marks = [("", None)] * len(higher_pairs)
+    contact_marks = [("", None, None)] * len(contacts)
+    higher_marks = [("", None, None)] * len(higher_pairs)
     for note in annotations:
         for body in (note.a, note.b):
             if body not in index:
                 raise core.ArgumentError(f"{note.describe()}: no body named '{body}'")
         pair = {index[note.a], index[note.b]}
-        matched = 0
-        for marks, items, type_of in ((contact_marks, contacts, lambda c: c.type_name),
-                                      (higher_marks, higher_pairs, lambda h: h.type)):
-            for k, item in enumerate(items):
-                if {item.body_a, item.body_b} != pair:
-                    continue
-                if note.type and type_of(item) != note.type:
-                    continue
-                marks[k] = (note.intent, note.fit)
-                matched += 1
+        matched = fitted = 0
+        for k, item in enumerate(contacts):
+            if {item.body_a, item.body_b} != pair or (note.type and item.type_name != note.type):
+                continue
+            found = evaluate_fit(note.describe(), note.intent, note.fit, item.type_name, item.radius)
+            fitted += found is not None
+            contact_marks[k] = (note.intent, note.fit if found is not None else None, found)
+            matched += 1
+        for k, item in enumerate(higher_pairs):
+            if {item.body_a, item.body_b} != pair or (note.type and item.type != note.type):
+                continue
+            higher_marks[k] = (note.intent, None, None)
+            matched += 1
         if not matched:
             raise core.ArgumentError(f"{note.describe()} matches no contact")
+        if note.fit and not fitted:
+            raise core.ArgumentError(f"{note.describe()}: fit {note.fit} needs a cylindrical contact "
+                                     f"({', '.join(FIT_TYPES)}) to give its diameter; the entry matches none")
     return contact_marks, higher_marks

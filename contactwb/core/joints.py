@@ -113,9 +113,18 @@ class Joints:
                 lines.append(f"     passive spins: {', '.join(spins)}")
         if self.clearance_gap > 0:
             lines.append("")
-            lines.append(f"Clearance fits (gap < {self.clearance_gap:g} mm, not contacts): {len(self.clearances)}")
-            for c in self.clearances:
+            fits = [c for c in self.clearances if c["gap"] > 0]
+            overlaps = [c for c in self.clearances if c["gap"] < 0]
+            lines.append(f"Clearance fits (gap < {self.clearance_gap:g} mm, not contacts; proposed intent "
+                         f"clearance): {len(fits)}")
+            for c in fits:
                 lines.append(f"  {c['a']:<{width}}  <->  {c['b']:<{width}}  {c['kind']} gap {c['gap']:.4g} mm")
+            if overlaps:
+                lines.append(f"Coaxial overlaps (radial overlap < {self.clearance_gap:g} mm; proposed intent "
+                             f"interference): {len(overlaps)}")
+                for c in overlaps:
+                    lines.append(f"  {c['a']:<{width}}  <->  {c['b']:<{width}}  {c['kind']} overlap "
+                                 f"{-c['gap']:.4g} mm")
         if interferences and self.interferences:
             lines.append("")
             lines.append(f"Interferences (overlapping material, not contacts): {len(self.interferences)}")
@@ -211,10 +220,10 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     contact_marks, higher_marks = [], []
     if notes is not None:
         contact_marks, higher_marks = annotation_api.resolve(notes, names, raw.contacts, raw.higher_pairs)
-        for record, (intent, fit) in zip(result.contacts, contact_marks):
-            record.intent, record.fit = intent, fit
-    found = cc.find_joints(assembly, raw, contact_intents=[intent for intent, _ in contact_marks],
-                           higher_pair_intents=[intent for intent, _ in higher_marks])
+        for record, (intent, fit, fit_detail) in zip(result.contacts, contact_marks):
+            record.intent, record.fit, record.fit_detail = intent, fit, fit_detail
+    found = cc.find_joints(assembly, raw, contact_intents=[mark[0] for mark in contact_marks],
+                           higher_pair_intents=[mark[0] for mark in higher_marks])
     mobility = cc.assembly_mobility(assembly, raw, found, ground_index)
     records = [JointRecord(
         a=names[j.body_a], b=names[j.body_b], type=j.type, dof=j.dof, rotations=_rotations(j.rotations),
@@ -233,12 +242,24 @@ def joints_in_assembly(assembly, source="assembly", linear=None, angular=None, p
     record = Mobility(ground=names[mobility.ground] if mobility.ground >= 0 else "", dof=mobility.dof,
                       passive=mobility.passive, groups=[[names[i] for i in g] for g in mobility.groups],
                       group_joints=group_joints)
-    clearances = [{"a": names[c.body_a], "b": names[c.body_b], "kind": c.kind, "gap": c.gap}
-                  for c in raw.clearances]
+    clearances = [clearance_json(c, names) for c in raw.clearances]
     return result, Joints(source=source, joints=records, mobility=record,
                           dot=cc.liaison_graph_dot(assembly, found, mobility), clearances=clearances,
                           interferences=interferences_of(raw, names), clearance_gap=clearance_gap,
                           raw=(raw, found, mobility), assembly=assembly, _body_index={name: i for i, name in enumerate(names)})
+
+
+def proposed_intent(gap):
+    """The intent a clearance entry proposes: radii (or planes) a small gap
+    apart are a clearance fit; a convex surface larger than its coaxial
+    concave one (negative gap) an interference fit drawn oversize."""
+    return "clearance" if gap > 0 else "interference"
+
+
+def clearance_json(clearance, names):
+    """A core Clearance as the CLI's JSON entry, with the proposed intent."""
+    return {"a": names[clearance.body_a], "b": names[clearance.body_b], "kind": clearance.kind,
+            "gap": clearance.gap, "proposed_intent": proposed_intent(clearance.gap)}
 
 
 def interferences_of(raw, names):

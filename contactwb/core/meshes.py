@@ -186,27 +186,103 @@ def write_meshes(assembly, out_dir, deflection=0.1, angle=0.5, max_edge=0.0, lin
     return document
 
 
-def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.0, linear=None, angular=None, max_triangles=None):
+def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.0, linear=None, angular=None, max_triangles=None,
+                annotations=None, sample_free_cones=True):
     """contactcore.DisassemblyResult: the removal sequence, blocking graphs, or the reason none exists.
     `tolerance` (mm; 0: twice the deflection): how deep a swept part must cut into another to be
     blocked (two tessellations of one surface cross by up to their deflection); refused
-    (ArgumentError) unless below half the thinnest part's thickness."""
+    (ArgumentError) unless below half the thinnest part's thickness. `annotations` (a JSON file's
+    path, a list of dicts or of contactwb.core.annotations.Annotation): parts joined by fits and
+    bonds come out as one sub-assembly; a bonded cylindrical contact (a thread) is released
+    (unscrewed) when nothing else can leave. The result keeps the contacts used as `.contacts`
+    (a DisassemblyResult attribute set here)."""
     options = core.contactcore.MeshOptions(deflection, angle, 0.0, _max_triangles(max_triangles))
-    return core.contactcore.disassemble(assembly, options, tolerance, linear, angular)
+    notes = _annotations(annotations)
+    raw = core.contactcore.find_contacts(assembly, linear=linear, angular=angular)
+    intents = []
+    if notes is not None:
+        from contactwb.core import annotations as annotation_api
+        marks, _ = annotation_api.resolve(notes, [b.name for b in assembly.bodies], raw.contacts, raw.higher_pairs)
+        intents = [mark[0] for mark in marks]
+    result = core.contactcore.disassemble(assembly, options, tolerance, linear, angular, contacts=raw,
+                                          contact_intents=intents, sample_free_cones=sample_free_cones)
+    return _WithContacts(result, raw, intents)
+
+
+class _WithContacts:
+    """A DisassemblyResult with the contacts and intents it was planned with."""
+
+    def __init__(self, result, contacts, intents):
+        self._result, self.contacts, self.intents = result, contacts, intents
+
+    def __getattr__(self, name):
+        return getattr(self._result, name)
+
+
+def _annotations(annotations):
+    if annotations is None:
+        return None
+    from contactwb.core import annotations as annotation_api
+    if isinstance(annotations, (str, os.PathLike)):
+        return annotation_api.load(annotations)
+    if annotations and isinstance(annotations[0], dict):
+        return annotation_api.parse(annotations)
+    return list(annotations)
+
+
+def _vector(values):
+    return [round(v, 12) + 0.0 for v in values]
 
 
 def disassembly_json(assembly, result=None):
-    """{"disassembly": [{"parts": [names], "direction": [x, y, z]}, ...], "base", "complete", "reason"}."""
+    """{"disassembly": [{"parts": [names], "direction": [x, y, z], "blocked_before": [{"part",
+    "removed_in_step"}], "why_free": text, "released": [{"a", "b", "type", "intent"}] (when a bond
+    was undone)}, ...], "base", "base_parts", "complete", "reason"}."""
     result = disassemble(assembly) if result is None else result
     names = [body.name for body in assembly.bodies]
+    removed_in = {}
+    steps = []
+    contacts = getattr(result, "contacts", None)
+    for number, step in enumerate(result.steps, 1):
+        direction = _vector(step.direction)
+        blocked = [{"part": names[j], "removed_in_step": removed_in.get(j)} for j in step.blocked_before]
+        entry = {"parts": [names[i] for i in step.parts], "direction": direction, "blocked_before": blocked}
+        released = []
+        for k in step.released:
+            c = contacts.contacts[k] if contacts is not None else None
+            if c is not None:
+                released.append({"a": names[c.body_a], "b": names[c.body_b], "type": c.type_name,
+                                 "intent": result.intents[k] if result.intents else "bonded"})
+        if released:
+            entry["released"] = released
+        entry["why_free"] = _why_free(entry, direction)
+        steps.append(entry)
+        for i in step.parts:
+            removed_in[i] = number
     return {
-        "disassembly": [{"parts": [names[i] for i in step.parts], "direction": [round(v, 12) + 0.0 for v in step.direction]}
-                        for step in result.steps],
+        "disassembly": steps,
         "base": names[result.base] if result.base >= 0 else None,
+        "base_parts": [names[i] for i in result.base_parts],
         "complete": result.complete,
         "reason": result.reason,
         **({"messages": list(result.messages)} if getattr(result, "messages", None) else {}),
     }
+
+
+def _why_free(entry, direction):
+    """Why a step's parts can leave now: what blocked them along their way out was removed (which
+    steps), a bond was undone, or nothing ever blocked them."""
+    way = "(" + ", ".join(f"{v:g}" for v in direction) + ")"
+    reasons = []
+    for bond in entry.get("released", []):
+        other = bond["b"] if bond["a"] in entry["parts"] else bond["a"]
+        reasons.append(f"its {bond['intent']} {bond['type']} with {other} undone (unscrewed)")
+    if entry["blocked_before"]:
+        by_step = ", ".join(f"{b['part']} (step {b['removed_in_step']})" for b in entry["blocked_before"])
+        reasons.append(f"what blocked it along {way} was removed: {by_step}")
+    else:
+        reasons.append(f"nothing blocked it along {way} from the start")
+    return "; ".join(reasons)
 
 
 def disassembly_table(document):
@@ -215,8 +291,11 @@ def disassembly_table(document):
     for number, step in enumerate(document["disassembly"], 1):
         x, y, z = step["direction"]
         lines.append(f"{number:3d}. {', '.join(step['parts'])} along ({x:g}, {y:g}, {z:g})")
+        if "why_free" in step:
+            lines.append(f"       free: {step['why_free']}")
     if document["complete"]:
-        lines.append(f"     {document['base']} stays (the base)")
+        base = document.get("base_parts") or [document["base"]]
+        lines.append(f"     {', '.join(base)} {'stays' if len(base) == 1 else 'stay'} (the base)")
     else:
         lines.append(f"Stopped: {document['reason']}")
     for message in document.get("messages", []):

@@ -55,7 +55,8 @@ def _analysis_properties(obj):
     add_property(obj, "App::PropertyStringList", "ContactTypes", "Contacts",
          "Contact types to look for (empty: all)")
     add_property(obj, "App::PropertyLength", "ClearanceGap", "Contacts",
-         "Also report clearance fits whose radii differ by less than this (0: none)")
+         "Also report clearance fits whose radii differ by less than this, and coaxial overlaps "
+         "(press fits drawn oversize) by less than this (0: none)")
     add_property(obj, "App::PropertyBool", "UpdateOnRecompute", "Contacts",
          "Find the contacts again when the bodies move or change (off: a snapshot that "
          "follows the moved faces)")
@@ -88,6 +89,10 @@ def _analysis_properties(obj):
                  "Pairs of bodies whose material overlaps", 1)
     add_property(obj, "App::PropertyStringList", "Interferences", "Contacts",
                  "Overlapping pairs with their common volume", 1)
+    # the designer's annotations by contact identity, so that a contact lost and found again (a part
+    # moved away and back) gets its intent and fit back
+    add_property(obj, "App::PropertyString", "Annotations", "Contacts",
+                 "Intent and fit of each annotated contact, by body pair and faces (JSON)", 2)
 
 
 def count_children(obj):
@@ -158,6 +163,64 @@ def _contact_properties(obj):
         ("App::PropertyVector", "Point", "A point of the contact (axis point, centre)"),
         ("App::PropertyVector", "Direction", "Normal of the first body, or axis"),
     ])
+    _annotation_properties(obj)
+
+
+# The designer's intent of a contact (docs/joints.md, "Annotations"); "none": not annotated.
+INTENT_CHOICES = ["none", "clearance", "transition", "interference", "bonded", "ignored"]
+
+
+def _annotation_properties(obj):
+    """The designer's annotation, set by the user (Contacts_AnnotateContact, the
+    property editor) and kept when the contact is found again (same object:
+    identity by body pair and partitions)."""
+    fresh = "Intent" not in obj.PropertiesList
+    add_property(obj, "App::PropertyEnumeration", "Intent", "Annotation",
+                 "The designer's intent: a fit (clearance, transition, interference), bonded (glued, welded, "
+                 "staked) or ignored; interference, transition and bonded make the pair rigid in the joints, "
+                 "ignored leaves the contact out")
+    if fresh:
+        obj.Intent = INTENT_CHOICES
+        obj.Intent = "none"
+    add_property(obj, "App::PropertyString", "Fit", "Annotation",
+                 "ISO 286 fit code such as H7/g6 (cylindrical contacts), its class checked against the intent")
+    add_property(obj, "App::PropertyString", "FitClass", "Annotation",
+                 "Class and limits of the fit at the contact's diameter (ISO 286)", 1)
+
+
+def intent_of(obj):
+    """The core's intent string of a Contact object ("" when not annotated)."""
+    intent = getattr(obj, "Intent", "none")
+    return "" if intent == "none" else intent
+
+
+def check_annotation(obj, intent=None, fit=None):
+    """The iso286.Fit of a Contact's annotation (None without a fit or for a
+    contact without a diameter); core.ArgumentError naming the contact when
+    the fit is unknown, out of range or contradicts the intent. `intent` and
+    `fit` default to the object's own."""
+    from contactwb.core import annotations
+    intent = intent_of(obj) if intent is None else ("" if intent == "none" else intent)
+    fit = (obj.Fit if fit is None else fit).strip()
+    if not fit:
+        return None
+    where = f"contact '{obj.Label}'"
+    if intent == "ignored":
+        raise core.ArgumentError(f"{where}: an ignored contact has no fit ('{fit}')")
+    if obj.ContactType not in annotations.FIT_TYPES:
+        raise core.ArgumentError(f"{where}: fit {fit} needs a cylindrical contact "
+                                 f"({', '.join(annotations.FIT_TYPES)}) to give its diameter, not "
+                                 f"{obj.ContactType}")
+    return annotations.evaluate_fit(where, intent, fit, obj.ContactType, obj.Radius.Value)
+
+
+def _update_fit_classes(contacts):
+    """FitClass of each annotated contact, from its fit at its (new) diameter."""
+    for obj in contacts:
+        found = check_annotation(obj)
+        text = "" if found is None else (f"{found.fit_class} at diameter {found.diameter:g} mm: clearance "
+                                         f"{found.clearance[0]:g} to {found.clearance[1]:g} \u00b5m")
+        set_if_changed(obj, "FitClass", text)
 
 
 class Contact(VersionedProxy):
@@ -264,7 +327,9 @@ def _clearance_lines(raw, gap, names):
     """Clearance fits (radii within `gap` mm: a fit with play, not a contact)."""
     if gap <= 0:
         return []
-    return [f"{names[c.body_a]} {EN_DASH} {names[c.body_b]}: {c.kind}, gap {c.gap:.4g} mm"
+    return [f"{names[c.body_a]} {EN_DASH} {names[c.body_b]}: {c.kind}, " +
+            (f"gap {c.gap:.4g} mm (proposed: clearance)" if c.gap > 0 else
+             f"coaxial overlap {-c.gap:.4g} mm (proposed: interference)")
             for c in core.contactcore.find_clearances(raw, gap)]
 
 
@@ -337,6 +402,7 @@ def update_contact_analysis(group, progress=None):
     set_if_changed(group, "Clearances", _clearance_lines(raw, group.ClearanceGap.Value,
                                                          [b.name for b in result.bodies]))
     _update_children(doc, group, records, bodies)
+    _update_fit_classes([o for o in group.Group if is_contact(o)])
     _update_interferences(doc, group, result.interferences, bodies, painted.solids)
     if group.DeriveJoints:
         _update_joints(doc, group, assembly, raw, result, kept, bodies)
@@ -420,7 +486,14 @@ def _update_joints(doc, group, assembly, raw, result, kept, bodies):
     contacts), the mobility lines and the liaison graph's DOT."""
     cc = core.contactcore
     names = [b.name for b in result.bodies]
-    found = cc.find_joints(assembly, raw)
+    contacts = [c for c in group.Group if is_contact(c)]
+    # The designer's annotations, per core contact: those of the objects shown
+    # (contacts filtered out of the group have none).
+    intents = [""] * len(raw.contacts)
+    for position_in_group, raw_index in enumerate(kept):
+        intents[raw_index] = intent_of(contacts[position_in_group])
+    found = cc.find_joints(assembly, raw, contact_intents=intents) if any(intents) else \
+        cc.find_joints(assembly, raw)
     ground = names.index(group.Ground) if group.Ground in names else \
         max(range(len(names)), key=lambda i: result.bodies[i].volume)
     mobility = cc.assembly_mobility(assembly, raw, found, ground)
@@ -442,7 +515,6 @@ def _update_joints(doc, group, assembly, raw, result, kept, bodies):
                         else describe_motion(list(motion.rotations), [tuple(d) for d in motion.translations]))
                      + (f"; passive spins: {', '.join(spins)}" if spins else ""))
     set_if_changed(group, "Mobility", lines)
-    contacts = [c for c in group.Group if is_contact(c)]
     position = {raw_index: k for k, raw_index in enumerate(kept)}
     old = {}  # (body A, body B) -> its Joint: a pair keeps its joint object
     for obj in group.Group:
@@ -511,6 +583,27 @@ def set_if_changed(obj, name, value, ordered=True):
         setattr(obj, name, value)
 
 
+def _key_text(key):
+    return json.dumps([key[0], key[1], list(key[2]), list(key[3])])
+
+
+def _remembered_annotations(group, contacts):
+    """{identity: [intent, fit]}: the group's record of annotations updated
+    with `contacts`' own (theirs win; a contact not annotated any more is
+    forgotten; contacts not among them are remembered)."""
+    try:
+        remembered = dict(json.loads(getattr(group, "Annotations", "") or "[]"))
+    except (ValueError, TypeError):
+        remembered = {}
+    for obj in contacts:
+        key = _key_text(key_of_contact(obj))
+        if intent_of(obj) or obj.Fit:
+            remembered[key] = [obj.Intent, obj.Fit]
+        else:
+            remembered.pop(key, None)
+    return remembered
+
+
 def _update_children(doc, group, records, bodies):
     """Updates the group's Contact children to `records`, by identity (body
     pair and partition pair): a contact found again keeps its object, name
@@ -525,6 +618,7 @@ def _update_children(doc, group, records, bodies):
     for obj in old:
         by_key.setdefault(key_of_contact(obj), []).append(obj)
     highest = max(_highest_number(doc), getattr(group, "LastNumber", 0))
+    remembered = _remembered_annotations(group, old)
     children = []
     for record in records:
         same = by_key.get(key_of_record(record))
@@ -535,6 +629,9 @@ def _update_children(doc, group, records, bodies):
             gui_hooks.new_object(obj)
             highest += 1
             obj.Number = highest
+            mark = remembered.get(_key_text(key_of_record(record)))
+            if mark:  # annotated before it was lost
+                obj.Intent, obj.Fit = mark
         children.append(obj)
     vanished = [o for o in old if o not in children]
     remove_after_recompute(doc, vanished + orphans)
@@ -554,6 +651,7 @@ def _update_children(doc, group, records, bodies):
         set_if_changed(obj, "Label", contact_label(record.type, obj.Number, record.a, record.b))
         set_if_changed(obj, "Label2", contact_label2(record))
     set_if_changed(group, "LastNumber", highest)
+    set_if_changed(group, "Annotations", json.dumps(sorted(_remembered_annotations(group, children).items())))
     set_if_changed(group, "Group", children + others)
     for obj in children:
         obj.purgeTouched()  # results, not edits: no second execute of the group

@@ -399,6 +399,25 @@ TEST(Clearances, PinInLargerBore) {
   EXPECT_TRUE(find_clearances(r.partitions, 0.1).empty());
 }
 
+// A pin r 5.02 in a bore r 5 (drawn oversize, a press fit): a coaxial overlap
+// of 0.02 mm, reported as a negative gap with a 0.1 mm gap asked, not with
+// 0.01 mm; no contact (the radii differ), the interference reported.
+TEST(Clearances, OversizePinIsACoaxialOverlap) {
+  Assembly assembly;
+  assembly.bodies.push_back({"Block", "Block", bored_block(5)});
+  assembly.bodies.push_back({"Pin", "Pin", cylinder(5.02, 30, gp_Pnt(20, 20, -5))});
+  ContactOptions options;
+  options.clearance_gap = 0.1;
+  const ContactsResult r = find_contacts(assembly, options);
+  ASSERT_TRUE(r.status.ok());
+  EXPECT_TRUE(r.contacts.empty());
+  ASSERT_EQ(r.clearances.size(), 1u);
+  EXPECT_EQ(r.clearances[0].kind, SurfaceKind::Cylinder);
+  EXPECT_NEAR(r.clearances[0].gap, -0.02, 1e-9);
+  EXPECT_EQ(r.interferences.size(), 1u);
+  EXPECT_TRUE(find_clearances(r.partitions, 0.01).empty());
+}
+
 // Results of another assembly, or a ground out of range: a clear error, no crash.
 TEST(Joints, MismatchedInputIsAnError) {
   const Analysed a = analyse({{"Base", box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 10))},

@@ -41,7 +41,7 @@ def test_toolbar_shows_only_working_commands(gui_report):
         "Find contacts...", "Contact table", "Isolate contact", "Show all", "Ghost parts",
         "Show partitions", "Derive joints", "Joints and liaison graph", "Export contacts...", "Open sample motor",
         "Import STEP assembly...",
-        "Export mechanism...", "Show simulation model"]
+        "Export mechanism...", "Show simulation model", "Annotate contact..."]
 
 
 def test_find_contacts_command_fills_the_tree(gui_report):

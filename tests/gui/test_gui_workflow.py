@@ -191,8 +191,8 @@ def test_ghost_and_context_menus(report):
     assert len(ghost["ghosted"]) == 18 and ghost["transparency"] == [85]
     assert ghost["undo"] != "Ghost parts"  # view only: out of the undo stack (issue 21)
     assert 85 not in ghost["restored"]
-    assert report["context_menu"] == ["Export contacts...", "Isolate with its parts", "Select faces",
-                                      "Zoom to contact"]
+    assert report["context_menu"] == ["Annotate (intent, fit)...", "Export contacts...", "Isolate with its parts",
+                                      "Select faces", "Zoom to contact"]
     assert report["context_isolated"] == report["context_contact"]
     assert "Isolate contact" not in report["isolate_undo"]  # view only (issue 21)
     assert report["analysis_menu"] == ["Contact table", "Export contacts...", "Find contacts again..."]

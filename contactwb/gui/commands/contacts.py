@@ -383,5 +383,5 @@ COMMANDS = {
 
 # In the 3D view's context menu (a contact's own menu: its view provider).
 CONTEXT_COMMANDS = ["Contacts_FindContacts", "Contacts_IsolateContact", "Contacts_ShowAll",
-                    "Contacts_ShowContactTable"]
+                    "Contacts_ShowContactTable", "Contacts_AnnotateContact"]
 

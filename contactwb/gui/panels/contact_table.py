@@ -135,6 +135,8 @@ class ContactTable(QtWidgets.QWidget):
         self.zoom_button.clicked.connect(self.zoom)
         self.isolate_button.clicked.connect(self.isolate)
         self.show_all_button.clicked.connect(self.show_all)
+        self.table.setContextMenuPolicy(QtCore.Qt.CustomContextMenu)
+        self.table.customContextMenuRequested.connect(self._context_menu)
 
     def sizeHint(self):
         # What the dock asks for: the columns scroll, the 3D view keeps its room.
@@ -261,6 +263,14 @@ class ContactTable(QtWidgets.QWidget):
             hidden |= partial_only and self.table.item(row, PARTIAL_COLUMN).text() != "yes"
             hidden |= self.table.item(row, 4).data(QtCore.Qt.UserRole + 1) < least
             self.table.setRowHidden(row, hidden)
+
+    def _context_menu(self, position):
+        """Right-click on rows: annotate their contacts (the selection follows the rows)."""
+        if not [c for c in self.selected_contacts() if not is_joint(c)]:
+            return
+        menu = QtWidgets.QMenu(self.table)
+        menu.addAction("Annotate (intent, fit)...", lambda: FreeCADGui.runCommand("Contacts_AnnotateContact"))
+        menu.exec_(self.table.viewport().mapToGlobal(position))
 
     def visible_rows(self):
         return [r for r in range(self.table.rowCount()) if not self.table.isRowHidden(r)]

@@ -26,6 +26,16 @@ def overlays_of(contact):
             yield overlay
 
 
+def _annotate(contact):
+    """The context menu's Annotate: the command on the selected contacts (this
+    one selected if it is not)."""
+    import FreeCADGui
+    if contact not in FreeCADGui.Selection.getSelection(contact.Document.Name):
+        FreeCADGui.Selection.clearSelection()
+        FreeCADGui.Selection.addSelection(contact)
+    FreeCADGui.runCommand("Contacts_AnnotateContact")
+
+
 class ViewProviderContact(OneDisplayMode, ViewProvider):
     """A contact: drawn by its group's overlay; its Visibility switches its
     part of that drawing."""
@@ -49,6 +59,7 @@ class ViewProviderContact(OneDisplayMode, ViewProvider):
         add_action(menu, "Select faces", lambda: actions.select_contact_faces(contact))
         add_action(menu, "Zoom to contact", lambda: actions.zoom_to(contact))
         add_action(menu, "Isolate with its parts", lambda: actions.run_isolate(contact))
+        add_action(menu, "Annotate (intent, fit)...", lambda: _annotate(contact))
         add_action(menu, "Export contacts...", lambda: actions.export_analysis(actions.analysis_of(contact)))
 
     def onChanged(self, vobj, prop):

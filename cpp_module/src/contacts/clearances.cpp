@@ -8,11 +8,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 
 namespace contactcore {
 
 namespace {
+
+constexpr double kNotAFit = std::numeric_limits<double>::quiet_NaN();
 
 double distance_to_line(const gp_Pnt& p, const gp_Pnt& on_line, const gp_Dir& dir) {
   const gp_Vec v(on_line, p);
@@ -20,42 +23,43 @@ double distance_to_line(const gp_Pnt& p, const gp_Pnt& on_line, const gp_Dir& di
 }
 
 // The radial gap of a convex/concave pair of partitions on the same axis or
-// centre, or a negative value when they do not form a fit.
+// centre (negative: the convex one is the larger, they overlap), or NaN when
+// they do not form a fit.
 double fit_gap(const Partition& a, const Partition& b, const Tolerances& tol) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
-  if (pa.kind != pb.kind) return -1;
-  if (a.side == b.side || a.side == MaterialSide::Outward) return -1;
+  if (pa.kind != pb.kind) return kNotAFit;
+  if (a.side == b.side || a.side == MaterialSide::Outward) return kNotAFit;
   const Partition& inner = a.side == MaterialSide::Convex ? a : b;
   const Partition& outer = a.side == MaterialSide::Convex ? b : a;
   if (pa.kind == SurfaceKind::Cylinder) {
-    if (pa.axis.Angle(pb.axis) > tol.angular && kPi - pa.axis.Angle(pb.axis) > tol.angular) return -1;
-    if (distance_to_line(pb.location, pa.location, pa.axis) > tol.linear) return -1;
+    if (pa.axis.Angle(pb.axis) > tol.angular && kPi - pa.axis.Angle(pb.axis) > tol.angular) return kNotAFit;
+    if (distance_to_line(pb.location, pa.location, pa.axis) > tol.linear) return kNotAFit;
     // The two must overlap along the axis.
     const gp_Vec shift(pa.location, pb.location);
     const double offset = shift.Dot(gp_Vec(pa.axis));
     const double sign = pa.axis.Dot(pb.axis) > 0 ? 1.0 : -1.0;
     double b_min = offset + sign * b.extent.axial_min, b_max = offset + sign * b.extent.axial_max;
     if (b_min > b_max) std::swap(b_min, b_max);
-    if (std::min(a.extent.axial_max, b_max) - std::max(a.extent.axial_min, b_min) <= tol.linear) return -1;
+    if (std::min(a.extent.axial_max, b_max) - std::max(a.extent.axial_min, b_min) <= tol.linear) return kNotAFit;
   } else if (pa.kind == SurfaceKind::Sphere) {
-    if (pa.location.Distance(pb.location) > tol.linear) return -1;
+    if (pa.location.Distance(pb.location) > tol.linear) return kNotAFit;
   } else {
-    return -1;
+    return kNotAFit;
   }
   return outer.params.radius - inner.params.radius;
 }
 
 // Facing parallel planes (opposite outward normals) a small distance apart,
-// whose outlines overlap seen along the normal: the normal gap, else -1.
+// whose outlines overlap seen along the normal: the normal gap, else NaN.
 double plane_gap(const BodyPartitions& body_a, const Partition& a, const BodyPartitions& body_b,
                  const Partition& b, const Tolerances& tol) {
   const SurfaceParams& pa = a.params;
   const SurfaceParams& pb = b.params;
-  if (pa.kind != SurfaceKind::Plane || pb.kind != SurfaceKind::Plane) return -1;
-  if (pa.axis.Dot(pb.axis) > -std::cos(tol.angular)) return -1;
+  if (pa.kind != SurfaceKind::Plane || pb.kind != SurfaceKind::Plane) return kNotAFit;
+  if (pa.axis.Dot(pb.axis) > -std::cos(tol.angular)) return kNotAFit;
   const double gap = gp_Vec(pa.location, pb.location).Dot(gp_Vec(pa.axis));
-  if (gap <= tol.linear) return -1;
+  if (gap <= tol.linear) return kNotAFit;
   const gp_Dir x = a.extent.ref_dir;
   const gp_Dir y = pa.axis.Crossed(x);
   for (int fa : a.faces) {
@@ -65,7 +69,7 @@ double plane_gap(const BodyPartitions& body_a, const Partition& a, const BodyPar
       if (common_area(loops_a, loops_b, tol.linear) > tol.linear * tol.linear) return gap;
     }
   }
-  return -1;
+  return kNotAFit;
 }
 
 }  // namespace
@@ -88,8 +92,10 @@ std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partit
         const double gap = pa.params.kind == SurfaceKind::Plane
                                ? plane_gap(partitions[a], pa, partitions[b], pb, tol)
                                : fit_gap(pa, pb, tol);
-        // Same radius is a contact, not a clearance.
-        if (gap <= tol.linear || gap >= max_gap) continue;
+        // Same radius is a contact, not a clearance. A convex surface larger than its coaxial
+        // concave one by less than the gap is an overlap (a press fit drawn oversize): negative.
+        if (std::isnan(gap) || std::abs(gap) <= tol.linear || std::abs(gap) >= max_gap) continue;
+        if (gap < 0 && pa.params.kind == SurfaceKind::Plane) continue;
         out.push_back({a, b, pa.id, pb.id, pa.params.kind, gap});
       }
     }

@@ -8,12 +8,15 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <map>
 #include <numeric>
+#include <optional>
 
 #include <Standard_Failure.hxx>
 
 #include "contactcore/joints/joints.h"
 #include "contactcore/common/occt_guard.h"
+#include "common/union_find.h"
 
 namespace contactcore {
 
@@ -181,7 +184,7 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
     return result;
   }
   result.directions = candidate_directions(parts);
-  const int directions = static_cast<int>(result.directions.size());
+  int directions = static_cast<int>(result.directions.size());
   result.blocking.assign(directions, std::vector<std::vector<int>>(n));
   if (n == 0) {
     result.complete = true;
@@ -275,27 +278,54 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
     return false;
   };
 
-  try {
-    for (int i = 0; i < n; ++i) {
-      if (progress && !progress->report("blocking", static_cast<double>(i) / n)) {
-        result.status = Status::failure(StatusCode::Cancelled, "cancelled while finding what blocks each part");
-        return result;
+  // Blocking lists of the directions from `first` on, for the parts still in place (`alive`).
+  const auto compute_blocking = [&](int first, const std::vector<char>& alive) {
+    try {
+      for (int i = 0; i < n; ++i) {
+        if (progress && !progress->report("blocking", static_cast<double>(i) / n)) {
+          result.status = Status::failure(StatusCode::Cancelled, "cancelled while finding what blocks each part");
+          return false;
+        }
+        if (!alive[i]) continue;
+        for (int di = first; di < directions; ++di)
+          for (int j = 0; j < n; ++j)
+            if (j != i && alive[j] && blocks(i, j, result.directions[di])) result.blocking[di][i].push_back(j);
       }
-      for (int di = 0; di < directions; ++di)
-        for (int j = 0; j < n; ++j)
-          if (j != i && blocks(i, j, result.directions[di])) result.blocking[di][i].push_back(j);
+    } catch (const Standard_Failure& failure) {
+      result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
+      return false;
     }
-  } catch (const Standard_Failure& failure) {
-    result.status = Status::failure(StatusCode::GeometryError, std::string("OCCT: ") + failure.GetMessageString());
-    return result;
-  }
+    return true;
+  };
+  if (!compute_blocking(0, std::vector<char>(n, 1))) return result;
 
-  // Removal: at each step, over all directions, the sink components of the
-  // blocking graph restricted to the remaining parts (nothing outside them
-  // blocks them); the smallest, then the lightest, goes first.
+  // Removal. Units: the parts joined by annotated fits and bonds (not released ones), moved as
+  // one. At each step, over all directions, the sink components of the units' blocking graph
+  // restricted to what remains (nothing outside them blocks them), ranked as the header says.
+  const auto intent_of = [&](std::size_t k) {
+    return k < options.contact_intents.size() ? options.contact_intents[k] : ContactIntent::Unspecified;
+  };
   std::vector<char> remaining(n, 1);
-  int left = n;
-  // holds[j]: the parts j blocks in some direction; scratch marks for the leverage sums.
+  std::vector<char> released(contacts.size(), 0);
+  std::vector<int> removed_at(n, -1);  // the step that removed each part
+  // holder[i]: the parts i is still held by through a released bond (a screw's thread): i is
+  // blocked by them along every direction until they are gone.
+  std::vector<std::vector<int>> held_by(n), holding(n);  // holding[j]: the parts j holds so
+  std::vector<int> unit_of(n);
+  const auto make_units = [&] {
+    detail::UnionFind joined(n);
+    for (std::size_t k = 0; k < contacts.size(); ++k)
+      if (!released[k] && holds_rigid(intent_of(k))) joined.unite(contacts[k].body_a, contacts[k].body_b);
+    for (int i = 0; i < n; ++i) unit_of[i] = joined.find(i);
+  };
+  make_units();
+  // Calls visit(j) for each part blocking part i along direction di (before anything is
+  // removed): the sweeps' and the released bonds'.
+  const auto for_each_blocker = [&](int di, int i, auto&& visit) {
+    for (int j : result.blocking[di][i]) visit(j);
+    for (int j : held_by[i]) visit(j);
+  };
+  // holds[j]: the parts j blocks in some direction.
   std::vector<std::vector<int>> holds(n);
   for (int di = 0; di < directions; ++di)
     for (int k = 0; k < n; ++k)
@@ -304,84 +334,234 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
+  // The base: the unit of the largest part, held still (the housing a mechanic works on).
+  int largest = 0;
+  for (int i = 1; i < n; ++i)
+    if (parts[i].volume > parts[largest].volume) largest = i;
+  struct Candidate {
+    std::vector<int> parts;
+    int units = 0;           // units moving together (1: a part or a sub-assembly on its own)
+    int direction = -1;
+    bool useful = false;
+    int freed_at = -1;       // the last step that removed one of its blockers along this way out
+    int group_freed_at = -1;  // the step after which the group could leave some way: the least freed_at
+    bool same_direction = false;
+    std::size_t blockers = 0;  // parts that blocked it this way at first
+    double leverage = 0, volume = 0;
+  };
+  const auto better = [](const Candidate& a, const Candidate& b) {  // is a to be taken before b?
+    if (a.units != b.units) return a.units < b.units;
+    if (a.useful != b.useful) return a.useful;
+    if (a.group_freed_at != b.group_freed_at) return a.group_freed_at > b.group_freed_at;
+    if (a.same_direction != b.same_direction) return a.same_direction;
+    if (a.leverage > b.leverage * (1 + 1e-9)) return true;
+    if (a.leverage < b.leverage * (1 - 1e-9)) return false;
+    return a.volume < b.volume - 1e-9;
+  };
+  int left = n;
   std::vector<char> in_group(n, 0);
   std::vector<long> counted(n, -1);
   long stamp = 0;
-  while (left > 1) {
+  // The best removable group with the units as they are, or none.
+  // Of the ways out of one group, the one it was free along first, then the previous step's
+  // direction, then the one fewest parts blocked at first.
+  const auto better_way = [](const Candidate& a, const Candidate& b) {
+    if (a.freed_at != b.freed_at) return a.freed_at < b.freed_at;
+    if (a.same_direction != b.same_direction) return a.same_direction;
+    return a.blockers < b.blockers;
+  };
+  const auto best_candidate = [&](std::optional<Candidate>& best) {
+    best.reset();
+    std::vector<Candidate> found;  // the best way out of each group
+    std::map<std::vector<int>, std::size_t> group_index;
+    std::vector<int> units;  // unit roots of the remaining parts
+    std::vector<int> local(n, -1);
+    for (int i = 0; i < n; ++i)
+      if (remaining[i] && local[unit_of[i]] < 0) {
+        local[unit_of[i]] = static_cast<int>(units.size());
+        units.push_back(unit_of[i]);
+      }
+    if (units.size() < 2) return;
+    std::vector<std::vector<int>> members(units.size());
+    for (int i = 0; i < n; ++i)
+      if (remaining[i]) members[local[unit_of[i]]].push_back(i);
+    const Direction* previous = result.steps.empty() ? nullptr : &result.steps.back().direction;
+    for (int di = 0; di < directions; ++di) {
+      std::vector<std::vector<int>> edges(units.size());
+      for (std::size_t u = 0; u < units.size(); ++u) {
+        for (int i : members[u])
+          for_each_blocker(di, i, [&](int j) {
+            if (remaining[j] && unit_of[j] != units[u]) edges[u].push_back(local[unit_of[j]]);
+          });
+        std::sort(edges[u].begin(), edges[u].end());
+        edges[u].erase(std::unique(edges[u].begin(), edges[u].end()), edges[u].end());
+      }
+      int count = 0;
+      const std::vector<int> component = components(edges, count);
+      std::vector<char> sink(count, 1);
+      std::vector<std::vector<int>> parts_of(count);
+      std::vector<int> units_of(count, 0);
+      for (std::size_t u = 0; u < units.size(); ++u) {
+        ++units_of[component[u]];
+        if (units[u] == unit_of[largest]) sink[component[u]] = 0;  // the base stays
+        parts_of[component[u]].insert(parts_of[component[u]].end(), members[u].begin(), members[u].end());
+        for (int v : edges[u])
+          if (component[v] != component[u]) sink[component[u]] = 0;
+      }
+      for (int c = 0; c < count; ++c) {
+        if (!sink[c] || static_cast<int>(parts_of[c].size()) == left) continue;
+        Candidate candidate;
+        candidate.units = units_of[c];
+        candidate.parts = parts_of[c];
+        std::sort(candidate.parts.begin(), candidate.parts.end());
+        candidate.direction = di;
+        for (int i : candidate.parts) in_group[i] = 1;
+        for (int i : candidate.parts) {
+          candidate.volume += parts[i].volume;
+          for_each_blocker(di, i, [&](int j) {
+            if (!in_group[j]) candidate.freed_at = std::max(candidate.freed_at, removed_at[j]);
+          });
+        }
+        // Useful: it blocks a part still in place. Leverage: the volume of those over its own.
+        double held = 0;
+        const auto count_held = [&](int k) {
+          if (remaining[k] && !in_group[k] && counted[k] != stamp) {
+            counted[k] = stamp;
+            held += parts[k].volume;
+            candidate.useful = true;
+          }
+        };
+        for (int j : candidate.parts) {
+          for (int k : holds[j]) count_held(k);
+          for (int k : holding[j]) count_held(k);
+        }
+        ++stamp;
+        for (int i : candidate.parts) in_group[i] = 0;
+        candidate.leverage = held / std::max(candidate.volume, 1e-12);
+        candidate.same_direction = previous != nullptr && dot(*previous, result.directions[di]) > 1 - kParallel;
+        for (int i : candidate.parts) candidate.blockers += result.blocking[di][i].size() + held_by[i].size();
+        const auto known = group_index.find(candidate.parts);
+        if (known == group_index.end()) {
+          candidate.group_freed_at = candidate.freed_at;
+          group_index.emplace(candidate.parts, found.size());
+          found.push_back(std::move(candidate));
+        } else {
+          Candidate* same = &found[known->second];
+          const int group_freed_at = std::min(same->group_freed_at, candidate.freed_at);
+          if (better_way(candidate, *same)) *same = std::move(candidate);
+          same->group_freed_at = group_freed_at;
+        }
+      }
+    }
+    for (Candidate& candidate : found)
+      if (!best || better(candidate, *best)) best = std::move(candidate);
+  };
+  const auto units_left = [&] {
+    std::vector<char> seen(n, 0);
+    int count = 0;
+    for (int i = 0; i < n; ++i)
+      if (remaining[i] && !seen[unit_of[i]]) seen[unit_of[i]] = 1, ++count;
+    return count;
+  };
+  bool sampled = false;
+  while (units_left() > 1) {
     if (progress && !progress->report("sequence", 1.0 - static_cast<double>(left) / n)) {
       result.status = Status::failure(StatusCode::Cancelled, "cancelled while ordering the removal");
       return result;
     }
-    std::vector<int> alive;
-    std::vector<int> local(n, -1);
-    for (int i = 0; i < n; ++i)
-      if (remaining[i]) {
-        local[i] = static_cast<int>(alive.size());
-        alive.push_back(i);
-      }
-    bool found = false;
-    DisassemblyStep best;
-    double best_volume = 0;
-    double best_leverage = 0;
-    for (int di = 0; di < directions; ++di) {
-      std::vector<std::vector<int>> edges(alive.size());
-      for (std::size_t a = 0; a < alive.size(); ++a)
-        for (int j : result.blocking[di][alive[a]])
-          if (remaining[j]) edges[a].push_back(local[j]);
-      int count = 0;
-      const std::vector<int> component = components(edges, count);
-      std::vector<char> sink(count, 1);
-      std::vector<std::vector<int>> members(count);
-      for (std::size_t a = 0; a < alive.size(); ++a) {
-        members[component[a]].push_back(alive[a]);
-        for (int b : edges[a])
-          if (component[b] != component[a]) sink[component[a]] = 0;
-      }
-      for (int c = 0; c < count; ++c) {
-        if (!sink[c] || static_cast<int>(members[c].size()) == left) continue;
-        double volume = 0;
-        for (int i : members[c]) volume += parts[i].volume;
-        for (int i : members[c]) in_group[i] = 1;
-        // Leverage: the volume of the remaining parts the group blocks in some direction, over its
-        // own volume. Fasteners (small, holding much) come first.
-        double held = 0;
-        for (int j : members[c])
-          for (int k : holds[j])
-            if (remaining[k] && !in_group[k] && counted[k] != stamp) {
-              counted[k] = stamp;
-              held += parts[k].volume;
-            }
-        ++stamp;
-        for (int i : members[c]) in_group[i] = 0;
-        const double leverage = held / std::max(volume, 1e-12);
-        const bool better =
-            !found || members[c].size() < best.parts.size() ||
-            (members[c].size() == best.parts.size() &&
-             (leverage > best_leverage * (1 + 1e-9) ||
-              (leverage >= best_leverage * (1 - 1e-9) && volume < best_volume - 1e-9)));
-        if (better) {
-          found = true;
-          best.parts = members[c];
-          std::sort(best.parts.begin(), best.parts.end());
-          best.direction = result.directions[di];
-          best_volume = volume;
-          best_leverage = leverage;
+    std::optional<Candidate> best;
+    best_candidate(best);
+    if (!best && !sampled) {
+      // Nothing leaves along the axes, normals and joint directions: add the directions sampled
+      // inside the remaining parts' free cones (once: they do not change), with their blocking.
+      sampled = true;
+      const int first = directions;
+      for (int i = 0; i < n; ++i)
+        if (remaining[i])
+          for (const Direction& d : parts[i].sampled_directions) add_direction(result.directions, d);
+      directions = static_cast<int>(result.directions.size());
+      if (directions > first) {
+        result.blocking.resize(directions, std::vector<std::vector<int>>(n));
+        if (!compute_blocking(first, remaining)) return result;
+        for (int di = first; di < directions; ++di)
+          for (int k = 0; k < n; ++k)
+            for (int j : result.blocking[di][k]) holds[j].push_back(k);
+        for (auto& list : holds) {
+          std::sort(list.begin(), list.end());
+          list.erase(std::unique(list.begin(), list.end()), list.end());
         }
+        best_candidate(best);
       }
     }
-    if (!found) {
+    std::vector<int> released_now;
+    if (!best) {
+      // Nothing can leave: undo one bond a mechanic can undo, a bonded cylindrical contact (a
+      // screw in its thread drawn as a plain bore), the smallest part first, if that lets a group
+      // out. The part it held is the one on its own after the release (else the smaller).
+      std::vector<int> bonds;
+      for (std::size_t k = 0; k < contacts.size(); ++k) {
+        const Contact& c = contacts[k];
+        if (!released[k] && intent_of(k) == ContactIntent::Bonded && c.type == ContactType::CLJ &&
+            remaining[c.body_a] && remaining[c.body_b])
+          bonds.push_back(static_cast<int>(k));
+      }
+      const auto smaller = [&](int k) {
+        return std::min(parts[contacts[k].body_a].volume, parts[contacts[k].body_b].volume);
+      };
+      std::stable_sort(bonds.begin(), bonds.end(), [&](int x, int y) { return smaller(x) < smaller(y) - 1e-9; });
+      for (int k : bonds) {
+        released[k] = 1;
+        make_units();
+        const Contact& c = contacts[k];
+        int unit_a = 0, unit_b = 0;
+        for (int i = 0; i < n; ++i)
+          if (remaining[i]) unit_a += unit_of[i] == unit_of[c.body_a], unit_b += unit_of[i] == unit_of[c.body_b];
+        const bool a_held = unit_a != unit_b ? unit_a < unit_b : parts[c.body_a].volume <= parts[c.body_b].volume;
+        const int fastener = a_held ? c.body_a : c.body_b, host = a_held ? c.body_b : c.body_a;
+        held_by[host].push_back(fastener);
+        holding[fastener].push_back(host);
+        best_candidate(best);
+        if (best) {
+          released_now.push_back(k);
+          break;
+        }
+        held_by[host].pop_back();
+        holding[fastener].pop_back();
+        released[k] = 0;
+        make_units();
+      }
+    }
+    if (!best) {
       std::string names;
-      for (int i : alive) names += (names.empty() ? "" : ", ") + parts[i].name;
+      for (int i = 0; i < n; ++i)
+        if (remaining[i]) names += (names.empty() ? "" : ", ") + parts[i].name;
       result.reason = "no part or group of the remaining parts (" + names +
                       ") can leave along any candidate direction: they interlock";
       return result;
     }
-    for (int i : best.parts) remaining[i] = 0;
-    left -= static_cast<int>(best.parts.size());
-    result.steps.push_back(best);
+    DisassemblyStep step;
+    step.parts = best->parts;
+    step.direction = result.directions[best->direction];
+    step.released = released_now;
+    for (int i : step.parts) in_group[i] = 1;
+    for (int i : step.parts)
+      for_each_blocker(best->direction, i, [&](int j) {
+        if (!in_group[j]) step.blocked_before.push_back(j);
+      });
+    for (int i : step.parts) in_group[i] = 0;
+    std::sort(step.blocked_before.begin(), step.blocked_before.end());
+    step.blocked_before.erase(std::unique(step.blocked_before.begin(), step.blocked_before.end()),
+                              step.blocked_before.end());
+    for (int i : step.parts) {
+      remaining[i] = 0;
+      removed_at[i] = static_cast<int>(result.steps.size());
+    }
+    left -= static_cast<int>(step.parts.size());
+    result.steps.push_back(std::move(step));
   }
   for (int i = 0; i < n; ++i)
-    if (remaining[i]) result.base = i;
+    if (remaining[i]) result.base_parts.push_back(i);
+  result.base = largest;
   result.complete = true;
   if (progress) progress->report("sequence", 1.0);
   return result;
@@ -389,7 +569,8 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
 
 DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& contact_options,
                               const MeshOptions& mesh_options, const DisassemblyOptions& options,
-                              const std::vector<std::vector<Direction>>& extra_directions, Progress* progress) {
+                              const std::vector<std::vector<Direction>>& extra_directions, Progress* progress,
+                              const ContactsResult* contacts) {
   DisassemblyResult result;
   // A signal inside OCCT while a body is measured or meshed fails the call
   // naming the body (find_contacts guards its own stages).
@@ -401,7 +582,9 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
     result.status = check_triangle_budget(shapes, names, mesh_options);
     if (!result.status.ok()) return result;
   }
-  const ContactsResult found = find_contacts(assembly, contact_options, progress);
+  ContactsResult found_here;
+  if (contacts == nullptr) found_here = find_contacts(assembly, contact_options, progress);
+  const ContactsResult& found = contacts != nullptr ? *contacts : found_here;
   if (!found.status.ok()) {
     result.status = found.status;
     return result;
@@ -441,13 +624,33 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
     parts[c.body_a].directions.push_back(d);
     parts[c.body_b].directions.push_back(d);
   }
-  const JointsResult joints = find_joints(assembly, found);
-  if (joints.status.ok())
+  JointOptions joint_options;
+  joint_options.contact_intents = options.contact_intents;
+  const JointsResult joints = find_joints(assembly, found, joint_options);
+  if (joints.status.ok()) {
     for (const PairJoint& joint : joints.joints)
       for (const gp_Dir& d : joint.free_directions) {
         parts[joint.body_b].directions.push_back({d.X(), d.Y(), d.Z()});
         parts[joint.body_a].directions.push_back({-d.X(), -d.Y(), -d.Z()});
       }
+    // Beyond the axes and normals: directions inside each part's cone of free directions (a
+    // block in a corner leaves along the diagonal as well as along each wall).
+    if (options.sample_free_cones)
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        const std::vector<gp_Dir> cone = body_free_directions(found, joints, static_cast<int>(i), joint_options);
+        Direction middle{0, 0, 0};
+        for (std::size_t a = 0; a < cone.size(); ++a) {
+          const Direction u{cone[a].X(), cone[a].Y(), cone[a].Z()};
+          parts[i].sampled_directions.push_back(u);
+          for (int k = 0; k < 3; ++k) middle[k] += u[k];
+          for (std::size_t b = a + 1; b < cone.size(); ++b) {
+            const Direction sum{u[0] + cone[b].X(), u[1] + cone[b].Y(), u[2] + cone[b].Z()};
+            if (dot(sum, sum) > 1e-12) parts[i].sampled_directions.push_back(sum);  // made unit when added
+          }
+        }
+        if (cone.size() > 2 && dot(middle, middle) > 1e-12) parts[i].sampled_directions.push_back(middle);
+      }
+  }
   DisassemblyOptions resolved = options;
   if (resolved.tolerance == 0) resolved.tolerance = 2 * mesh_options.deflection;  // 0: the default
   // anything else not positive and finite is refused by plan_disassembly

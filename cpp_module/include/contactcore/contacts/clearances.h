@@ -14,7 +14,10 @@ namespace contactcore {
 // a concave cylinder on the same axis (overlapping along it) or sphere on the
 // same centre, or two facing planes with overlapping outlines, whose gap
 // (radial or normal) is in (linear tolerance, max_gap), with each body
-// pair's tolerances (pair_tolerances). Sorted by bodies, then partitions.
+// pair's tolerances (pair_tolerances). Also coaxial (concentric) overlaps:
+// a convex cylinder or sphere larger than the concave one around it by a
+// radial amount in the same range, reported with a negative gap (a press fit
+// drawn at its real sizes). Sorted by bodies, then partitions.
 std::vector<Clearance> find_clearances(const std::vector<BodyPartitions>& partitions, double max_gap);
 
 }  // namespace contactcore
