@@ -5,6 +5,7 @@
 #include "common.h"
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <memory>
 
@@ -242,7 +243,8 @@ class HapticSession {
 // an ArgumentError naming it, never silently the default.
 ServoConfig config_from(const py::kwargs& kw) {
   static const char* const kOptions[] = {"stiffness", "angular_stiffness", "damping", "angular_damping",
-                                         "max_speed", "breakaway_force",   "rate_hz", "realtime_priority"};
+                                         "max_speed", "breakaway_force",   "rate_hz", "realtime_priority",
+                                         "friction"};
   for (const auto& item : kw) {
     const std::string key = py::str(item.first);
     if (std::none_of(std::begin(kOptions), std::end(kOptions), [&](const char* option) { return key == option; })) {
@@ -261,6 +263,12 @@ ServoConfig config_from(const py::kwargs& kw) {
   if (kw.contains("rate_hz")) c.rate_hz = kw["rate_hz"].cast<double>();
   if (kw.contains("realtime_priority")) c.realtime_priority = kw["realtime_priority"].cast<int>();
   if (kw.contains("lock_memory")) c.lock_memory = kw["lock_memory"].cast<bool>();
+  if (kw.contains("friction")) {
+    c.friction = kw["friction"].cast<double>();
+    if (!(c.friction >= 0) || !std::isfinite(c.friction))
+      raise_argument_error("friction must be a finite number >= 0 (Coulomb's coefficient), got " +
+                           std::to_string(c.friction));
+  }
   return c;
 }
 
@@ -605,7 +613,8 @@ void bind_haptics(py::module_& root) {
       "(hid_file=FILE, lockstep), 'sim-hid-ff'. Raises DeviceUnavailable (with .devices) when the hardware "
       "is not there. Keyword options: "
       "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz, "
-      "realtime_priority (SCHED_FIFO priority of the loop thread when permitted).");
+      "realtime_priority (SCHED_FIFO priority of the loop thread when permitted), friction (Coulomb's "
+      "coefficient at the part's contacts, 0: none).");
 
   py::class_<HapticSession>(m, "HapticSession", "A device and the 1 kHz loop on its own thread.")
       .def(py::init([](TrialScene& scene, const std::string& device, const std::vector<double>& translate,
@@ -652,6 +661,10 @@ void bind_haptics(py::module_& root) {
       .def("set_enabled", [](HapticSession& s, bool on) { s.loop_->set_enabled(on); })
       .def("set_stiffness", [](HapticSession& s, double k, double kr) { s.loop_->set_stiffness(k, kr); })
       .def("set_damping", [](HapticSession& s, double b, double br) { s.loop_->set_damping(b, br); })
+      .def("set_friction", [](HapticSession& s, double mu) {
+        if (!(mu >= 0) || !std::isfinite(mu)) raise_argument_error("friction must be a finite number >= 0");
+        s.loop_->set_friction(mu);
+      }, py::arg("mu"), "Coulomb friction coefficient at the part's contacts (0: none).")
       .def("set_hand_target", [](HapticSession& s, const std::vector<double>& t, const std::vector<double>& r) {
         s.set_hand_target(Vec3(t[0], t[1], t[2]), Vec3(r[0], r[1], r[2]));
       }, py::arg("translate"), py::arg("rotate_deg"))
