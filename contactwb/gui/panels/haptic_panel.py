@@ -110,8 +110,6 @@ class HapticTrialPanel:
             watcher.moving_bodies.add((self.obj.Document.Name, self.obj.Name))
         except ImportError:
             pass
-        self.dragger = None  # the simulated hand's drag handle in the 3D view
-        self._dragging = False
         self._start_session(device)
         from PySide2 import QtCore
         self.timer = QtCore.QTimer()
@@ -252,9 +250,7 @@ class HapticTrialPanel:
         caps = self.session.capabilities
         self.device_message.setText(self.session.message)
         # The sliders drive the simulated hand (none with hardware), from where the part starts.
-        simulated = caps["name"] == h.simulated_capabilities()["name"]
-        self.hand_box.setEnabled(simulated)
-        self._show_dragger(simulated)
+        self.hand_box.setEnabled(caps["name"] == h.simulated_capabilities()["name"])
         self.set_hand_sliders(list(translate) + list(rotate_deg), drive=False)
         # Gains within what the device renders (a rate device renders none: keep the defaults).
         k_max = caps["max_stiffness"] or 5.0
@@ -304,8 +300,6 @@ class HapticTrialPanel:
             slider.setValue(int(round(v * SLIDER_STEPS_PER_UNIT)))
             slider.blockSignals(False)
             self.hand_values[key].setText(f"{slider.value() / SLIDER_STEPS_PER_UNIT:.1f} {unit}")
-        if self.dragger is not None and not self._dragging:
-            self.dragger.set_offset(list(values[:3]), list(values[3:]))
         if drive:
             self._hand_moved()
 
@@ -313,41 +307,9 @@ class HapticTrialPanel:
         translate, rotate = self.hand_slider_values()
         for (key, _, _, unit), v in zip(HAND_AXES, translate + rotate):
             self.hand_values[key].setText(f"{v:.1f} {unit}")
-        if self.dragger is not None:
-            self.dragger.set_offset(translate, rotate)
         if self.session is not None:
             self.script = None  # the user takes over from a playing script
             self.session.set_hand_target(translate, rotate)
-
-    # ---- the simulated hand's drag handle (3D view)
-    def _show_dragger(self, on):
-        """The drag handle on the part while the simulated hand drives it."""
-        if not on:
-            if self.dragger is not None:
-                self.dragger.remove()
-                self.dragger = None
-            return
-        if self.dragger is not None or FreeCADGui.ActiveDocument is None:
-            return
-        import Part
-        from contactwb.gui.panels import hand_dragger
-        view = FreeCADGui.ActiveDocument.ActiveView
-        if not hasattr(view, "getSceneGraph"):
-            return
-        shape = Part.getShape(self.obj, "", needSubElement=False, transform=False)
-        self.dragger = hand_dragger.HandDragger(view, self.scene.centre, hand_dragger.handle_size(shape),
-                                                self._dragged)
-
-    def _dragged(self, translate, rotate):
-        """The user dragged the handle: the hand follows, the sliders show it."""
-        self._dragging = True
-        try:
-            self.set_hand_sliders(list(translate) + list(rotate), drive=False)
-            self.script = None
-            if self.session is not None:
-                self.session.set_hand_target(list(translate), list(rotate))
-        finally:
-            self._dragging = False
 
     def _device_changed(self, index):
         self._start_session(self.DEVICES[index][1])
@@ -536,7 +498,6 @@ class HapticTrialPanel:
     def _close(self):
         global active_panel
         self.timer.stop()
-        self._show_dragger(False)
         if self.session is not None:
             self.session.stop()
             self.session = None

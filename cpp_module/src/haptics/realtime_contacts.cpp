@@ -167,7 +167,7 @@ int RealtimeContacts::near_bodies(const Pose& pose, int* out, int capacity) cons
 }
 
 bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, const Pose& pose, const SurfaceProxy& o,
-                             LiveContact& c, double lead_in) const noexcept {
+                             LiveContact& c) const noexcept {
   const double cos_tol = std::cos(tolerances_.angle);
   switch (m.kind) {
     case SurfaceKind::Cylinder: {
@@ -184,10 +184,7 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, c
       if (d > tolerances_.distance + clearance) return false;
       const double s1 = (p1 - o.location).dot(o.axis), s2 = (p2 - o.location).dot(o.axis);
       const double lo = std::max(std::min(s1, s2), o.axial_min), hi = std::min(std::max(s1, s2), o.axial_max);
-      // Sharing an axial band, or about to: a line-to-line shaft at its
-      // bore's mouth (within the capture distance of it) is held there by the
-      // tessellations' rims crossing, so it must be captured before it enters.
-      if (hi - lo < (lead_in > 0 ? -lead_in : 1e-3)) return false;
+      if (hi - lo < 1e-3) return false;
       c.type = ContactType::CLJ;
       c.distance = d;
       c.angle = std::acos(std::min(1.0, dot));
@@ -238,7 +235,7 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, c
   }
 }
 
-int RealtimeContacts::update(const Pose& pose, LiveContact* out, int capacity, double lead_in) const noexcept {
+int RealtimeContacts::update(const Pose& pose, LiveContact* out, int capacity) const noexcept {
   int near[kMaxLive];
   const int near_count = near_bodies(pose, near, kMaxLive);
   int n = 0;
@@ -275,7 +272,7 @@ int RealtimeContacts::update(const Pose& pose, LiveContact* out, int capacity, d
         const SurfaceProxy& o = body.surfaces[*it];
         if (m.kind != SurfaceKind::Plane && m.kind != SurfaceKind::Cone && o.radius > m.radius + slack) break;
         LiveContact c;
-        if (!match(m, local, pose, o, c, lead_in)) continue;
+        if (!match(m, local, pose, o, c)) continue;
         if (n >= capacity) return n;
         c.body = near[k];
         c.moving_partition = local.partition;
@@ -296,7 +293,7 @@ ContactJointFinder::ContactJointFinder(const RealtimeContacts& contacts, std::ve
     : contacts_(contacts), groups_(std::move(partition_groups)), centre_(centre), live_(kMaxLive) {}
 
 bool ContactJointFinder::capture(const Pose& pose, JointState& joint) noexcept {
-  const int n = contacts_.update(pose, live_.data(), kMaxLive, contacts_.tolerances().distance);
+  const int n = contacts_.update(pose, live_.data(), kMaxLive);
   // The nearest contact of a type.
   auto nearest = [&](ContactType type) -> const LiveContact* {
     const LiveContact* best = nullptr;
@@ -484,7 +481,7 @@ bool ContactJointFinder::still_engaged(const Pose& pose, const JointState& joint
     JointState again;
     return cone_seat(pose, again, &joint);
   }
-  const int n = contacts_.update(pose, live_.data(), kMaxLive, contacts_.tolerances().distance);
+  const int n = contacts_.update(pose, live_.data(), kMaxLive);
   for (int i = 0; i < n; ++i) {
     const LiveContact& c = live_[i];
     const SurfaceProxy& o = contacts_.surfaces(c.body)[c.other_index];

@@ -56,9 +56,7 @@ class RealtimeContacts {
                    const CaptureTolerances& tolerances);
   // The contacts of the moving part at `pose` (its displacement from the
   // assembled placement), at most `capacity`, written to `out`. Allocation-free.
-  // `lead_in` (mm, engagement): a shaft whose end is up to this far outside
-  // its bore's mouth, coaxial within the tolerances, counts as in the bore.
-  int update(const Pose& pose, LiveContact* out, int capacity, double lead_in = 0) const noexcept;
+  int update(const Pose& pose, LiveContact* out, int capacity) const noexcept;
   // Bodies whose box meets the moving part's box at `pose` (inflated by the
   // capture distance); returns how many were written.
   int near_bodies(const Pose& pose, int* out, int capacity) const noexcept;
@@ -79,7 +77,7 @@ class RealtimeContacts {
   // `m` is the moving partition at `pose` (no outline); `local` the same at
   // its assembled placement (with its outline, for planes).
   bool match(const SurfaceProxy& m, const SurfaceProxy& local, const Pose& pose, const SurfaceProxy& o,
-             LiveContact& c, double lead_in) const noexcept;
+             LiveContact& c) const noexcept;
   std::vector<BodySurfaces> bodies_;
   int moving_ = 0;
   CaptureTolerances tolerances_;
