@@ -28,6 +28,9 @@ class ContactsWorkbench(FreeCADGui.Workbench):
         for toolbar, names in commands.register().items():
             self.appendToolbar(toolbar, names)
             self.appendMenu("&Contacts", names)
+        import contactwb
+        # The Preferences dialog shows the group "Contacts" with the icon "preferences-contacts"
+        FreeCADGui.addIconPath(contactwb.ICONS_DIR)
         FreeCADGui.addPreferencePage(preferences.PreferencesPage, "Contacts")
 
     def ContextMenu(self, recipient):

@@ -19,7 +19,8 @@ SAMPLE       ?= Resources/samples/motor.step
 DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
   libocct-visualization-dev libhidapi-dev pybind11-dev python3-pybind11 \
-  python3-dev cmake make g++ libtbb-dev libeigen3-dev graphviz libfcl-dev pkg-config ccache
+  python3-dev cmake make g++ libtbb-dev libeigen3-dev graphviz libfcl-dev pkg-config ccache \
+  python3-pyside2.qtsvg
 # What `make test`, `make bench`, `make sanitize` and `make fuzz` add.
 DEB_TEST_PACKAGES := $(DEB_PACKAGES) libcoin-dev python3-pytest googletest libgtest-dev \
   libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev

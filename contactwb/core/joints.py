@@ -155,6 +155,31 @@ def _fmt(values):
     return "(" + ", ".join(f"{v:.4g}" if abs(v) > 1e-12 else "0" for v in values) + ")"
 
 
+AXIS_NAMES = {(1, 0, 0): "x", (0, 1, 0): "y", (0, 0, 1): "z"}
+
+
+def direction_name(direction):
+    """"z" for (0, 0, ±1) (an axis, either sense), else the vector."""
+    for axis, name in AXIS_NAMES.items():
+        if abs(abs(sum(a * d for a, d in zip(axis, direction))) - 1.0) <= 1e-9:
+            return name
+    return _fmt(direction)
+
+
+def describe_motion(rotations, translations):
+    """"1 rotation about z through (0, 0, 30.6); 1 translation along z":
+    the free motions of a joint or a rigid group, in words. `rotations`:
+    [(point, direction)], `translations`: [direction]."""
+    parts = []
+    if rotations:
+        axes = [f"{direction_name(d)} through {_fmt(p)}" for p, d in rotations]
+        parts.append(f"{len(rotations)} rotation{'s' if len(rotations) > 1 else ''} about {', '.join(axes)}")
+    if translations:
+        parts.append(f"{len(translations)} translation{'s' if len(translations) > 1 else ''} along "
+                     + ", ".join(direction_name(d) for d in translations))
+    return "; ".join(parts) or "no motion"
+
+
 def _ground_index(names, ground):
     if ground is None:
         return -1  # the core picks the largest by volume

@@ -37,40 +37,29 @@ def select_contact(contact, faces=False):
 
 
 def contact_box(contact):
-    """Bounding box of the contact: of its smaller side's faces (the common
-    area lies within both sides, and a shaft's whole face is long)."""
-    import FreeCAD
-    boxes = []
-    for links in (contact.FacesA, contact.FacesB):
-        box = FreeCAD.BoundBox()
-        for root, subnames in links:
-            for subname in subnames:
-                face = root.getSubObject(subname)
-                if face is not None:
-                    box.add(face.BoundBox)
-        if box.isValid():
-            boxes.append(box)
-    return min(boxes, key=lambda b: b.DiagonalLength) if boxes else FreeCAD.BoundBox()
+    """Bounding box of the contact's common region (of its smaller side's
+    faces when there is none: the common area lies within both sides, and a
+    shaft's whole face is long)."""
+    from contactwb.gui.panels import contact_extent
+    return contact_extent.contact_box(contact)
 
 
-def zoom_to(contact, margin=4.0):
-    """Centres the view on the contact, its faces filling about 1/margin of it."""
+def zoom_to(contact, margin=1.3):
+    """Frames the contact: the camera, keeping its direction, fitted on the
+    bounding box of the contact's common region (Coin's viewBoundingBox: the
+    box's bounding sphere fills 1/margin of the smaller side of the view)."""
+    from pivy import coin
     box = contact_box(contact)
     if not box.isValid():
         return
     view = FreeCADGui.activeDocument().activeView()
     camera = view.getCameraNode()
-    direction = view.getViewDirection()
-    size = max(box.DiagonalLength, 1e-3)
-    centre = box.Center
-    distance = max(camera.focalDistance.getValue(), 10 * size)
-    position = centre - direction * distance
-    camera.position.setValue(position.x, position.y, position.z)
-    camera.focalDistance.setValue(distance)
-    if hasattr(camera, "height"):
-        camera.height.setValue(size * margin)
-    else:
-        camera.heightAngle.setValue(0.8)
+    # a flat box (a plane contact) gets a little depth: a box of no depth has no sphere to fit
+    pad = max(box.DiagonalLength * 0.02, 1e-3)
+    bounds = coin.SbBox3f(box.XMin - pad, box.YMin - pad, box.ZMin - pad, box.XMax + pad, box.YMax + pad,
+                          box.ZMax + pad)
+    width, height = view.getSize()
+    camera.viewBoundingBox(bounds, width / max(height, 1), max(margin, 1.0))
 
 
 def _body_objects(doc):
@@ -82,14 +71,19 @@ _isolated = {}  # document name -> bodies isolate() hid, for show_all()
 
 
 def isolate(contact):
-    """Shows only the contact's two parts and the contact itself."""
+    """Shows only the contact's two parts, ghosted (see-through) so that the
+    contact's paint shows even inside them, and the contact itself."""
     doc = contact.Document
     keep = contact_bodies(contact)
     hidden = _isolated.setdefault(doc.Name, [])
+    kept = []
     for body in _body_objects(doc):
-        if not any(body.root is root and body.subname.startswith(path) for root, path in keep):
+        if any(body.root is root and body.subname.startswith(path) for root, path in keep):
+            kept.append(body)
+        else:
             _set_body_visibility(body, False)
             hidden.append(body)
+    _ghost(doc, kept)
     group = analysis_of(contact)
     if group is not None:
         for other in group.Group:
@@ -130,16 +124,21 @@ def ghosted_objects(doc):
 _ghosted = {}  # document name -> {object name: transparency before ghosting}
 
 
+def _ghost(doc, bodies_to_ghost):
+    """Makes these bodies see-through, remembering their transparency."""
+    saved = _ghosted.setdefault(doc.Name, {})
+    for body in bodies_to_ghost:
+        vobj = getattr(body.obj.getLinkedObject(True), "ViewObject", None)
+        if vobj is None or not hasattr(vobj, "Transparency"):
+            continue
+        saved.setdefault(vobj.Object.Name, vobj.Transparency)
+        vobj.Transparency = GHOST_TRANSPARENCY
+
+
 def set_ghosted(doc, ghosted):
     """Makes the bodies see-through around the painted contacts (or restores them)."""
-    saved = _ghosted.setdefault(doc.Name, {})
     if ghosted:
-        for body in ghosted_objects(doc):
-            vobj = getattr(body.obj.getLinkedObject(True), "ViewObject", None)
-            if vobj is None or not hasattr(vobj, "Transparency"):
-                continue
-            saved.setdefault(vobj.Object.Name, vobj.Transparency)
-            vobj.Transparency = GHOST_TRANSPARENCY
+        _ghost(doc, ghosted_objects(doc))
         return
     for name, transparency in _ghosted.pop(doc.Name, {}).items():
         obj = doc.getObject(name)

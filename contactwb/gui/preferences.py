@@ -1,12 +1,21 @@
 """The workbench's page in FreeCAD's Preferences: default tolerances, the
 contact colours and the paint style (stored under
 User parameter:BaseApp/Preferences/Mod/Contacts)."""
+import math
+
 from PySide2 import QtGui, QtWidgets
 
 from contactwb.core.kinds import TYPE_NAMES
 from contactwb.gui import settings
 from contactwb.gui.overlay.colours import TYPE_COLOURS
 from contactwb.gui.settings import PAINT_STYLES, PREFERENCES  # noqa: F401  (this module's names before)
+from contactwb.gui.units import MeasureBox, plain_number
+
+
+def default_angular():
+    """The core's default angular tolerance, radians."""
+    from contactwb import core
+    return core.contactcore.Tolerances().angular
 
 
 class PreferencesPage:
@@ -17,16 +26,13 @@ class PreferencesPage:
         self.form.setObjectName("ContactsPreferences")
         self.form.setWindowTitle("Contacts")
         layout = QtWidgets.QFormLayout(self.form)
-        self.linear = QtWidgets.QDoubleSpinBox()
+        self.linear = MeasureBox("mm")
         self.linear.setRange(0, 10)
-        self.linear.setDecimals(7)
-        self.linear.setSuffix(" mm")
         self.linear.setSpecialValueText("scaled to the model")
-        self.angular = QtWidgets.QDoubleSpinBox()
+        self.angular = MeasureBox("\u00b0")
         self.angular.setRange(0, 10)
-        self.angular.setDecimals(5)
-        self.angular.setSuffix(" \u00b0")
-        self.angular.setSpecialValueText("default")
+        # the core's own default, in degrees (0.00573 deg = 1e-4 rad), not a rounded "0.01"
+        self.angular.setSpecialValueText(f"default ({plain_number(math.degrees(default_angular()))} \u00b0)")
         self.paint = QtWidgets.QComboBox()
         self.paint.addItems(PAINT_STYLES)
         layout.addRow("Default linear tolerance:", self.linear)

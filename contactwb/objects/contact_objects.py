@@ -229,11 +229,12 @@ def contact_label(kind, number, a, b):
 
 def contact_label2(record):
     """The tree's description column: area, span or radius."""
+    from contactwb.document import units  # the property editor's units (FreeCAD's schema)
     if record.type in CIRCLE_TYPES:
-        return f"circle r {record.radius:.4g} mm"
-    text = f"{record.area:.4g} mm\u00b2"
+        return f"circle r {units.length_text(record.radius)}"
+    text = units.area_text(record.area)
     if record.partial:
-        text += f", span {record.span:.0f}\u00b0"
+        text += f", span {units.angle_text(record.span)}"
     return text
 
 
@@ -407,11 +408,22 @@ def _update_joints(doc, group, assembly, raw, result, kept, bodies):
         max(range(len(names)), key=lambda i: result.bodies[i].volume)
     mobility = cc.assembly_mobility(assembly, raw, found, ground)
     set_if_changed(group, "LiaisonGraph", cc.liaison_graph_dot(assembly, found, mobility))
+    # Each count explained: which bodies move, how (the core's group motions
+    # and passive spins, in words: contactwb.core.joints.describe_motion)
+    from contactwb.core.joints import describe_motion, direction_name
+    spinning = sorted({names[s.body] for s in mobility.passive_spins})
     lines = [f"Ground: {names[mobility.ground]}" if mobility.ground >= 0 else "Ground: none",
-             f"Degrees of freedom: {mobility.dof} ({mobility.passive} passive spins)"]
+             f"Degrees of freedom: {mobility.dof} ({mobility.passive} passive spins): "
+             f"{mobility.dof - mobility.passive} that move rigid groups (each group's own motions below), "
+             f"{mobility.passive} turning a part about its own axis without moving anything else"
+             + (f" ({', '.join(spinning)})" if spinning else "")]
     for number, (members, motion) in enumerate(zip(mobility.groups, mobility.group_motions), start=1):
+        spins = [f"{names[s.body]} about {direction_name(s.direction)}" for s in motion.passive_spins]
         lines.append(f"Rigid group {number}: {', '.join(names[i] for i in members)} "
-                     f"({motion.type}, {motion.dof} DOF)")
+                     f"({motion.type}, {motion.dof} DOF): "
+                     + ("held by the ground" if number == 1 and mobility.ground in members
+                        else describe_motion(list(motion.rotations), [tuple(d) for d in motion.translations]))
+                     + (f"; passive spins: {', '.join(spins)}" if spins else ""))
     set_if_changed(group, "Mobility", lines)
     contacts = [c for c in group.Group if is_contact(c)]
     position = {raw_index: k for k, raw_index in enumerate(kept)}

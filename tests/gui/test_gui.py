@@ -40,6 +40,7 @@ def test_toolbar_shows_only_working_commands(gui_report):
     assert gui_report["toolbar_actions"] == [
         "Find contacts...", "Contact table", "Isolate contact", "Show all", "Ghost parts",
         "Show partitions", "Derive joints", "Joints and liaison graph", "Export contacts...", "Open sample motor",
+        "Import STEP assembly...",
         "Show simulation model"]
 
 

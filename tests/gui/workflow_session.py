@@ -116,7 +116,7 @@ def panel_whole_document():
     doc = state["doc"]
     panel = run_panel()
     report["panel_default_scope"] = panel.scope_value()
-    report["panel_defaults"] = {"linear": float(panel.linear.property("rawValue")),
+    report["panel_defaults"] = {"linear": panel.linear.value(),
                                 "model_linear": panel.model_linear,
                                 "text": panel.linear.text()}
     widen_combo_view()
@@ -130,6 +130,7 @@ def panel_whole_document():
     report["document_scope"] = {"contacts": len(group.Group), "summary": list(group.Summary),
                                 "labels": [c.Label for c in group.Group],
                                 "label2": [c.Label2 for c in group.Group],
+                                "area_editor": [c.Area.UserString for c in group.Group],  # the property editor's
                                 "bodies": [[c.BodyA, c.BodyB] for c in group.Group],
                                 "numbers": [c.Number for c in group.Group],
                                 "undo": list(doc.UndoNames), "touched": "Touched" in group.State}
@@ -189,7 +190,7 @@ def table():
     FreeCADGui.updateGui()
     widget = contact_table.dock().widget()
     state["table"] = widget
-    result = {"rows": widget.table.rowCount(), "summary": widget.summary.text()}
+    result = {"rows": widget.table.rowCount(), "summary": widget.summary.toPlainText()}
     widget.table.sortItems(4, QtCore.Qt.DescendingOrder)
     areas = [widget.table.item(r, 4).data(QtCore.Qt.UserRole + 1) for r in range(widget.table.rowCount())]
     result["sorted_desc"] = areas == sorted(areas, reverse=True)
@@ -413,7 +414,7 @@ def joints():
               "glyph_axes": sum(a for a, _ in glyphs.values()),
               "rotations": sum(len(o.AxisDirections) for o in found),
               "mobility": list(group.Mobility),
-              "graph_png": bool(panel and panel.graph_path and panel.graph.pixmap() is not None),
+              "graph_png": bool(panel and panel.graph_path and panel.graph.item is not None),
               "undo": doc.UndoNames[0] if doc.UndoNames else None,
               "contacts_kept": sum(1 for c in group.Group if not is_joint(c))}
     widget = contact_table.dock().widget()
@@ -497,7 +498,8 @@ def partitions():
     camera_view.viewIsometric()
     camera_view.fitAll()
     report["partitions"] = {"bodies": view.bodies, "counts": view.counts,
-                            "colours": dict(partitions_view.SURFACE_COLOURS),
+                            "colours": {kind: ["#" + "".join(f"{round(c * 255):02x}" for c in view.colour(kind, shade))
+                                               for shade in range(4)] for kind in ("Plane", "Cylinder")},
                             "png": save_view("gui_partitions.png")}
     FreeCADGui.runCommand("Contacts_ShowPartitions")
     report["partitions"]["hidden_again"] = not partitions_view.is_shown(doc)

@@ -252,6 +252,62 @@ class Contacts_OpenSample:
         return doc
 
 
+class Contacts_ImportStep:
+    """Imports a STEP assembly with its product names (the core's reader)."""
+
+    def GetResources(self):
+        return {
+            "Pixmap": contactwb.icon_path("Contacts_ImportStep"),
+            "MenuText": "Import STEP assembly...",
+            "ToolTip": "Import a STEP assembly into the active document (or a new one): one part per solid, "
+                       "named after its STEP product, in containers following the file's assembly tree; "
+                       "shapes in mm whatever the file's unit",
+        }
+
+    def IsActive(self):
+        return True
+
+    def Activated(self):
+        import os
+        from PySide2 import QtWidgets
+        folder = os.path.dirname(FreeCAD.ActiveDocument.FileName) if FreeCAD.ActiveDocument and \
+            FreeCAD.ActiveDocument.FileName else os.path.expanduser("~")
+        path, _ = QtWidgets.QFileDialog.getOpenFileName(FreeCADGui.getMainWindow(), "Import STEP assembly",
+                                                        folder, "STEP (*.step *.stp *.STEP *.STP)")
+        if path:
+            import_step_file(path)
+
+
+def import_step_file(path, doc=None):
+    """Contacts_ImportStep's work on a chosen file: into `doc` (default the
+    active document, else a new one named after the file), one undo entry,
+    the view fitted. Returns the features made ([] after an error, shown)."""
+    import os
+    from contactwb import core
+    from contactwb.document import step_import
+    doc = doc or FreeCAD.ActiveDocument or FreeCAD.newDocument(
+        "".join(c if c.isalnum() else "_" for c in os.path.splitext(os.path.basename(path))[0]) or "Assembly")
+    doc.openTransaction("Import STEP")
+    try:
+        root, features, unit = step_import.import_step(doc, path)
+    except (core.ContactsError, OSError) as error:
+        doc.abortTransaction()
+        show_error(f"cannot import '{path}': {error}")
+        return []
+    doc.recompute()
+    doc.commitTransaction()
+    converted = "" if unit == "mm" else f" (file unit {unit}, converted to mm)"
+    FreeCAD.Console.PrintMessage(f"Contacts: {len(features)} parts imported from {path}{converted}\n")
+    gui_doc = FreeCADGui.getDocument(doc.Name)
+    if gui_doc is not None:
+        FreeCADGui.setActiveDocument(doc.Name)
+        view = gui_doc.activeView()
+        if view is not None and hasattr(view, "viewIsometric"):
+            view.viewIsometric()
+            view.fitAll()
+    return features
+
+
 def _analysis_to_export(doc):
     """The selected ContactAnalysis (or the one holding a selected contact),
     else the document's only one; None when that is ambiguous."""
@@ -322,6 +378,7 @@ COMMANDS = {
     "Contacts_ShowJoints": Contacts_ShowJoints,
     "Contacts_ExportContacts": Contacts_ExportContacts,
     "Contacts_OpenSample": Contacts_OpenSample,
+    "Contacts_ImportStep": Contacts_ImportStep,
 }
 
 # In the 3D view's context menu (a contact's own menu: its view provider).

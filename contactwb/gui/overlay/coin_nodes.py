@@ -69,13 +69,15 @@ def left_out_of_fit_all():
     return group
 
 
-def legend_node(entries, name="ContactsLegend"):
+def legend_node(entries, name="ContactsLegend", stack=None):
     """A legend drawn over the view's top-left corner: one line of text per
     (text, (r, g, b)) entry, in its colour. An annotation (named `name`) with
     its own camera, so it stays put whatever the view's camera does;
     unpickable. Its text would count at the legend camera's coordinates (near
     the origin) in the scene's bounding box and pull Fit all off the model:
-    it is wrapped in a group Fit all leaves out, which is returned."""
+    it is wrapped in a group Fit all leaves out, which is returned.
+    stack=(document name, key): placed below the document's other legends
+    (legend_stack), never over them."""
     legend = coin.SoAnnotation()
     legend.setName(name)
     pick = coin.SoPickStyle()
@@ -94,6 +96,12 @@ def legend_node(entries, name="ContactsLegend"):
     start = coin.SoTranslation()
     start.translation.setValue(-0.96, 0.9, 0)
     legend.addChild(start)
+    if stack is not None:
+        from contactwb.gui.overlay import legend_stack
+        if entries:
+            legend_stack.register(stack[0], stack[1], start, len(entries))
+        else:
+            legend_stack.unregister(stack[0], stack[1])
     for text, colour in entries:
         base = coin.SoBaseColor()
         base.rgb.setValue(*colour)

@@ -5,19 +5,10 @@ import FreeCAD
 
 from contactwb.core.kinds import CONTACT_TYPES
 from contactwb.gui import settings
-
-# The legend: one colour per contact type (also the tree icons' colour). None
-# is near FreeCAD's selection green or preselection yellow (legend_colours
-# also keeps user-chosen colours away from them).
-TYPE_COLOURS = {
-    "PLF": "#ff8c1a",  # orange
-    "CLJ": "#1f5fff",  # blue
-    "CJU": "#9b30ff",  # purple
-    "SPF": "#d7263d",  # red
-    "LAF": "#00d2e6",  # cyan
-    "SPT": "#ff2fd2",  # magenta
-    "TRF": "#8b5a2b",  # brown
-}
+# The legend: one colour per contact type (also the tree icons' colour), from
+# the one palette. None is near FreeCAD's selection green or preselection
+# yellow (legend_colours also keeps user-chosen colours away from them).
+from contactwb.gui.palette import TYPE_COLOURS
 assert list(TYPE_COLOURS) == CONTACT_TYPES, "a colour for every contact type of contactwb.core.kinds"
 MIN_COLOUR_DISTANCE = 0.25  # per channel (0..1): what still reads as another colour
 UNKNOWN_COLOUR = "#808080"

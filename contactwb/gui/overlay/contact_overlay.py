@@ -218,7 +218,7 @@ class ContactOverlay:
         kinds = [k for k in CONTACT_TYPES if any(key[0] == k for key in layers)]
         counts = {k: sum(1 for c in contacts if c.ContactType == k) for k in kinds}
         self.legend = legend_node([(f"{k} {TYPE_NAMES[k]} ({counts[k]})", type_colour(k, False, self.colours))
-                                   for k in kinds])
+                                   for k in kinds], stack=(self.doc_name, ("analysis", id(self))))
         self.root.addChild(self.legend)
         self.names = tuple(c.Name for c in contacts)
         self.failures = source.failures

@@ -1,25 +1,39 @@
 """Show partitions: every maximal partition (adjacent faces on one surface,
 contactcore.partition_brep) of the selected bodies coloured by surface type,
-as in the paper's Fig. 3c, with a legend in the view. Drawn in the 3D view's
-scene graph, beside the document (nothing is saved); the command toggles it."""
+as in the paper's Fig. 3c, with a legend in the view. The colours are the
+contact types' families (contactwb.gui.palette: planes in the planar fit's
+orange, cylinders in the cylindrical joint's blue, ...), and two adjacent
+partitions of one type get different shades. The legend sits below the
+contacts' legends (legend_stack). Drawn in the 3D view's scene graph, beside
+the document (nothing is saved); the command toggles it."""
 import FreeCAD
 import FreeCADGui
 import numpy
 from pivy import coin
 
 from contactwb.gui.overlay.coin_nodes import legend_node, material, polygon_offset
-from contactwb.gui.overlay.colours import rgb
+from contactwb.gui import palette
+from contactwb.gui.overlay import legend_stack
+from contactwb.gui.overlay.colours import legend_colours
 from contactwb.gui.overlay.faces import pushed_out
 
-SURFACE_COLOURS = {  # Fig. 3c's idea: one colour per surface type
-    "Plane": "#4f81bd",
-    "Cylinder": "#f2a33a",
-    "Cone": "#8e44ad",
-    "Sphere": "#e0457b",
-    "Torus": "#2ca58d",
-    "Other": "#9a9a9a",
-}
+SURFACE_KINDS = ("Plane", "Cylinder", "Cone", "Sphere", "Torus", "Other")
 NODE_NAME = "ContactsPartitions"
+LEGEND_KEY = "partitions"
+
+
+def _adjacent_partitions(faces, partition_of_face):
+    """{partition: {partitions sharing an edge with it}} of one body."""
+    faces_of_edge = {}
+    for index, face in enumerate(faces, start=1):
+        for edge in face.Edges:
+            faces_of_edge.setdefault(edge.hashCode(), set()).add(index)
+    neighbours = {}
+    for sharing in faces_of_edge.values():
+        partitions = {partition_of_face[f] for f in sharing if f in partition_of_face}
+        for p in partitions:
+            neighbours.setdefault(p, set()).update(partitions - {p})
+    return neighbours
 
 
 def surface_kind(partition):
@@ -41,31 +55,37 @@ class PartitionsView:
         hints.shapeType.setValue(coin.SoShapeHints.UNKNOWN_SHAPE_TYPE)
         for node in (pick, hints, polygon_offset(0.0, -1.0)):
             self.root.addChild(node)
-        self.counts = {kind: 0 for kind in SURFACE_COLOURS}
+        self.counts = {kind: 0 for kind in SURFACE_KINDS}
         self.bodies = [b.name for b in bodies]
-        meshes = {kind: [] for kind in SURFACE_COLOURS}
+        self.type_colours = legend_colours()
+        self.shades = []          # per body: [(kind, shade index)] per partition
+        self.adjacent_same = []   # (body, partition, partition) of one kind sharing an edge
+        meshes = {}               # (kind, shade) -> [(points, triangles)]
         for body in bodies:
-            partitions = core.contactcore.partition_brep(body.shape.exportBrepToString())
+            partitions = core.contactcore.partition_brep(body.shape.exportBrepToString()).partitions
             box = body.shape.BoundBox
             deflection = max((box.XLength + box.YLength + box.ZLength) / 300.0 * 0.5, 1e-4)
             faces = body.shape.Faces
-            for partition in partitions.partitions:
-                kind = surface_kind(partition)
-                kind = kind if kind in SURFACE_COLOURS else "Other"
-                self.counts[kind] += 1
+            kinds = [surface_kind(p) if surface_kind(p) in SURFACE_KINDS else "Other" for p in partitions]
+            partition_of_face = {f: k for k, p in enumerate(partitions) for f in p.faces}
+            touching = _adjacent_partitions(faces, partition_of_face)
+            same = {k: {n for n in touching.get(k, ()) if kinds[n] == kinds[k]} for k in range(len(partitions))}
+            shades = palette.greedy_shades(len(partitions), same)
+            self.shades.append(list(zip(kinds, shades)))
+            self.adjacent_same += [(body.name, k, n) for k in same for n in same[k] if k < n]
+            for k, partition in enumerate(partitions):
+                self.counts[kinds[k]] += 1
                 for index in partition.faces:
                     points, triangles = faces[index - 1].tessellate(deflection)
                     if triangles:
                         points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
                         triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
-                        meshes[kind].append((pushed_out(points, triangles, deflection),
-                                             triangles))
-        for kind, parts in meshes.items():
-            if not parts:
-                continue
+                        meshes.setdefault((kinds[k], shades[k]), []).append(
+                            (pushed_out(points, triangles, deflection), triangles))
+        for (kind, shade), parts in sorted(meshes.items()):
             layer = coin.SoSeparator()
-            layer.setName(f"Partitions_{kind}")
-            layer.addChild(material(rgb(SURFACE_COLOURS[kind])))
+            layer.setName(f"Partitions_{kind}_{shade}")
+            layer.addChild(material(self.colour(kind, shade)))
             coordinates = coin.SoCoordinate3()
             offset, rows = 0, []
             all_points = []
@@ -84,9 +104,15 @@ class PartitionsView:
             layer.addChild(face_set)
             self.root.addChild(layer)
         self.legend = legend_node(
-            [(f"{kind}: {count} partition{'s' if count > 1 else ''}", rgb(SURFACE_COLOURS[kind]))
-             for kind, count in self.counts.items() if count], "PartitionsLegend")
+            [(f"{kind}: {count} partition{'s' if count > 1 else ''}"
+              + (f" ({palette.SURFACE_FAMILY[kind]} colours)" if kind in palette.SURFACE_FAMILY else ""),
+              self.colour(kind, 0))
+             for kind, count in self.counts.items() if count], "PartitionsLegend", stack=(doc.Name, LEGEND_KEY))
         self.root.addChild(self.legend)
+
+    def colour(self, kind, shade):
+        """(r, g, b) of a partition: its contact type's family, this shade."""
+        return palette.surface_colour(kind, shade, self.type_colours)
 
 
 _views = {}  # document name -> (PartitionsView, the scene graph it is in)
@@ -117,3 +143,4 @@ def hide(doc):
     view, graph = _views.pop(doc.Name, (None, None))
     if view is not None:
         graph.removeChild(view.root)
+        legend_stack.unregister(doc.Name, LEGEND_KEY)

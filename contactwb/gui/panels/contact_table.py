@@ -8,23 +8,41 @@ import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
 
 from contactwb.core.kinds import CONTACT_TYPES
+from contactwb.document import units
 from contactwb.document.identify import is_contact, is_joint
 from contactwb.gui.overlay.colours import legend_colours
+from contactwb.gui.panels import contact_extent
 
-COLUMNS = ["#", "Type", "Part A", "Part B", "Area (mm\u00b2)", "Span (\u00b0) / DOF", "Radius (mm)", "Partial",
-           "Analysis"]
+# Quantities written as the property editor writes them (contactwb.document.units)
+COLUMNS = ["#", "Type", "Part A", "Part B", "Area", "Span / DOF", "Radius", "Extent", "Partial", "Analysis"]
 NUMERIC = {0, 4, 5, 6}
+PARTIAL_COLUMN = 8
 DOCK_NAME = "ContactsTable"
+SORT_KEY = QtCore.Qt.UserRole + 2  # the Type column's key: type, then pair, then number
+# The dock's share of the main window's width at most: the 3D view keeps the rest.
+DOCK_WIDTH_SHARE = 0.3
+DOCK_MIN_WIDTH = 360
+# Types with an angular span and a radius (revolution contacts); the others show none.
+REVOLUTION_TYPES = ("CLJ", "CJU", "SPF", "LAF", "SPT", "TRF")
 
 
 class _Item(QtWidgets.QTableWidgetItem):
     """A cell sorting by its number when it has one."""
 
     def __lt__(self, other):
+        mine, theirs = self.data(SORT_KEY), other.data(SORT_KEY)
+        if mine is not None and theirs is not None:
+            return mine < theirs
         mine, theirs = self.data(QtCore.Qt.UserRole + 1), other.data(QtCore.Qt.UserRole + 1)
         if mine is not None and theirs is not None:
             return mine < theirs
         return super().__lt__(other)
+
+
+def _sort_key(kind, a, b, number):
+    """Type, then pair (the two parts in name order), then number."""
+    rank = CONTACT_TYPES.index(kind) if kind in CONTACT_TYPES else len(CONTACT_TYPES)
+    return "\t".join((f"{rank:02d}{kind}", *sorted((a, b)), f"{number:09d}"))  # (no NUL: Qt cuts there)
 
 
 def _cell(text, number=None, colour=None):
@@ -71,7 +89,35 @@ class ContactTable(QtWidgets.QWidget):
         self.table.setSelectionMode(QtWidgets.QAbstractItemView.ExtendedSelection)
         self.table.verticalHeader().setVisible(False)
         self.table.horizontalHeader().setStretchLastSection(True)
-        layout.addWidget(self.table, 1)
+        self.table.horizontalHeader().setSortIndicator(1, QtCore.Qt.AscendingOrder)  # type, then pair
+        self.table.setHorizontalScrollBarPolicy(QtCore.Qt.ScrollBarAsNeeded)
+        self.table.setWordWrap(False)
+        # The summary has its own pane under the table, collapsible and
+        # scrolling: a long "By pair" list never takes the table's rows.
+        self.splitter = QtWidgets.QSplitter(QtCore.Qt.Vertical)
+        self.splitter.addWidget(self.table)
+        summary_pane = QtWidgets.QWidget()
+        summary_layout = QtWidgets.QVBoxLayout(summary_pane)
+        summary_layout.setContentsMargins(0, 0, 0, 0)
+        self.summary_toggle = QtWidgets.QToolButton()
+        self.summary_toggle.setText("Summary")
+        self.summary_toggle.setCheckable(True)
+        self.summary_toggle.setChecked(True)
+        self.summary_toggle.setToolButtonStyle(QtCore.Qt.ToolButtonTextBesideIcon)
+        self.summary_toggle.setArrowType(QtCore.Qt.DownArrow)
+        self.summary_toggle.setAutoRaise(True)
+        summary_layout.addWidget(self.summary_toggle)
+        self.summary = QtWidgets.QTextBrowser()
+        self.summary.setObjectName("ContactsSummary")
+        summary_layout.addWidget(self.summary, 1)
+        self.summary_pane = summary_pane
+        self.splitter.addWidget(summary_pane)
+        self.splitter.setStretchFactor(0, 4)
+        self.splitter.setStretchFactor(1, 1)
+        self.splitter.setCollapsible(0, False)
+        self.splitter.setSizes([400, 110])
+        layout.addWidget(self.splitter, 1)
+        self.summary_toggle.toggled.connect(self.set_summary_shown)
         buttons = QtWidgets.QHBoxLayout()
         self.zoom_button = QtWidgets.QPushButton("Zoom to")
         self.isolate_button = QtWidgets.QPushButton("Isolate")
@@ -80,10 +126,6 @@ class ContactTable(QtWidgets.QWidget):
             buttons.addWidget(widget)
         buttons.addStretch(1)
         layout.addLayout(buttons)
-        self.summary = QtWidgets.QLabel()
-        self.summary.setWordWrap(True)
-        self.summary.setTextInteractionFlags(QtCore.Qt.TextSelectableByMouse)
-        layout.addWidget(self.summary)
         self.filter_text.textChanged.connect(self.apply_filter)
         self.filter_type.currentIndexChanged.connect(self.apply_filter)
         self.filter_partial.toggled.connect(self.apply_filter)
@@ -92,6 +134,22 @@ class ContactTable(QtWidgets.QWidget):
         self.zoom_button.clicked.connect(self.zoom)
         self.isolate_button.clicked.connect(self.isolate)
         self.show_all_button.clicked.connect(self.show_all)
+
+    def sizeHint(self):
+        # What the dock asks for: the columns scroll, the 3D view keeps its room.
+        return QtCore.QSize(DOCK_MIN_WIDTH + 60, 480)
+
+    def minimumSizeHint(self):
+        return QtCore.QSize(240, 200)
+
+    def set_summary_shown(self, shown):
+        """Folds the summary pane to its header (or opens it again)."""
+        self.summary.setVisible(shown)
+        self.summary_toggle.setArrowType(QtCore.Qt.DownArrow if shown else QtCore.Qt.RightArrow)
+        self.summary_pane.setMaximumHeight(16777215 if shown else self.summary_toggle.sizeHint().height())
+        if shown:
+            total = sum(self.splitter.sizes())
+            self.splitter.setSizes([total - 110, 110])
 
     # --- filling -------------------------------------------------------
     def fill(self, doc=None):
@@ -108,13 +166,18 @@ class ContactTable(QtWidgets.QWidget):
         self.table.setRowCount(len(self.contacts) + len(joints))
         for row, contact in enumerate(self.contacts):
             group = next((p for p in contact.InList if p in groups), None)
+            kind = contact.ContactType
+            revolution = kind in REVOLUTION_TYPES
+            type_cell = _cell(kind, colour=colours.get(kind))
+            type_cell.setData(SORT_KEY, _sort_key(kind, contact.BodyA, contact.BodyB, contact.Number))
             cells = [
                 _cell(str(contact.Number), contact.Number),
-                _cell(contact.ContactType, colour=colours.get(contact.ContactType)),
+                type_cell,
                 _cell(contact.BodyA), _cell(contact.BodyB),
-                _cell(f"{contact.Area.Value:.4g}", contact.Area.Value),
-                _cell(f"{contact.Span.Value:.0f}", contact.Span.Value),
-                _cell(f"{contact.Radius.Value:.4g}", contact.Radius.Value),
+                _cell(units.area_text(contact.Area.Value), contact.Area.Value),
+                _cell(units.angle_text(contact.Span.Value) if revolution else "", contact.Span.Value),
+                _cell(units.length_text(contact.Radius.Value) if revolution else "", contact.Radius.Value),
+                _cell(contact_extent.extent_text(contact)),
                 _cell("yes" if contact.Partial else ""),
                 _cell(group.Label if group else ""),
             ]
@@ -124,13 +187,16 @@ class ContactTable(QtWidgets.QWidget):
         for row, joint in enumerate(joints, start=len(self.contacts)):
             group = next((p for p in joint.InList if p in groups), None)
             number = joint.Label.split(" ", 1)[0]  # "J3"
-            cells = [_cell(number), _cell(f"joint: {joint.JointType}"), _cell(joint.BodyA), _cell(joint.BodyB),
-                     _cell("", 0.0), _cell(f"{joint.DOF} DOF", joint.DOF), _cell(""), _cell(""),
+            type_cell = _cell(f"joint: {joint.JointType}")
+            type_cell.setData(SORT_KEY, _sort_key("joint " + joint.JointType, joint.BodyA, joint.BodyB,
+                                                  int(number[1:]) if number[1:].isdigit() else 0))
+            cells = [_cell(number), type_cell, _cell(joint.BodyA), _cell(joint.BodyB),
+                     _cell("", 0.0), _cell(f"{joint.DOF} DOF", joint.DOF), _cell(""), _cell(""), _cell(""),
                      _cell(group.Label if group else "")]
             for column, item in enumerate(cells):
                 item.setData(QtCore.Qt.UserRole, joint.Name)
                 self.table.setItem(row, column, item)
-        self.table.setSortingEnabled(True)
+        self.table.setSortingEnabled(True)  # sorts by the header's column: type then pair at first
         self.table.resizeColumnsToContents()
         self._syncing = False
         self.summary.setText(self._summary(groups))
@@ -174,7 +240,7 @@ class ContactTable(QtWidgets.QWidget):
             values = [self.table.item(row, c).text() for c in (1, 2, 3)]
             hidden = bool(text) and not any(text in v.lower() for v in values)
             hidden |= bool(kind) and values[0] != kind and not (kind == "joint" and values[0].startswith("joint"))
-            hidden |= partial_only and self.table.item(row, 7).text() != "yes"
+            hidden |= partial_only and self.table.item(row, PARTIAL_COLUMN).text() != "yes"
             hidden |= self.table.item(row, 4).data(QtCore.Qt.UserRole + 1) < least
             self.table.setRowHidden(row, hidden)
 
@@ -334,11 +400,24 @@ def dock():
         widget = ContactTable(_dock)
         _dock.setWidget(widget)
         main.addDockWidget(QtCore.Qt.RightDockWidgetArea, _dock)
+        fit_dock_width(_dock)
         observer = _Observer(widget)
         _dock.observer = observer
         FreeCADGui.Selection.addObserver(observer)
         FreeCAD.addDocumentObserver(observer)
     return _dock
+
+
+def fit_dock_width(dock_widget):
+    """Gives the dock at most DOCK_WIDTH_SHARE of the main window's width
+    (never under DOCK_MIN_WIDTH): the table's columns scroll instead of
+    squeezing the 3D view."""
+    main = dock_widget.parentWidget()
+    if main is None or dock_widget.isFloating():
+        return
+    width = max(DOCK_MIN_WIDTH, int(main.width() * DOCK_WIDTH_SHARE))
+    if dock_widget.width() > width or not dock_widget.isVisible():
+        main.resizeDocks([dock_widget], [width], QtCore.Qt.Horizontal)
 
 
 def show():
@@ -347,6 +426,7 @@ def show():
     widget.widget().fill()
     widget.show()
     widget.raise_()
+    fit_dock_width(widget)
     return widget.widget()
 
 

@@ -57,14 +57,10 @@ def model_tolerances(doc, entries=None):
     return tolerances.linear, tolerances.angular
 
 
-def _quantity_box(unit, value, decimals=6):
-    """A Gui::QuantitySpinBox (units typed or converted, as FreeCAD's own panels)."""
-    box = FreeCADGui.UiLoader().createWidget("Gui::QuantitySpinBox")
-    box.setProperty("unit", unit)
-    box.setProperty("decimals", decimals)
-    box.setProperty("minimum", 0.0)
-    box.setProperty("rawValue", value)
-    return box
+def _quantity_box(unit, value):
+    """A tolerance field in mm or degrees (contactwb.gui.units.MeasureBox)."""
+    from contactwb.gui.units import MeasureBox
+    return MeasureBox("mm" if unit == "mm" else "\u00b0", value)
 
 
 class FindContactsPanel:
@@ -106,7 +102,7 @@ class FindContactsPanel:
         self.model_linear, self.model_angular = linear, angular
         self.linear = _quantity_box("mm", linear)
         self.angular = _quantity_box("deg", degrees(angular))
-        self.gap = _quantity_box("mm", 0.0, 4)
+        self.gap = _quantity_box("mm", 0.0)
         grid.addRow("Linear:", self.linear)
         grid.addRow("Angular:", self.angular)
         grid.addRow("Clearance gap:", self.gap)
@@ -148,18 +144,18 @@ class FindContactsPanel:
         if group is not None:
             self.scope.setCurrentIndex(SCOPES.index(group.Scope))
             if group.LinearToleranceSetting.Value:
-                self.linear.setProperty("rawValue", group.LinearToleranceSetting.Value)
+                self.linear.setValue(group.LinearToleranceSetting.Value)
             if group.AngularToleranceSetting.Value:
-                self.angular.setProperty("rawValue", group.AngularToleranceSetting.Value)
-            self.gap.setProperty("rawValue", group.ClearanceGap.Value)
+                self.angular.setValue(group.AngularToleranceSetting.Value)
+            self.gap.setValue(group.ClearanceGap.Value)
             for kind, check in self.types.items():
                 check.setChecked(not group.ContactTypes or kind in group.ContactTypes)
         else:
             params = settings.params()
             if params.GetFloat("LinearTolerance", 0.0) > 0:
-                self.linear.setProperty("rawValue", params.GetFloat("LinearTolerance"))
+                self.linear.setValue(params.GetFloat("LinearTolerance"))
             if params.GetFloat("AngularTolerance", 0.0) > 0:
-                self.angular.setProperty("rawValue", params.GetFloat("AngularTolerance"))
+                self.angular.setValue(params.GetFloat("AngularTolerance"))
             parts = len(self.entries)
             self.scope.setCurrentIndex(SCOPES.index(
                 "Document" if not parts else "PartAgainstRest" if parts == 1 and len(self.entries[0][1]) == 1
@@ -180,8 +176,8 @@ class FindContactsPanel:
             self.parts.setText("Select the parts in the tree or the 3D view first.")
 
     def _set_model_defaults(self):
-        self.linear.setProperty("rawValue", self.model_linear)
-        self.angular.setProperty("rawValue", degrees(self.model_angular))
+        self.linear.setValue(self.model_linear)
+        self.angular.setValue(degrees(self.model_angular))
 
     # --- values --------------------------------------------------------
     def scope_value(self):
@@ -190,12 +186,12 @@ class FindContactsPanel:
     def settings(self):
         """(linear mm or None, angular rad or None, types, gap mm) as chosen;
         the model's defaults are passed as None (so they follow the model)."""
-        linear = float(self.linear.property("rawValue"))
-        angular = radians(float(self.angular.property("rawValue")))
+        linear = self.linear.value()
+        angular = radians(self.angular.value())
         linear = None if abs(linear - self.model_linear) <= 1e-12 or linear <= 0 else linear
         angular = None if abs(angular - self.model_angular) <= 1e-12 or angular <= 0 else angular
         types = [k for k, check in self.types.items() if check.isChecked()]
-        return linear, angular, types, float(self.gap.property("rawValue"))
+        return linear, angular, types, self.gap.value()
 
     # --- running -------------------------------------------------------
     def request_cancel(self):

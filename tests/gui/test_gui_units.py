@@ -1,0 +1,103 @@
+"""Issue 21 item 11 in the real FreeCAD GUI under Xvfb (tests/gui/units_session.py):
+tolerances in mm and degrees, one area written alike in the tree, the
+property editor and the table, the preferences page's icon, STEP imports
+named from the file's products with sizes in mm (an inch file too)."""
+import math
+import os
+import re
+
+import pytest
+
+from freecad_session import REPO, run_session  # tests/gui is on sys.path
+
+SHARED = os.path.join(os.path.dirname(REPO), "shared", "data")
+MOTOR_PARTS = 18
+
+
+@pytest.fixture(scope="module")
+def run(tmp_path_factory):
+    return run_session(tmp_path_factory, "units_session.py", "units_report.json",
+                       {"CONTACTS_REPO": REPO, "CONTACTS_SHARED_DATA": SHARED if os.path.isdir(SHARED) else ""},
+                       screen="1400x1050x24", timeout=560)
+
+
+def no_error(report, *steps):
+    for name in steps:
+        assert name not in report["errors"], report["errors"][name]
+
+
+def test_preferences_page_has_an_icon_and_the_real_default(run):
+    no_error(run, "preferences_dialog")
+    seen = run["preferences"]
+    assert "error" not in seen, seen.get("error")
+    assert "Contacts" in seen["groups"]
+    assert seen["icon"] and seen["icon_pixels"] > 200  # drawn (48 x 48), not an empty icon
+    # 1e-4 rad, the core's default, is 0.0057296 deg: shown as such, not "0.01"
+    assert seen["fields"] == ["scaled to the model", "default (0.00573 \u00b0)"]
+
+
+def test_panel_tolerances_in_mm_and_degrees(run):
+    no_error(run, "task_panel_units")
+    panel = run["panel"]
+    assert panel["linear"] == pytest.approx(panel["model_linear"], abs=1e-12)
+    # the model's linear default in mm with its digits (never "975.09 nm")
+    number, unit = panel["linear_text"].split(" ")
+    assert unit == "mm" and float(number) == pytest.approx(panel["model_linear"], rel=1e-3)
+    assert panel["angular_text"] == "0.00573 \u00b0"
+    assert panel["angular"] == pytest.approx(math.degrees(panel["model_angular"]), rel=1e-9)
+    # other units typed are converted
+    assert panel["typed_um"] == pytest.approx(0.0005) and panel["typed_um_text"] == "0.0005 mm"
+    assert panel["accepted"] is True
+
+
+def test_an_area_reads_alike_in_tree_property_editor_and_table(run):
+    no_error(run, "areas_alike")
+    largest, smallest = sorted(run["areas"], key=lambda a: a["area"], reverse=True)
+    for entry in (largest, smallest):
+        assert entry["type_id"] == "App::PropertyArea"
+        assert entry["editor"] is not None, "the property editor was not found"
+        assert entry["label2"].split(",")[0] == entry["editor"] == entry["table"], entry
+    # the Standard schema: the motor's largest contact in cm^2, its smallest in mm^2, as FreeCAD writes them
+    assert largest["area"] >= 100 and largest["editor"] == f"{largest['area'] / 100:.2f} cm^2"
+    assert smallest["area"] < 100 and smallest["editor"] == f"{smallest['area']:.2f} mm^2"
+
+
+def test_step_import_names_parts_after_the_products(run):
+    no_error(run, "imports")
+    motor = run["imports"]["motor"]
+    # motor.step was written from motor.FCStd: the same 18 names, none after the file
+    assert len(motor["labels"]) == MOTOR_PARTS and motor["labels"] == motor["fcstd_labels"]
+    assert motor["containers"] == ["motor"]
+    assert motor["undo"] == ["Import STEP"]
+
+
+def test_inch_step_import_in_mm_and_its_areas(run):
+    inch = run["imports"]["inch"]
+    assert inch["labels"] == ["Plate", "Block", "Pin"]  # inch.expected.json's bodies, in the file's order
+    # the volumes FreeCAD's own reader and the millimetre document give: an inch read as a millimetre
+    # would be 25.4^3 = 16387 times smaller
+    for mine, part_read, fcstd in zip(inch["volumes"], inch["part_read_volumes"], inch["fcstd_volumes"]):
+        assert mine == pytest.approx(part_read, rel=1e-9) and mine == pytest.approx(fcstd, rel=1e-6)
+    contacts = inch["contacts"]
+    assert sorted((c[0], c[1], c[2]) for c in contacts) == sorted((c[0], c[1], c[2]) for c in inch["fcstd_contacts"])
+    assert sorted(c[0] for c in contacts) == ["CLJ", "CLJ", "PLF", "PLF"]
+    for (kind, a, b, area, brute, label2, editor), reference in zip(contacts, inch["fcstd_contacts"]):
+        assert area == pytest.approx(reference[3], rel=1e-6)  # as in the millimetre document
+        assert area == pytest.approx(brute, rel=1e-3)         # the two sides' common area by OCCT's Boolean
+        assert label2.split(",")[0] == editor and "e+" not in label2
+
+
+def test_shared_step_files_named_after_their_products(run):
+    no_error(run, "shared_imports")
+    if run["shared"] is None:
+        pytest.skip(f"shared data absent: {SHARED}")
+    for name, entry in run["shared"].items():
+        labels = entry["labels"]
+        assert labels and len(set(labels)) == len(labels), name
+        assert all(count == 1 for count in entry["solids"]), name  # one solid per part
+        for label in labels:
+            base = re.sub(r"\.\d+$", "", label)  # repeated instances: "Ball.2"
+            assert not label.startswith("Undefined"), (name, label)
+            assert base not in ("SOLID", "SHELL", "COMPOUND"), (name, label)  # OCCT's names, not the file's
+            assert base != entry["stem"], (name, label)  # never named after the file
+            assert base in entry["products"], (name, label)  # a name the file declares

@@ -1,0 +1,274 @@
+"""Runs inside the FreeCAD GUI (freecad tests/gui/units_session.py under Xvfb)
+for tests/gui/test_gui_units.py: issue 21 item 11, units and names. The
+Preferences dialog's Contacts group (its icon, its tolerance fields); the
+Find contacts panel's tolerances in mm and degrees; one area written alike
+in the tree, the property editor and the table; STEP assemblies imported
+with Contacts_ImportStep (the bundled motor and inch case, and the shared
+files when ../shared/data is there): names from the STEP products, an inch
+file's sizes and areas in mm. Screenshots go to $CONTACTS_GUI_OUT."""
+import glob
+import json
+import os
+import re
+import traceback
+
+import FreeCAD
+import FreeCADGui
+from PySide2 import QtCore, QtGui, QtWidgets
+
+out_dir = os.environ["CONTACTS_GUI_OUT"]
+repo = os.environ["CONTACTS_REPO"]
+shared = os.environ.get("CONTACTS_SHARED_DATA", "")
+report = {"errors": {}}
+state = {}
+
+
+def step(function):
+    try:
+        function()
+    except Exception:
+        report["errors"][function.__name__] = traceback.format_exc()
+    settle()
+
+
+def settle():
+    for _ in range(5):
+        FreeCADGui.updateGui()
+
+
+def grab_window(name):
+    settle()
+    main = FreeCADGui.getMainWindow()
+    path = os.path.join(out_dir, name)
+    picture = main.grab()
+    area = main.findChild(QtWidgets.QMdiArea)
+    widget = area.viewport()
+    corner = widget.mapTo(main, QtCore.QPoint(0, 0))
+    scale = picture.width() / main.width()
+    view_png = os.path.join(out_dir, "_view_for_" + name)
+    FreeCADGui.activeDocument().activeView().saveImage(view_png, round(widget.width() * scale),
+                                                       round(widget.height() * scale), "Current")
+    painter = QtGui.QPainter(picture)
+    painter.drawImage(QtCore.QRectF(corner.x(), corner.y(), widget.width(), widget.height()), QtGui.QImage(view_png))
+    painter.end()
+    os.remove(view_png)
+    picture.save(path)
+    return path
+
+
+def preferences_dialog():
+    """The Contacts group in FreeCAD's Preferences: its icon, its fields."""
+    main = FreeCADGui.getMainWindow()
+    main.resize(1400, 1000)
+    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    seen = {}
+
+    def inspect():
+        dialog = QtWidgets.QApplication.activeModalWidget()
+        if dialog is None:
+            QtCore.QTimer.singleShot(200, inspect)
+            return
+        try:
+            groups = {}
+            for listing in dialog.findChildren(QtWidgets.QListWidget):
+                for row in range(listing.count()):
+                    item = listing.item(row)
+                    groups[item.text()] = (item, listing)
+            item, listing = groups["Contacts"]
+            seen["groups"] = sorted(groups)
+            seen["icon"] = not item.icon().isNull()
+            seen["icon_pixels"] = _opaque_pixels(item.icon().pixmap(48, 48))
+            listing.setCurrentItem(item)
+            settle()
+            page = next(w for w in dialog.findChildren(QtWidgets.QWidget) if w.objectName() == "ContactsPreferences")
+            spins = page.findChildren(QtWidgets.QDoubleSpinBox)
+            seen["fields"] = [s.text() for s in spins]
+            dialog.resize(900, 640)
+            settle()
+            seen["png"] = os.path.join(out_dir, "gui_preferences.png")
+            dialog.grab().save(seen["png"])
+        except Exception:
+            seen["error"] = traceback.format_exc()
+        dialog.reject()
+
+    QtCore.QTimer.singleShot(300, inspect)
+    FreeCADGui.runCommand("Std_DlgPreferences")
+    report["preferences"] = seen
+
+
+def _opaque_pixels(pixmap):
+    image = pixmap.toImage()
+    return sum(1 for y in range(image.height()) for x in range(image.width())
+               if QtGui.QColor.fromRgba(image.pixel(x, y)).alpha() > 0)
+
+
+def task_panel_units():
+    """The motor's Find contacts panel: tolerances in mm and degrees; "0.5 um" typed."""
+    from contactwb.gui.panels import task_panel
+    FreeCADGui.runCommand("Contacts_OpenSample")
+    settle()
+    doc = FreeCAD.ActiveDocument
+    state["motor"] = doc
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.runCommand("Contacts_FindContacts")
+    settle()
+    panel = task_panel.current
+    result = {"linear_text": panel.linear.text(), "angular_text": panel.angular.text(),
+              "linear": panel.linear.value(), "model_linear": panel.model_linear,
+              "angular": panel.angular.value(), "model_angular": panel.model_angular}
+    editor = panel.linear.lineEdit()
+    editor.setText("0.5 um")
+    panel.linear.interpretText()
+    result["typed_um"] = panel.linear.value()
+    result["typed_um_text"] = panel.linear.text()
+    panel._set_model_defaults()
+    result["accepted"] = panel.accept()
+    settle()
+    report["panel"] = result
+
+
+def property_editor_text(obj, name):
+    """What FreeCAD's property editor shows for obj.name (the object selected)."""
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(obj)
+    settle()
+    main = FreeCADGui.getMainWindow()
+    for view in main.findChildren(QtWidgets.QTreeView):
+        model = view.model()
+        if model is None or "PropertyEditor" not in type(view).__name__ + view.metaObject().className():
+            continue
+        stack = [QtCore.QModelIndex()]
+        while stack:
+            parent = stack.pop()
+            for row in range(model.rowCount(parent)):
+                index = model.index(row, 0, parent)
+                if model.data(index) == name:
+                    return model.data(model.index(row, 1, parent))
+                stack.append(index)
+    return None
+
+
+def areas_alike():
+    """One contact's area in the tree's description, the property editor and the table."""
+    from contactwb.document.identify import analyses, is_contact
+    from contactwb.gui.panels import contact_table
+    doc = state["motor"]
+    (group,) = analyses(doc)
+    contacts = [c for c in group.Group if is_contact(c)]
+    FreeCADGui.runCommand("Contacts_ShowContactTable")
+    settle()
+    widget = contact_table.dock().widget()
+    rows = {widget.contact_of_row(r).Name: r for r in range(widget.table.rowCount())}
+    result = []
+    # the largest (cm^2 under the Standard schema) and the smallest contact
+    for contact in sorted(contacts, key=lambda c: c.Area.Value)[::len(contacts) - 1]:
+        result.append({"label": contact.Label, "area": contact.Area.Value, "label2": contact.Label2,
+                       "editor": property_editor_text(contact, "Area"),
+                       "table": widget.table.item(rows[contact.Name], 4).text(),
+                       "type_id": contact.getTypeIdOfProperty("Area")})
+    report["areas"] = result
+    report["tolerance_editor"] = property_editor_text(group, "Linear Tolerance")
+    report["tolerance_value"] = group.LinearTolerance.Value
+    FreeCADGui.Selection.clearSelection()
+    widget.parent().hide()
+
+
+def step_names(path):
+    """Every name the file declares (its quoted strings: products, occurrences
+    (NEXT_ASSEMBLY_USAGE_OCCURRENCE), solids), read as text."""
+    with open(path, "rb") as stream:
+        text = stream.read().decode("latin-1")
+    return set(re.findall(r"'([^']*)'", text))
+
+
+def import_file(path):
+    """Contacts_ImportStep's work on `path`, into a new document."""
+    from contactwb.gui.commands.contacts import import_step_file
+    doc = FreeCAD.newDocument(re.sub(r"\W", "_", os.path.splitext(os.path.basename(path))[0]))
+    doc.UndoMode = 1
+    features = import_step_file(path, doc)
+    settle()
+    return doc, features
+
+
+def imports():
+    """The bundled motor and inch case through Contacts_ImportStep."""
+    import Part
+    result = {}
+    samples = os.path.join(repo, "Resources", "samples")
+    # the motor: the parts named as in motor.FCStd, which the STEP file was written from
+    motor = state["motor"]
+    fcstd_labels = sorted(o.Label for o in motor.Objects if o.TypeId == "Part::Feature")
+    FreeCAD.closeDocument(motor.Name)  # the picture: the imported tree alone
+    settle()
+    doc, features = import_file(os.path.join(samples, "motor.step"))
+    result["motor"] = {"labels": sorted(f.Label for f in features), "fcstd_labels": fcstd_labels,
+                       "containers": sorted(o.Label for o in doc.Objects if o.TypeId == "App::Part"),
+                       "undo": list(doc.UndoNames)}
+    view = FreeCADGui.activeDocument().activeView()
+    view.viewIsometric()
+    view.fitAll()
+    tree = next(t for t in FreeCADGui.getMainWindow().findChildren(QtWidgets.QTreeWidget))
+    tree.expandAll()
+    result["motor"]["png"] = grab_window("gui_import_step.png")
+    # the inch case: sizes in mm (as FreeCAD's own reader converts them, and as the inch.FCStd it was written from)
+    inch_path = os.path.join(samples, "cases", "inch.step")
+    doc, features = import_file(inch_path)
+    read = Part.read(inch_path)
+    reference = FreeCAD.openDocument(os.path.join(samples, "cases", "inch.FCStd"))
+    by_label = {o.Label: o for o in reference.Objects if o.TypeId == "Part::Feature"}
+    result["inch"] = {"labels": [f.Label for f in features],
+                      "volumes": [f.Shape.Volume for f in features],
+                      "part_read_volumes": [s.Volume for s in read.Solids],
+                      "fcstd_volumes": [by_label[f.Label].Shape.Volume if f.Label in by_label else None
+                                        for f in features]}
+    FreeCAD.setActiveDocument(doc.Name)
+    from contactwb.make import make_contact_analysis
+    group = make_contact_analysis(doc)
+    doc.recompute()
+    contacts = []
+    for contact in group.Group:
+        if not hasattr(contact, "FacesA"):
+            continue
+        brute = 0.0  # the two sides' common area by OCCT's Boolean
+        for root_a, subs_a in contact.FacesA:
+            for sub_a in subs_a:
+                for root_b, subs_b in contact.FacesB:
+                    for sub_b in subs_b:
+                        face_a = Part.getShape(root_a, sub_a, needSubElement=True, transform=True)
+                        face_b = Part.getShape(root_b, sub_b, needSubElement=True, transform=True)
+                        brute += face_a.common(face_b, 1e-4).Area
+        contacts.append([contact.ContactType, contact.BodyA, contact.BodyB, contact.Area.Value, brute,
+                         contact.Label2, contact.Area.UserString])
+    group_reference = make_contact_analysis(reference)
+    reference.recompute()
+    result["inch"]["contacts"] = sorted(contacts)
+    result["inch"]["fcstd_contacts"] = sorted([c.ContactType, c.BodyA, c.BodyB, c.Area.Value]
+                                              for c in group_reference.Group if hasattr(c, "FacesA"))
+    FreeCAD.closeDocument(reference.Name)
+    report["imports"] = result
+
+
+def shared_imports():
+    """Every shared STEP file: names from its products, none after the file or 'Undefined'."""
+    if not shared or not os.path.isdir(os.path.join(shared, "step")):
+        report["shared"] = None
+        return
+    result = {}
+    for path in sorted(glob.glob(os.path.join(shared, "step", "*.st*p"))):
+        doc, features = import_file(path)
+        result[os.path.basename(path)] = {
+            "labels": [f.Label for f in features], "products": sorted(step_names(path)),
+            "stem": os.path.splitext(os.path.basename(path))[0],
+            "containers": [o.Label for o in doc.Objects if o.TypeId == "App::Part"],
+            "solids": [len(f.Shape.Solids) for f in features]}
+        FreeCAD.closeDocument(doc.Name)
+        settle()
+    report["shared"] = result
+
+
+for function in (preferences_dialog, task_panel_units, areas_alike, imports, shared_imports):
+    step(function)
+with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
+    json.dump(report, stream, indent=1)
+os._exit(0)
