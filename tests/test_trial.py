@@ -204,6 +204,35 @@ def test_block_slides_on_a_plate(tmp_path):
     assert result["max_penetration_mm"] <= 1e-9
 
 
+def test_friction_holds_a_block_below_mu_times_the_push(tmp_path):
+    import FreeCAD
+    import Part
+    # A 10 mm cube on a plate, the hand 1 mm into the plate and 0.4 or 0.6 mm along x, mu 0.5:
+    # the hand's pull along (0.4 of its push) is inside the friction cone: the block stays; at 0.6 it
+    # slides until the pull is on the cone's edge, 0.5 behind the hand: 0.1 mm. (The simulated hand's own
+    # spring scales its offset along and across alike: the ratio, and so the threshold, is the same.)
+    step = _write_step(tmp_path, "friction", [
+        ("Plate", Part.makeBox(40, 40, 5, FreeCAD.Vector(-20, -20, -5))),
+        ("Block", Part.makeBox(10, 10, 10, FreeCAD.Vector(-5, -5, 0)))])
+    finals = {}
+    for along in (0.4, 0.6):
+        script = tmp_path / f"push_{along}.json"
+        script.write_text(json.dumps({"hand": [{"t": 0}, {"t": 0.2, "translate": [along, 0, -1]}]}))
+        done = run_cli(step, "--part", "Block", "--device", "sim", "--script", str(script), "--json",
+                       "--friction", "0.5")
+        assert done.returncode == 0, done.stderr
+        finals[along] = json.loads(done.stdout)["final"]["translate"]
+    assert finals[0.4] == pytest.approx([0, 0, 0], abs=1e-6)
+    assert finals[0.6][0] == pytest.approx(0.1, abs=0.002)
+    assert finals[0.6][1:] == pytest.approx([0, 0], abs=0.002)
+    # Without --friction (0, the default) the block follows the hand along.
+    script = tmp_path / "push_0.4.json"
+    done = run_cli(step, "--part", "Block", "--device", "sim", "--script", str(script), "--json")
+    assert json.loads(done.stdout)["final"]["translate"][0] == pytest.approx(0.4, abs=1e-6)
+    refused = run_cli(step, "--part", "Block", "--device", "sim", "--script", str(script), "--friction", "-1")
+    assert refused.returncode == 2 and "--friction" in refused.stderr
+
+
 def test_plug_seats_in_a_cone(tmp_path):
     import FreeCAD
     import Part

@@ -70,6 +70,8 @@ def _trial(argv):
                         help="run the loop on its own thread in real time (default: lockstep, deterministic)")
     parser.add_argument("--stiffness", type=_finite(low=0, low_open=True),
                         help="virtual coupling stiffness, N/mm (clamped to the device)")
+    parser.add_argument("--friction", type=_finite(low=0), default=0.0, metavar="MU",
+                        help="Coulomb friction coefficient at the part's contacts (default 0: none)")
     parser.add_argument("--capture-distance", type=_finite(low=0), default=0.5, help="engagement capture distance, mm")
     parser.add_argument("--capture-angle", type=_finite(low=0, high=90), default=2.0,
                         help="engagement capture angle, degrees")
@@ -104,6 +106,8 @@ def _trial(argv):
         scene = trial.make_scene(assembly, args.part, capture_distance=args.capture_distance,
                                  capture_angle_deg=args.capture_angle)
         options = {"stiffness": args.stiffness} if args.stiffness is not None else {}
+        if args.friction > 0:
+            options["friction"] = args.friction
         if args.realtime:
             options["realtime_priority"] = 80  # SCHED_FIFO when the system grants it
         result = trial.run(scene, script, realtime=args.realtime, device=args.device, hid_file=args.hid_file,

@@ -4,6 +4,7 @@
 // methods exchange values with it through atomics and a snapshot.
 // Results are classes (haptic_results.h/.cpp).
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -178,7 +179,8 @@ ServoConfig config_from(const py::kwargs& kw) {
       option("stiffness", &ServoConfig::stiffness),         option("angular_stiffness", &ServoConfig::angular_stiffness),
       option("damping", &ServoConfig::damping),             option("angular_damping", &ServoConfig::angular_damping),
       option("max_speed", &ServoConfig::max_speed),         option("breakaway_force", &ServoConfig::breakaway_force),
-      option("rate_hz", &ServoConfig::rate_hz),             option("realtime_priority", &ServoConfig::realtime_priority)};
+      option("rate_hz", &ServoConfig::rate_hz),             option("realtime_priority", &ServoConfig::realtime_priority),
+      option("friction", &ServoConfig::friction)};
   ServoConfig c;
   for (const auto& item : kw) {
     const std::string key = py::str(item.first);
@@ -190,6 +192,9 @@ ServoConfig config_from(const py::kwargs& kw) {
     }
     known->second(c, item.second);
   }
+  if (!(c.friction >= 0) || !std::isfinite(c.friction))
+    raise_argument_error("friction must be a finite number >= 0 (Coulomb's coefficient), got " +
+                         std::to_string(c.friction));
   return c;
 }
 
@@ -401,7 +406,8 @@ void bind_haptics(py::module_& root) {
         "(hid_file=FILE, lockstep), 'sim-hid-ff'. Returns a TrialResult. Raises DeviceUnavailable (with "
         ".devices) when the hardware is not there. Keyword options: "
         "stiffness, angular_stiffness, damping, angular_damping, max_speed, breakaway_force, rate_hz, "
-        "realtime_priority (SCHED_FIFO priority of the loop thread when permitted).");
+        "realtime_priority (SCHED_FIFO priority of the loop thread when permitted), friction (Coulomb's "
+        "coefficient at the part's contacts, 0: none).");
 
   py::class_<HapticSession>(m, "HapticSession", "A device and the 1 kHz loop on its own thread.")
       .def(py::init([](TrialScene& scene, const std::string& device, const py::object& translate,
@@ -442,6 +448,10 @@ void bind_haptics(py::module_& root) {
       .def("set_enabled", [](HapticSession& s, bool on) { s.loop_->set_enabled(on); })
       .def("set_stiffness", [](HapticSession& s, double k, double kr) { s.loop_->set_stiffness(k, kr); })
       .def("set_damping", [](HapticSession& s, double b, double br) { s.loop_->set_damping(b, br); })
+      .def("set_friction", [](HapticSession& s, double mu) {
+        if (!(mu >= 0) || !std::isfinite(mu)) raise_argument_error("friction must be a finite number >= 0");
+        s.loop_->set_friction(mu);
+      }, py::arg("mu"), "Coulomb friction coefficient at the part's contacts (0: none).")
       .def("set_hand_target", [](HapticSession& s, const py::object& t, const py::object& r) {
         s.set_hand_target(vec_from(t, "translate"), vec_from(r, "rotate_deg"));
       }, py::arg("translate"), py::arg("rotate_deg"))

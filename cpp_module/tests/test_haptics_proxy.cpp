@@ -70,11 +70,25 @@ TrialResult run(Scene& s, const TrialScript& script, double stiffness = 1.0, int
   options.servo.stiffness = stiffness;
   options.record_every = record_every;
   options.settle = settle;
-  return run_trial(*s.scene, script, options);
+  const TrialResult r = run_trial(*s.scene, script, options);
+  std::printf("[ figures ] final %.9f %.9f %.9f mm, %.9f %.9f %.9f deg; start/final/max penetration %.6f %.6f %.6f\n",
+              r.final_translate.x(), r.final_translate.y(), r.final_translate.z(), r.final_rotate_deg.x(),
+              r.final_rotate_deg.y(), r.final_rotate_deg.z(), r.start_penetration_mm, r.final_penetration_mm,
+              r.max_penetration_mm);
+  return r;
 }
 
 std::string where(const PathOverlap& o) {
+  std::printf("[ judge ] deepest %.6f mm, volume %.6f mm3 with %s at t = %.3f (%d samples)\n", o.max_depth,
+              o.max_volume, o.worst_body.c_str(), o.worst_t, o.samples_checked);
   return "deepest " + std::to_string(o.max_depth) + " mm with " + o.worst_body + " at t = " + std::to_string(o.worst_t);
+}
+
+// The judge's verdict, printed (the figures a reader of the log can check)
+// and asserted: no overlap deeper than `depth` mm anywhere it looked.
+void expect_no_deeper(const PathOverlap& o, double depth) {
+  const std::string judged = where(o);
+  EXPECT_LE(o.max_depth, depth) << judged;
 }
 
 }  // namespace
@@ -148,10 +162,11 @@ TEST(ProxyAcceptance, MotorAxisFrom30mmTiltedSeats) {
                  key(3.0, Vec3::Zero())};
   const TrialResult r = run(s, script);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
-  EXPECT_LT(r.final_translate.norm(), 0.05) << r.final_translate.transpose();
-  EXPECT_LT(r.final_rotate_deg.norm(), 0.1) << r.final_rotate_deg.transpose();
+  // Acceptance: 0.05 mm and 0.1 degrees; lockstep, it ends exactly seated.
+  EXPECT_LT(r.final_translate.norm(), 1e-9) << r.final_translate.transpose();
+  EXPECT_LT(r.final_rotate_deg.norm(), 1e-9) << r.final_rotate_deg.transpose();
   const PathOverlap o = check_path(s.assembly, "Axis", s.scene->centre(), r.path, 15);
-  EXPECT_LE(o.max_depth, 0.01) << where(o);
+  expect_no_deeper(o, 0.01);
   EXPECT_GE(o.samples_checked, 30);
 }
 
@@ -162,34 +177,37 @@ TEST(ProxyAcceptance, SeatedScrewPulledAlongItsAxisComesOut) {
   script.hand = {key(0.0, Vec3::Zero()), key(1.5, Vec3(0, 0, 70))};
   const TrialResult r = run(s, script);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
-  EXPECT_NEAR(r.final_translate.z(), 70.0, 0.05) << r.final_translate.transpose();
-  EXPECT_LT(r.final_translate.head<2>().norm(), 0.05);
+  EXPECT_NEAR(r.final_translate.z(), 70.0, 1e-9) << r.final_translate.transpose();
+  EXPECT_LT(r.final_translate.head<2>().norm(), 1e-9);
+  EXPECT_LT(r.final_rotate_deg.norm(), 1e-9);
   // Engaged in its holes on the way out (held >= 50 ticks).
   EXPECT_FALSE(r.joints_engaged.empty());
   const PathOverlap o = check_path(s.assembly, "Screw-1", s.scene->centre(), r.path, 10);
-  EXPECT_LE(o.max_depth, 0.01) << where(o);
+  expect_no_deeper(o, 0.01);
 }
 
 // Dropped from 160 mm above its hole the screw never tunnels into the cover:
-// no overlap along the path nor at the end, never below its seat. (It stops
-// 53.4 mm up today, on the planar joint the real-time contacts find between its
-// tip and the Front-cover's face by their boxes alone: issue 20's phantom
-// planes, the device/contacts half of the issue; seating it there is that
-// fix's test.)
+// no overlap along the path nor at the end, never below its seat. It stops
+// 53.1 mm up (re-measured: its shaft's end at the Front-cover's hole's mouth,
+// coaxial; the line-to-line shaft and hole tessellations' rims cross there
+// before any axial overlap lets engagement capture it). Capturing it at the
+// mouth (a lead-in in the real-time contacts) seated it exactly (0.001 mm,
+// judged on the cover) but made the Axis' capture above the motor jump
+// (NoTeleportAtAnyStiffness), so it is not in; the figure is asserted so a
+// change shows.
 TEST(ProxyAcceptance, ScrewDroppedFrom160mmNeverEntersTheCover) {
   Scene& s = motor_part("Screw-1");
   TrialScript script;
   script.start = key(0, Vec3(0, 0, 160));
-  // The hand goes 1 mm below the seat.
   script.hand = {key(0.0, Vec3(0, 0, 160)), key(1.2, Vec3(0, 0, -1))};
   const TrialResult r = run(s, script);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
-  EXPECT_GE(r.final_translate.z(), -0.01) << r.final_translate.transpose();
-  EXPECT_LT(r.final_translate.z(), 60.0) << r.final_translate.transpose();  // it fell
+  EXPECT_NEAR(r.final_translate.z(), 53.1014, 0.001) << r.final_translate.transpose();
+  EXPECT_TRUE(r.joints_engaged.empty());
   const PathOverlap o = check_path(s.assembly, "Screw-1", s.scene->centre(), r.path, 10);
-  EXPECT_LE(o.max_depth, 0.01) << where(o);
+  expect_no_deeper(o, 0.01);
   const PathOverlap end = check_pose(s.assembly, "Screw-1", s.scene->centre(), r.final_translate, r.final_rotate_deg);
-  EXPECT_LE(end.max_depth, 0.01) << where(end);
+  expect_no_deeper(end, 0.01);
 }
 
 TEST(ProxyAcceptance, PinWithClearanceSlidesAlongTheWallAndSeats) {
@@ -202,9 +220,13 @@ TEST(ProxyAcceptance, PinWithClearanceSlidesAlongTheWallAndSeats) {
                  key(2.0, Vec3(0.3, 0, -1), Vec3(0, 0.3, 0))};
   const TrialResult r = run(s, script);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
-  EXPECT_NEAR(r.final_translate.z(), 0.0, 0.02) << r.final_translate.transpose();
+  // Seated on the bore's bottom (a contact skin above it), on the bore's axis
+  // (captured in the clearance fit), upright.
+  EXPECT_NEAR(r.final_translate.z(), ServoConfig{}.contact_skin, 1e-9) << r.final_translate.transpose();
+  EXPECT_LT(r.final_translate.head<2>().norm(), 1e-9) << r.final_translate.transpose();
+  EXPECT_LT(r.final_rotate_deg.head<2>().norm(), 1e-9) << r.final_rotate_deg.transpose();
   const PathOverlap o = check_path(s.assembly, "Pin", s.scene->centre(), r.path, 25);
-  EXPECT_LE(o.max_depth, 0.01) << where(o);
+  expect_no_deeper(o, 0.01);
 }
 
 TEST(ProxyAcceptance, AxisPushedSidewaysThenPulledStraightUpComesOut) {
@@ -216,9 +238,10 @@ TEST(ProxyAcceptance, AxisPushedSidewaysThenPulledStraightUpComesOut) {
   const TrialResult r = run(s, script, 1.0, 10, 1.0);
   ASSERT_TRUE(r.status.ok()) << r.status.message;
   // Out of every bore (the shaft is 66 long) and free: at the hand.
-  EXPECT_GT(r.final_translate.z(), 70.0) << r.final_translate.transpose();
+  EXPECT_LT((r.final_translate - Vec3(20, 0, 90)).norm(), 1e-9) << r.final_translate.transpose();
+  EXPECT_LT(r.final_rotate_deg.norm(), 1e-9);
   const PathOverlap o = check_path(s.assembly, "Axis", s.scene->centre(), r.path, 15);
-  EXPECT_LE(o.max_depth, 0.01) << where(o);
+  expect_no_deeper(o, 0.01);
 }
 
 TEST(ProxyAcceptance, StartOverlappingIsReportedAndNeverLeftInsideSilently) {
@@ -230,15 +253,15 @@ TEST(ProxyAcceptance, StartOverlappingIsReportedAndNeverLeftInsideSilently) {
   const TrialResult r = run(s, script, 1.0, 10, 1.0);
   const PathOverlap start = check_pose(s.assembly, "Screw-1", s.scene->centre(), Vec3(0, 0, -0.5), Vec3::Zero());
   ASSERT_GT(start.max_depth, 0.4);  // the judge agrees it starts inside
-  EXPECT_GT(r.start_penetration_mm, 0.4);
+  EXPECT_NEAR(r.start_penetration_mm, 0.5, 1e-6);  // reported, not hidden
+  // Pushed out (0.02 mm a tick) along the screw's axis onto the cover, a
+  // contact skin above its seat: a success the judge confirms.
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_NEAR(r.final_translate.z(), ServoConfig{}.contact_skin, 1e-9) << r.final_translate.transpose();
+  EXPECT_LT(r.final_translate.head<2>().norm(), 1e-9);
+  EXPECT_EQ(r.final_penetration_mm, 0.0);
   const PathOverlap end = check_pose(s.assembly, "Screw-1", s.scene->centre(), r.final_translate, r.final_rotate_deg);
-  // Pushed out (a success the judge confirms) or a failure naming the overlap.
-  if (r.status.ok()) {
-    EXPECT_LE(end.max_depth, 0.01) << where(end);
-  } else {
-    EXPECT_NE(r.status.message.find("inside"), std::string::npos);
-    EXPECT_GT(end.max_depth, 0.0);
-  }
+  expect_no_deeper(end, 0.01);
 }
 
 TEST(ProxyAcceptance, NoTeleportAtAnyStiffness) {
@@ -290,4 +313,145 @@ TEST(ProxyAcceptance, StillHandLeavesThePartWhereItStarted) {
       EXPECT_GT(r.rate_hz, 0.0);
     }
   }
+}
+
+// ---- a joint chosen in the panel (the joints stage through joint_adapter.h)
+
+#include "contactcore/haptics/joint_adapter.h"
+#include "contactcore/joints/joints.h"
+
+namespace {
+// The Axis' assembled joint with `other` from the joints stage, as the panel
+// holds it (HapticSession::hold_to_pair): the adapter, then the collision group.
+JointState motor_axis_joint_with(Scene& s, const std::string& other) {
+  const auto& names = s.scene->body_names();
+  const int axis = s.scene->moving();
+  const int body = static_cast<int>(std::find(names.begin(), names.end(), other) - names.begin());
+  const contactcore::ContactsResult contacts = contactcore::find_contacts(s.assembly, contactcore::ContactOptions{});
+  const contactcore::JointsResult joints = contactcore::find_joints(s.assembly, contacts);
+  JointState joint;
+  for (const contactcore::PairJoint& p : joints.joints)
+    if (std::min(axis, body) == p.body_a && std::max(axis, body) == p.body_b) {
+      EXPECT_TRUE(joint_state_from_pair(p, axis, s.scene->centre(), s.scene->contacts().body_box(axis), joint));
+      s.scene->attach_collision_group(joint);
+    }
+  return joint;
+}
+}  // namespace
+
+// Held to the joint chosen in the panel (the Axis on Bearing-back's bore, not
+// the one engagement finds on all five bores), the hand pulled 12 mm up and
+// 0.2, 0.1 mm aside (tests/gui/test_haptic_panel.py does the same in the
+// GUI): the axis slides out along the chosen axis only and never enters a
+// body. It stopped 2.9 mm out: the chosen joint's collision group was the
+// first coaxial surface's (not the cylinder in Bearing-back's bore) and its
+// radius was unset, so the other bores' rims held it.
+TEST(ProxyAcceptance, AxisHeldToAChosenJointSlidesOut) {
+  Scene& s = motor_part("Axis");
+  const JointState joint = motor_axis_joint_with(s, "Bearing-back");
+  ASSERT_EQ(joint.kind, JointKind::Cylindrical);
+  ASSERT_GE(joint.group, 0);
+  EXPECT_NEAR(joint.radius, 4.0, 0.005);  // the journal in Bearing-back's bore
+  TrialScript script;
+  script.start = key(0, Vec3::Zero());
+  script.hand = {key(0.0, Vec3::Zero()), key(0.5, Vec3(0.2, 0.1, 12))};
+  TrialOptions options;
+  options.hold = &joint;
+  options.settle = 0.5;
+  const TrialResult r = run_trial(*s.scene, script, options);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  // On the chosen axis (x, y: the centre of mass 0.018 mm off the axis turns
+  // with the part), at the hand's height.
+  EXPECT_NEAR(r.final_translate.z(), 12.0, 0.01) << r.final_translate.transpose();
+  EXPECT_LT(r.final_translate.head<2>().norm(), 0.04) << r.final_translate.transpose();
+  EXPECT_LT(r.final_rotate_deg.head<2>().norm(), 1e-9);
+  EXPECT_TRUE(r.joints_engaged.empty());  // held, not found
+  const PathOverlap o = check_path(s.assembly, "Axis", s.scene->centre(), r.path, 5);
+  expect_no_deeper(o, 0.01);
+  EXPECT_GE(o.samples_checked, 20);
+}
+
+// ---- Coulomb friction at the proxy's contacts
+
+namespace {
+// A position device at the part's pose on the first tick (the loop anchors a
+// position device there), then held still at `pose` (no spring of its own):
+// the coupling's force is exactly K times the hand's offset from the part.
+class StillHand : public Device {
+ public:
+  explicit StillHand(const Pose& pose) : pose_(pose) {
+    caps_.name = "still hand";
+    caps_.force_output = true;
+    caps_.max_force = 100;
+    caps_.max_stiffness = 10;
+    caps_.max_damping = 1;
+  }
+  const DeviceCapabilities& capabilities() const override { return caps_; }
+  DeviceSample read(double now) noexcept override {
+    DeviceSample s;
+    s.connected = true;
+    s.time = now;
+    s.pose = now > 0 ? pose_ : Pose::Identity();
+    return s;
+  }
+  void write(const Wrench&) noexcept override {}
+
+ private:
+  DeviceCapabilities caps_;
+  Pose pose_;
+};
+
+// A 10 x 10 x 5 block resting on a 60 x 60 x 5 plate (assembled: touching).
+Scene& block_on_plate() {
+  static Scene s;
+  if (!s.scene) {
+    contactcore::Body plate, block;
+    plate.name = "Plate";
+    plate.shape = BRepPrimAPI_MakeBox(gp_Pnt(-30, -30, -5), 60, 60, 5).Shape();
+    block.name = "Block";
+    block.shape = BRepPrimAPI_MakeBox(gp_Pnt(-5, -5, 0), 10, 10, 5).Shape();
+    s.assembly.bodies = {plate, block};
+    contactcore::Status status;
+    s.scene = TrialScene::build(s.assembly, "Block", SceneOptions{}, status);
+  }
+  return s;
+}
+
+// The block's offset after 1.5 s with the hand held 1 mm into the plate and
+// `along` mm along x, friction mu.
+Vec3 block_moved(double mu, double along) {
+  Scene& s = block_on_plate();
+  const Vec3 c = s.scene->centre();
+  StillHand hand(offset_pose(Vec3(along, 0, -1), Vec3::Zero(), c));
+  ServoConfig config;
+  config.lockstep = true;
+  config.centre = c;
+  config.inertia_per_mass = s.scene->inertia_per_mass();
+  config.friction = mu;
+  config.damping = 0;
+  ServoLoop loop(hand, config, Pose::Identity());
+  loop.set_joint_finder(&s.scene->finder());
+  loop.set_collision(&s.scene->collision());
+  for (int i = 0; i < 1500; ++i) loop.step_lockstep();
+  return loop.proxy().translation();
+}
+}  // namespace
+
+TEST(ProxyFriction, ABlockSticksBelowMuTimesTheNormalForceAndSlidesAbove) {
+  ASSERT_TRUE(block_on_plate().scene);
+  // The hand 1 mm into the plate: a normal force K x 1 mm; along x 0.4 mm
+  // (0.4 K < 0.5 K): it sticks, not a micrometre of slip.
+  const Vec3 stuck = block_moved(0.5, 0.4);
+  EXPECT_LT(std::abs(stuck.x()), 1e-9) << stuck.transpose();
+  EXPECT_NEAR(stuck.z(), 0.0, 0.002);
+  // 0.6 mm along (0.6 K > 0.5 K): it slides until the hand's pull is on the
+  // cone's edge, 0.5 x 1 mm behind the hand: 0.1 mm (the contact skin of
+  // 1 um changes the normal offset by 0.1 %).
+  const Vec3 slid = block_moved(0.5, 0.6);
+  EXPECT_NEAR(slid.x(), 0.1, 0.002) << slid.transpose();
+  EXPECT_NEAR(slid.y(), 0.0, 1e-9);
+  EXPECT_NEAR(slid.z(), 0.0, 0.002);
+  // Without friction (the default) it goes all the way to the hand.
+  const Vec3 free = block_moved(0.0, 0.4);
+  EXPECT_NEAR(free.x(), 0.4, 1e-6) << free.transpose();
 }

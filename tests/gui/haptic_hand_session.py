@@ -23,8 +23,39 @@ out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
 
 
+def progress(label):
+    """A line per stage with the time (to see where a session that timed out was)."""
+    with open(os.path.join(out_dir, "haptic_hand_progress.txt"), "a") as stream:
+        stream.write(f"{time.monotonic():.2f} {label}\n")
+
+
 def grab_window_with_view(name):
     return session_helpers.grab_window_with_view(out_dir, name)[0]
+
+
+class RenderCounter:
+    """Counts the 3D view's renders (a SoCallback at the top of its scene
+    graph, called by every SoGLRenderAction): the view's own update rate."""
+
+    def __init__(self, view):
+        from pivy import coin
+        self.times = []
+        self.root = view.getSceneGraph()
+        self.node = coin.SoCallback()
+        self.node.setCallback(self._called)
+        self.root.insertChild(self.node, 0)
+        self.render_type = coin.SoGLRenderAction.getClassTypeId()
+
+    def _called(self, _, action):
+        if action.isOfType(self.render_type):
+            self.times.append(time.monotonic())
+
+    def rate(self, since):
+        renders = [t for t in self.times if t >= since]
+        return len(renders) / max(1e-9, time.monotonic() - since), len(renders)
+
+    def remove(self):
+        self.root.removeChild(self.node)
 
 
 def offset(obj, original):
@@ -50,6 +81,7 @@ def run():
     report["baseline_update_ms"] = 1000 * sum(costs) / len(costs)
     panel.reject()
     wait(0.3)
+    progress("baseline done")
     from contactwb.make import make_contact_analysis
     group = make_contact_analysis(doc)
     doc.recompute()
@@ -74,6 +106,7 @@ def run():
     wait(0.3)
     original = FreeCAD.Placement(axis.Placement)
     panel = session_helpers.open_haptic_panel(axis)
+    progress("panel open with the analysis")
     report["panel_open"] = panel is not None
     if panel is None:
         return
@@ -86,6 +119,7 @@ def run():
     builds_before = len(builds)
 
     # The user drags the Z slider up 15 mm over 3 s: the hand pulls the axis out along its bores.
+    counter = RenderCounter(FreeCADGui.activeDocument().activeView())
     start = time.monotonic()
     frames_before = len(panel.frame_times)
     for i in range(61):
@@ -93,6 +127,8 @@ def run():
         wait(0.05)
     wait(1.0)
     elapsed = time.monotonic() - start
+    report["view_rate_hz"], report["view_renders"] = counter.rate(start)
+    counter.remove()
     report["frames"] = len(panel.frame_times) - frames_before
     report["seconds"] = elapsed
     report["update_rate_hz"] = report["frames"] / elapsed
@@ -106,6 +142,8 @@ def run():
     report["constraints_pulled"] = panel.readouts["constraints"].text()
     report["sliders_png"] = grab_window_with_view("haptic_hand_sliders.png")
 
+    progress("sliders done")
+
     # Replay of the bundled trial script (a script, not a recorded path).
     try:
         panel.replay_file(os.environ["CONTACTS_TRIAL_SCRIPT"])
@@ -116,6 +154,7 @@ def run():
     while not panel.script_done() and time.monotonic() - start < 15:
         wait(0.05)
     wait(2.0)
+    progress("replay done")
     report["replay_rate_hz"] = (len(panel.frame_times) - frames_before) / (time.monotonic() - start)
     report["redraws_while_replaying"] = len(builds) - builds_before - report["redraws_while_moving"]
     report["replayed_snapshot"] = panel.session.snapshot().translate

@@ -57,11 +57,11 @@ def pick_joints(doc, axis):
     # The hand pulls it out along the axis and sideways: held, it slides out on the chosen axis.
     panel.session.set_hand_target([0.2, 0.1, 12.0], [0.0, 0.0, 0.0])
     # Real time: how far it gets in a given wall time depends on the machine's load (a tick in
-    # contact costs ms here), so wait until it has slid out, 10 s at most.
-    for _ in range(100):
+    # contact costs ms here), so wait until it has slid out to the hand, 20 s at most.
+    for _ in range(200):
         wait(0.1)
         pulled = panel.session.snapshot()
-        if pulled.translate[2] > 6.0:
+        if pulled.translate[2] > 11.95:
             break
     report["chosen_pulled"] = {"translate": pulled.translate, "rotate_deg": pulled.rotate_deg,
                                "held": pulled.held}

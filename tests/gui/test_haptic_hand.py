@@ -16,7 +16,8 @@ def hand_report(tmp_path_factory):
     report = run_session(tmp_path_factory, "haptic_hand_session.py", "haptic_hand_report.json",
                          {"CONTACTS_SAMPLE": os.path.join(REPO, "Resources", "samples", "motor.FCStd"),
                           "CONTACTS_TRIAL_SCRIPT": os.path.join(REPO, "Resources", "trials",
-                                                                "motor_axis_insertion.json")})
+                                                                "motor_axis_insertion.json")},
+                         timeout=900)  # a software renderer on a loaded machine: about 1 s a frame
     assert not report["errors"], "\n".join(report["errors"])
     return report
 
@@ -46,6 +47,16 @@ def test_no_contact_redraw_while_the_part_moves(hand_report):
     assert hand_report["redraws_while_replaying"] == 0
     # Closing the panel redraws the contacts once, at the committed placement.
     assert 1 <= hand_report["redraws_after_ok"] <= 2
+
+
+def test_the_3d_view_update_rate_while_the_hand_moves(hand_report):
+    # Renders of the 3D view counted by a SoCallback first in its scene graph (every SoGLRenderAction)
+    # while the Z slider pulls the axis out (4 s), the contact analysis present. Printed, not asserted:
+    # Xvfb's software renderer on a shared machine (docs/haptics.md gives the figure).
+    print(f"\n[ measured ] 3D view: {hand_report['view_renders']} renders in {hand_report['seconds']:.2f} s "
+          f"= {hand_report['view_rate_hz']:.1f} Hz while the hand moves the axis (panel updates "
+          f"{hand_report['update_rate_hz']:.1f} Hz)")
+    assert hand_report["view_renders"] > 0
 
 
 def test_replay_of_the_bundled_script_seats_the_axis(hand_report):

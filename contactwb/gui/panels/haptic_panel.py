@@ -178,6 +178,16 @@ class HapticTrialPanel:
         grid.addWidget(self.damping_spin, 3, 1)
         self.stiffness_spin.valueChanged.connect(self._gains_changed)
         self.damping_spin.valueChanged.connect(self._gains_changed)
+        grid.addWidget(QtWidgets.QLabel("Friction"), 5, 0)
+        self.friction_spin = QtWidgets.QDoubleSpinBox()
+        self.friction_spin.setDecimals(2)
+        self.friction_spin.setRange(0.0, 2.0)
+        self.friction_spin.setSingleStep(0.05)
+        self.friction_spin.setToolTip("Coulomb friction coefficient at the part's contacts (0: none): the part "
+                                      "sticks while the hand pulls along a surface less than this times it "
+                                      "pushes into it")
+        self.friction_spin.valueChanged.connect(lambda mu: self.session and self.session.set_friction(mu))
+        grid.addWidget(self.friction_spin, 5, 1)
         layout.addWidget(part_box)
 
         hand_box = QtWidgets.QGroupBox("Simulated hand")
@@ -254,6 +264,7 @@ class HapticTrialPanel:
         self.stiffness_spin.blockSignals(False)
         self.damping_spin.blockSignals(False)
         self._gains_changed()
+        self.session.set_friction(self.friction_spin.value())
         self.session.set_enabled(self.enable_check.isChecked())
         self._apply_joint()
         self.session.start()

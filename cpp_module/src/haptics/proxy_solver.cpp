@@ -49,6 +49,7 @@ ProxyStep solve_proxy_step(const Vec6& desired, const Mat6& metric, const Mat6& 
   out.twist = s * q;
   for (int k = 0; k < count; ++k) {
     if (lambda[k] > 0) ++out.active;
+    out.load += lambda[k];
     if (w[k] > 1e-14) out.violation = std::max(out.violation, constraints[k].bound - constraints[k].row.dot(out.twist));
   }
   return out;

@@ -137,6 +137,7 @@ ServoLoop::ServoLoop(Device& device, const ServoConfig& config, const Pose& init
       angular_stiffness_(config.angular_stiffness),
       damping_(config.damping),
       angular_damping_(config.angular_damping),
+      friction_(config.friction > 0 ? config.friction : 0.0),
       step_histogram_(kHistogramBins, 0),
       jitter_histogram_(kHistogramBins, 0) {
   events_.reserve(kMaxEvents);
@@ -331,6 +332,27 @@ Pose ServoLoop::move_proxy(const Pose& target, double dt) {
     r.bound = joint_.stops[i].normal.dot(c0) - joint_.stops[i].limit;
   }
   for (int i = 0; i < constraint_count_; ++i) add_contact(constraint_set_[i]);
+
+  // Coulomb friction, a friction cone on the proxy: with the hand's whole
+  // offset (not speed-limited) the frictionless solve gives the slip along
+  // the surfaces and the constraints' load (the hand's push into them); the
+  // part sticks while the slip is at most mu times the load and otherwise
+  // slides by the excess, ending on the cone's edge. Both in the mass metric
+  // (translations: mm of the hand's offset; the coupling's stiffness, the same
+  // along and across, cancels out of the force ratio).
+  const double mu = friction_.load(std::memory_order_relaxed);
+  if (mu > 0 && row_count > 0) {
+    const Vec6 whole = twist_between(proxy_, target, c);
+    const ProxyStep free_step = solve_proxy_step(whole, metric, basis, free, rows.data(), row_count);
+    if (free_step.active > 0) {
+      const double slip = std::sqrt(free_step.twist.dot(metric * free_step.twist));
+      const double kept = slip > 0 ? std::max(0.0, 1.0 - mu * free_step.load / slip) : 0.0;
+      xi = kept * free_step.twist;
+      const double l = xi.head<3>().norm(), a = xi.tail<3>().norm();
+      if (l > max_lin) xi.head<3>() *= max_lin / l;
+      if (a > max_ang) xi.tail<3>() *= max_ang / a;
+    }
+  }
 
   last_.blocked = false;
   Pose candidate = proxy_;

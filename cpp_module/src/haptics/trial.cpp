@@ -118,6 +118,12 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
 void TrialScene::attach_collision_group(JointState& joint) const {
   joint.group = -1;
   const double tol = contacts_->tolerances().distance, cos_tol = std::cos(contacts_->tolerances().angle);
+  const bool bore = joint.kind == JointKind::Cylindrical || joint.kind == JointKind::Revolute;
+  // The part's surface on the joint: on its axis (centre, plane) and, among
+  // those, one whose group switches off a surface of the body the joint is
+  // with (a shaft has several coaxial cylinders: the one in that body's bore).
+  int fallback = -1;
+  double fallback_radius = 0;
   for (const SurfaceProxy& m : contacts_->moving_surfaces()) {
     if (m.partition < 0 || m.partition >= static_cast<int>(groups_.moving_group.size())) continue;
     const int group = groups_.moving_group[m.partition];
@@ -139,11 +145,27 @@ void TrialScene::attach_collision_group(JointState& joint) const {
       default:
         break;
     }
-    if (on) {
+    if (!on) continue;
+    const double radius = bore && m.kind == SurfaceKind::Cylinder ? m.radius : 0.0;
+    bool with_the_body = false;
+    for (int k = 0; k < joint.body_count; ++k) {
+      const int b = joint.bodies[k];
+      with_the_body |= b >= 0 && b < static_cast<int>(groups_.switched_off[group].size()) &&
+                       !groups_.switched_off[group][b].empty();
+    }
+    // A cylinder in the body's bore first (a cone there is a chamfer).
+    if (with_the_body && (!bore || m.kind == SurfaceKind::Cylinder)) {
       joint.group = group;
+      joint.radius = radius;
       return;
     }
+    if (fallback < 0) {
+      fallback = group;
+      fallback_radius = radius;
+    }
   }
+  joint.group = fallback;
+  joint.radius = fallback_radius;
 }
 
 TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialOptions& options, bool realtime) {
@@ -168,6 +190,7 @@ TrialResult run_trial(TrialScene& scene, const TrialScript& script, const TrialO
   ServoLoop loop(options.device ? *options.device : static_cast<Device&>(hand), config, start);
   loop.set_joint_finder(&scene.finder());
   loop.set_collision(&scene.collision());
+  if (options.hold) loop.hold_to(*options.hold);
 
   const double duration = options.device ? options.duration : (keys.empty() ? 0.0 : keys.back().t) + options.settle;
   const auto total = static_cast<std::uint64_t>(duration * config.rate_hz + 0.5);

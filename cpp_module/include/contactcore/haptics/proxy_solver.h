@@ -23,6 +23,10 @@ struct ProxyStep {
   Vec6 twist = Vec6::Zero();
   int active = 0;            // constraints holding (multiplier > 0)
   double violation = 0;      // largest bound - row . twist left (mm), 0 when every constraint holds
+  // Sum of the multipliers: the constraints' push on the part in the metric's
+  // units (for unit-normal rows through the centre, mm of the hand's offset
+  // into them: the normal load a friction cone compares the slip with).
+  double load = 0;
 };
 
 // min 1/2 (x - desired)^T M (x - desired) over x = S q (S: the first `free`

@@ -63,6 +63,10 @@ struct ServoConfig {
   // fail (CAP_IPC_LOCK or an unlimited RLIMIT_MEMLOCK).
   bool lock_memory = true;
   double late_wakeup_us = 100;      // a wake-up this long after its deadline is late
+  // Coulomb friction coefficient at the proxy's contacts (0: none): the part
+  // sticks while the hand's pull along the surfaces is at most friction times
+  // its push into them, and slides on the friction cone's edge beyond.
+  double friction = 0;
 };
 
 // What the GUI (or a test) sees, published every tick.
@@ -137,6 +141,8 @@ class ServoLoop {
 
   // GUI side: lock-free.
   void set_enabled(bool enabled) { enabled_.store(enabled); }
+  void set_friction(double mu) { friction_.store(mu > 0 ? mu : 0.0); }
+  double friction() const { return friction_.load(std::memory_order_relaxed); }
   void set_stiffness(double linear, double angular) {
     stiffness_.store(linear);
     angular_stiffness_.store(angular);
@@ -222,6 +228,7 @@ class ServoLoop {
 
   std::atomic<bool> enabled_{true};
   std::atomic<double> stiffness_, angular_stiffness_, damping_, angular_damping_;
+  std::atomic<double> friction_{0.0};
   std::atomic<bool> stop_{false};
   std::atomic<bool> got_priority_{false};
   std::atomic<bool> memory_locked_{false};

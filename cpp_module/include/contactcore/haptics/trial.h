@@ -48,7 +48,10 @@ class TrialScene {
   const std::vector<std::string>& body_names() const { return names_; }
   // Sets `joint.group` to the collision group of the part's surfaces on that
   // joint (a chosen joint, say from the joints stage): a cylinder or cone on
-  // its axis, a sphere on its centre, a face on its plane; -1 when none.
+  // its axis, a sphere on its centre, a face on its plane; -1 when none. Of a
+  // shaft's coaxial cylinders, the one in the joint's body's bore, whose
+  // radius becomes `joint.radius` (the loop leaves out that bore's rim
+  // contacts, as for a joint engagement finds).
   void attach_collision_group(JointState& joint) const;
   double setup_seconds() const { return setup_seconds_; }
 
@@ -90,6 +93,10 @@ struct TrialOptions {
   // lasts `duration` s (the script's keys do not drive it).
   Device* device = nullptr;
   double duration = 0;
+  // A joint the part is held to from the first tick instead of the one
+  // engagement finds (a joint chosen in the panel, joint_adapter.h, its
+  // collision group attached); not owned, null: engagement.
+  const JointState* hold = nullptr;
 };
 
 struct TrialSample {
