@@ -233,8 +233,9 @@ SLACK = 1.5  # seconds beyond the 0.5 s target, for a loaded machine (the bound 
 @pytest.mark.parametrize("delay", [1.0, 2.5])
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
 def test_signal_during_mesh_leaves_no_partial_output(tmp_path, delay, sig):
+    # 0.0007 mm: about 7 s of meshing here, so the signal always comes mid-run (0.002 took under 2.5 s idle)
     out = tmp_path / "out"
-    code, after, stdout, stderr = _interrupted(["mesh", MOTOR, "--out", str(out), "--deflection", "0.002"], delay, sig)
+    code, after, stdout, stderr = _interrupted(["mesh", MOTOR, "--out", str(out), "--deflection", "0.0007"], delay, sig)
     assert code == 130, stderr
     assert after < 0.5 + SLACK
     assert "Traceback" not in stderr and "cancelled" in stderr
