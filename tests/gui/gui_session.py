@@ -208,7 +208,10 @@ def run():
     if bar:
         buttons = [b for b in bar.findChildren(QtWidgets.QToolButton) if b.defaultAction()
                    and b.isVisible()]
-        report["toolbar_actions"] = [b.defaultAction().text() for b in buttons]
+        # Every action the toolbar holds, in order (at 1280 px the last ones sit behind the toolbar's
+        # overflow arrow: held, not shown as buttons)
+        report["toolbar_actions"] = [a.text() for a in bar.actions() if not a.isSeparator() and a.isVisible()]
+        report["toolbar_buttons_shown"] = [b.defaultAction().text() for b in buttons]
         if buttons:
             top_left = buttons[0].mapTo(main, buttons[0].rect().topLeft())
             report["first_button_rect"] = [top_left.x(), top_left.y(), buttons[0].width(), buttons[0].height()]

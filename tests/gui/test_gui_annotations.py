@@ -48,7 +48,7 @@ def test_annotated_through_the_commands_is_two_groups_one_dof(report):
            "1 DOF)" in annotated["mobility"] or any(
                line.startswith("Rigid group 2:") and "(revolute, 1 DOF)" in line and
                {"Axis", "Rotor-front", "Rotor-back", "Magnet-1", "Magnet-2", "Magnet-3", "Magnet-4"} ==
-               set(line.split(": ", 1)[1].rsplit(" (", 1)[0].split(", ")) for line in annotated["mobility"])
+               set(line.split(": ", 1)[1].split(" (revolute", 1)[0].split(", ")) for line in annotated["mobility"])
     # the dialog's verdict: H7/p6 at the axis' 8 mm (ISO 286: hole 0/+15, shaft +15/+24)
     first = annotated["steps"][0]["seen"]["verdict"]
     assert "interference fit at \u00d88 mm: hole +0/+15 \u00b5m, shaft +15/+24 \u00b5m, clearance -24 to 0" in first

@@ -131,7 +131,12 @@ def property_editor_text(obj, name):
     """What FreeCAD's property editor shows for obj.name (the object selected)."""
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(obj)
-    settle()
+    # FreeCAD's property view follows the selection on a timer (100 ms by default): let it fire
+    import time
+    end = time.monotonic() + 0.5
+    while time.monotonic() < end:
+        settle()
+        time.sleep(0.02)
     main = FreeCADGui.getMainWindow()
     for view in main.findChildren(QtWidgets.QTreeView):
         model = view.model()

@@ -345,7 +345,7 @@ def stale_after_move_and_delete():
     # event loop run it, 3 s at most.
     import time
     for _ in range(60):
-        if proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL:
+        if proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL and not proxy._stale:
             break
         time.sleep(0.05)
         FreeCADGui.updateGui()
