@@ -27,8 +27,12 @@
 #include "contactcore/simulation/collision.h"
 #include "simulation/bvh_traversal.h"
 #include "contactcore/simulation/meshes.h"
+#include "placement_helpers.h"
 
 using namespace contactcore;
+using contactcore::testing::placed;
+using contactcore::testing::random_placement;
+using contactcore::testing::to_gp;
 
 namespace {
 
@@ -52,31 +56,6 @@ Body make_body(const TopoDS_Shape& shape, double deflection = 0.01) {
   EXPECT_TRUE(built.status.ok()) << built.status.describe();
   body.model = built.model;
   return body;
-}
-
-gp_Trsf to_gp(const RigidTransform& t) {
-  gp_Trsf trsf;
-  const auto& r = t.rotation;
-  trsf.SetValues(r[0], r[1], r[2], t.translation[0], r[3], r[4], r[5], t.translation[1], r[6], r[7], r[8],
-                 t.translation[2]);
-  return trsf;
-}
-
-RigidTransform random_placement(std::mt19937& rng, double spread) {
-  std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> uniform(-spread, spread);
-  gp_Quaternion q(normal(rng), normal(rng), normal(rng), normal(rng));
-  q.Normalize();
-  const gp_Mat m = q.GetMatrix();
-  RigidTransform t;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) t.rotation[i * 3 + j] = m.Value(i + 1, j + 1);
-  t.translation = {uniform(rng), uniform(rng), uniform(rng)};
-  return t;
-}
-
-TopoDS_Shape placed(const TopoDS_Shape& shape, const RigidTransform& t) {
-  return BRepBuilderAPI_Transform(shape, to_gp(t), true).Shape();
 }
 
 double exact_distance(const TopoDS_Shape& a, const TopoDS_Shape& b) {

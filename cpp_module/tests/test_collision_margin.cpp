@@ -22,8 +22,11 @@
 
 #include "contactcore/simulation/collision.h"
 #include "contactcore/simulation/meshes.h"
+#include "placement_helpers.h"
 
 using namespace contactcore;
+using contactcore::testing::placed;
+using contactcore::testing::random_placement;
 
 namespace {
 
@@ -52,27 +55,6 @@ TopoDS_Shape box(double x0, double y0, double z0, double dx, double dy, double d
 
 TopoDS_Shape cylinder(double radius, double height, const gp_Pnt& base) {
   return BRepPrimAPI_MakeCylinder(gp_Ax2(base, gp::DZ()), radius, height).Shape();
-}
-
-gp_Trsf to_gp(const RigidTransform& t) {
-  gp_Trsf trsf;
-  const auto& r = t.rotation;
-  trsf.SetValues(r[0], r[1], r[2], t.translation[0], r[3], r[4], r[5], t.translation[1], r[6], r[7], r[8],
-                 t.translation[2]);
-  return trsf;
-}
-
-RigidTransform random_placement(std::mt19937& rng, double spread) {
-  std::normal_distribution<double> normal;
-  std::uniform_real_distribution<double> uniform(-spread, spread);
-  gp_Quaternion q(normal(rng), normal(rng), normal(rng), normal(rng));
-  q.Normalize();
-  const gp_Mat m = q.GetMatrix();
-  RigidTransform t;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) t.rotation[i * 3 + j] = m.Value(i + 1, j + 1);
-  t.translation = {uniform(rng), uniform(rng), uniform(rng)};
-  return t;
 }
 
 double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b) {
@@ -116,7 +98,7 @@ TEST(CollisionMargin, BodyWhollyInsideAnotherIsFoundWithAMargin) {
   const Body block = make_body(box(-20, -20, -10, 40, 40, 10), 0.05);
   const Body ball = make_body(BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 0), 3).Shape(), 0.05);
   const RigidTransform buried = RigidTransform::translated(2, -1, -5);  // 2 mm from the top face's plane
-  ASSERT_NEAR(common_volume(block.shape, BRepBuilderAPI_Transform(ball.shape, to_gp(buried), true).Shape()),
+  ASSERT_NEAR(common_volume(block.shape, placed(ball.shape, buried)),
               36 * M_PI, 1e-6);
   CollisionPair plain(block.model, ball.model);
   EXPECT_FALSE(intersecting(plain, buried));
@@ -207,7 +189,7 @@ TEST(CollisionMargin, NoOverlapOfTheExactSolidsMissedOnRandomPoses) {
         if (m == 0) place.rotation = {0, 0, 1, 0, 1, 0, -1, 0, 0};  // on its side, along x
         place.translation = {m == 2 ? 0.0 : 1.5, 5.5, 6 + below_centre[m] + gap(rng)};
       }
-      const TopoDS_Shape moved = BRepBuilderAPI_Transform(mover.shape, to_gp(place), true).Shape();
+      const TopoDS_Shape moved = placed(mover.shape, place);
       const double volume = common_volume(holed.shape, moved);
       const bool conservative_hit = intersecting(conservative, place);
       EXPECT_EQ(conservative_hit, intersecting(conservative, place, QueryKind::Penetration)) << trial;
