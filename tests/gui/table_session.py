@@ -8,12 +8,16 @@ judged on the rendered view (the contact's box projected on the screen, the
 paint's pixels). Screenshots go to $CONTACTS_GUI_OUT."""
 import json
 import os
+import sys
 import time
 import traceback
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": {}, "times": {}}
@@ -42,22 +46,7 @@ def grab_window(name):
     """The main window with the 3D view rendered into it (a grab leaves the
     OpenGL view blank under Xvfb)."""
     settle()
-    main = FreeCADGui.getMainWindow()
-    path = os.path.join(out_dir, name)
-    picture = main.grab()
-    area = main.findChild(QtWidgets.QMdiArea)
-    widget = area.viewport()
-    corner = widget.mapTo(main, QtCore.QPoint(0, 0))
-    scale = picture.width() / main.width()
-    view_png = os.path.join(out_dir, "_view_for_" + name)
-    FreeCADGui.activeDocument().activeView().saveImage(view_png, round(widget.width() * scale),
-                                                       round(widget.height() * scale), "Current")
-    painter = QtGui.QPainter(picture)
-    painter.drawImage(QtCore.QRectF(corner.x(), corner.y(), widget.width(), widget.height()), QtGui.QImage(view_png))
-    painter.end()
-    os.remove(view_png)
-    picture.save(path)
-    return path
+    return session_helpers.grab_window_with_view(out_dir, name)[0]
 
 
 def colour_pixels(path, colour, tolerance=0.2):

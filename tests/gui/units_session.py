@@ -9,12 +9,16 @@ file's sizes and areas in mm. Screenshots go to $CONTACTS_GUI_OUT."""
 import glob
 import json
 import os
+import sys
 import re
 import traceback
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 repo = os.environ["CONTACTS_REPO"]
@@ -37,23 +41,10 @@ def settle():
 
 
 def grab_window(name):
+    """The main window with the 3D view rendered into it (a grab leaves the
+    OpenGL view blank under Xvfb)."""
     settle()
-    main = FreeCADGui.getMainWindow()
-    path = os.path.join(out_dir, name)
-    picture = main.grab()
-    area = main.findChild(QtWidgets.QMdiArea)
-    widget = area.viewport()
-    corner = widget.mapTo(main, QtCore.QPoint(0, 0))
-    scale = picture.width() / main.width()
-    view_png = os.path.join(out_dir, "_view_for_" + name)
-    FreeCADGui.activeDocument().activeView().saveImage(view_png, round(widget.width() * scale),
-                                                       round(widget.height() * scale), "Current")
-    painter = QtGui.QPainter(picture)
-    painter.drawImage(QtCore.QRectF(corner.x(), corner.y(), widget.width(), widget.height()), QtGui.QImage(view_png))
-    painter.end()
-    os.remove(view_png)
-    picture.save(path)
-    return path
+    return session_helpers.grab_window_with_view(out_dir, name)[0]
 
 
 def preferences_dialog():
