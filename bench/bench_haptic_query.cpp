@@ -111,13 +111,16 @@ Pose jittered(int i, const Vec3& centre) {
 }
 
 // One pair: the part against one neighbour (the other bodies left out).
-void BM_ContactQuery(benchmark::State& state, int part, int body, bool closed_form) {
+// `body_trees`: the mesh query on each body's one tree (CollisionPair::set_body_tree) instead of
+// one tree per partition (the default), in the same run.
+void BM_ContactQuery(benchmark::State& state, int part, int body, bool closed_form, bool body_trees = false) {
   Motor& m = motor();
   std::vector<CollisionModelPtr> models(m.models[part].size());
   models[m.index[part]] = m.models[part][m.index[part]];
   models[body] = m.models[part][body];
   StageCollision query(models, m.index[part], CollisionGroups{});
   if (closed_form) query.use_analytic(m.partitions);
+  query.set_body_trees(body_trees);
   const Vec3 centre = m.scenes[part]->centre();
   ContactPoint out[kMaxContacts];
   std::vector<double> wall, cpu;
@@ -149,10 +152,11 @@ std::vector<HandKey> pushing_hand(const Vec3& centre, double seconds) {
   return keys;
 }
 
-void BM_ServoTick(benchmark::State& state, int part, bool closed_form) {
+void BM_ServoTick(benchmark::State& state, int part, bool closed_form, bool body_trees = false) {
   Motor& m = motor();
   TrialScene& scene = *m.scenes[part];
   scene.collision().set_analytic(closed_form);
+  scene.collision().set_body_trees(body_trees);
   const Vec3 c = scene.centre();
   SimulatedHand hand(HandScript(pushing_hand(c, 4.0)), HandParameters{}, c, Pose::Identity());
   ServoConfig config;
@@ -172,6 +176,7 @@ void BM_ServoTick(benchmark::State& state, int part, bool closed_form) {
     contacts += loop.last().contact_count;
   }
   scene.collision().set_analytic(true);
+  scene.collision().set_body_trees(false);
   state.counters["p50_us"] = percentile(wall, 50) * 1e6;
   state.counters["p99_us"] = percentile(wall, 99) * 1e6;
   state.counters["cpu_p50_us"] = percentile(cpu, 50) * 1e6;
@@ -242,6 +247,9 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(("contact_query/meshes_only/" + name).c_str(),
                                    [part, b](benchmark::State& s) { BM_ContactQuery(s, part, b, false); })
           ->Iterations(60)->Unit(benchmark::kMicrosecond);
+      benchmark::RegisterBenchmark(("contact_query/meshes_only_body_trees/" + name).c_str(),
+                                   [part, b](benchmark::State& s) { BM_ContactQuery(s, part, b, false, true); })
+          ->Iterations(60)->Unit(benchmark::kMicrosecond);
     }
     const std::string part_name = m.parts[part];
     benchmark::RegisterBenchmark(("servo_tick/closed_form/" + part_name).c_str(),
@@ -249,6 +257,9 @@ int main(int argc, char** argv) {
         ->Iterations(200)->Unit(benchmark::kMicrosecond);
     benchmark::RegisterBenchmark(("servo_tick/meshes_only/" + part_name).c_str(),
                                  [part](benchmark::State& s) { BM_ServoTick(s, part, false); })
+        ->Iterations(60)->Unit(benchmark::kMicrosecond);
+    benchmark::RegisterBenchmark(("servo_tick/meshes_only_body_trees/" + part_name).c_str(),
+                                 [part](benchmark::State& s) { BM_ServoTick(s, part, false, true); })
         ->Iterations(60)->Unit(benchmark::kMicrosecond);
     for (int priority : {0, 80})
       benchmark::RegisterBenchmark(("realtime_loop/" + std::string(priority ? "fifo80/" : "normal/") + part_name).c_str(),

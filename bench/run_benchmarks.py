@@ -356,7 +356,8 @@ def haptic_query_tables(runs):
         return "-" if value is None else f"{value:.{digits}f}"
     lines = ["| machine | load avg at start | pair (part / neighbour) | closed forms: query p50 us | p99 us | "
              "CPU p99 us | closed-form pairs / query | mesh fallbacks / query | meshes only: p50 us | p99 us | "
-             "p99 ratio |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "p99 ratio | meshes only on body trees: CPU p50 us | body trees / per-partition trees CPU p50 |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for label, results, load in runs:
         for name, row in results.items():
             if not name.startswith("contact_query/closed_form/"):
@@ -364,9 +365,13 @@ def haptic_query_tables(runs):
             pair = name[len("contact_query/closed_form/"):]
             mesh = results.get("contact_query/meshes_only/" + pair, {})
             ratio = mesh.get("p99_us", 0) / row["p99_us"] if row.get("p99_us") else None
+            bodies = results.get("contact_query/meshes_only_body_trees/" + pair, {})
+            trees = (bodies["cpu_p50_us"] / mesh["cpu_p50_us"]
+                     if mesh.get("cpu_p50_us") and bodies.get("cpu_p50_us") else None)
             lines.append(f"| {label} | {load} | {pair} | {f(row['p50_us'])} | {f(row['p99_us'])} | "
                          f"{f(row['cpu_p99_us'])} | {f(row['closed_pairs'])} | {f(row['mesh_fallbacks'])} | "
-                         f"{f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} | {f(ratio)}x |")
+                         f"{f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} | {f(ratio)}x | "
+                         f"{f(bodies.get('cpu_p50_us'))} | {f(trees, 2)}x |")
     lines += ["", "| machine | part | servo tick, closed forms: p50 us | p99 us | CPU p99 us | contacts / tick | "
               "meshes only: p50 us | p99 us |", "|---|---|---|---|---|---|---|---|"]
     for label, results, load in runs:

@@ -604,3 +604,106 @@ TEST(Collision, BoxSeparationAgreesWithFclAndBoundsTheDistance) {
   EXPECT_EQ(disjoint, 1898);
   EXPECT_LT(from_edges, disjoint / 2);  // mostly a face axis, the margin close to the distance
 }
+
+// The bodies' one tree per body (Penetration's touching pairs filtered by partition at the leaves,
+// the flood's closest points, depth_inside) against one tree per partition (the reference, as
+// before) on the same poses: a shaft in its line-to-line bore turned and pushed sideways (the
+// tessellations cross along the whole bore, hundreds of touching pairs), random poses of a cylinder
+// in a holed box, with a partition, then only the bore-shaft pair switched off, then everything on.
+TEST(Collision, BodyTreesGiveThePerPartitionAnswers) {
+  const Body block = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, 0), 20, 20, 10).Shape(),
+                                               BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp::DZ()), 3, 12).Shape())
+                                   .Shape());
+  const Body shaft = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 20).Shape());
+  const Body holed = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -4), 12, 12, 8).Shape(),
+                                               BRepPrimAPI_MakeSphere(4.5).Shape())
+                                   .Shape());
+  int bore = -1, side = -1;
+  for (const Partition& p : block.partitions.partitions)
+    if (p.params.kind == SurfaceKind::Cylinder) bore = p.id;
+  for (const Partition& p : shaft.partitions.partitions)
+    if (p.params.kind == SurfaceKind::Cylinder) side = p.id;
+  ASSERT_GE(bore, 0);
+  ASSERT_GE(side, 0);
+  std::mt19937 rng(20);
+  std::uniform_real_distribution<double> turn(-0.2, 0.2), push(-0.3, 0.3);
+  int deep = 0, touching = 0, apart = 0;
+  for (int mode = 0; mode < 3; ++mode) {  // 0: all on, 1: the bore partition off, 2: only the bore-shaft pair off
+    CollisionPair body_trees(block.model, shaft.model), per_partition(block.model, shaft.model);
+    CollisionPair body_holed(shaft.model, holed.model), per_partition_holed(shaft.model, holed.model);
+    body_trees.set_body_tree(true);
+    body_holed.set_body_tree(true);
+    for (CollisionPair* pair : {&body_trees, &per_partition}) {
+      if (mode == 1) pair->set_partition_enabled(0, bore, false);
+      if (mode == 2) pair->set_pair_enabled(bore, side, false);
+    }
+    for (int i = 0; i < 40; ++i) {
+      const double angle = turn(rng);
+      RigidTransform in_bore;
+      in_bore.rotation = {std::cos(angle), -std::sin(angle), 0, std::sin(angle), std::cos(angle), 0, 0, 0, 1};
+      in_bore.translation = {i % 4 == 0 ? 0.0 : push(rng), i % 4 == 0 ? 0.0 : push(rng), push(rng)};
+      const RigidTransform random = random_placement(rng, 5.0);
+      for (QueryKind kind : {QueryKind::Penetration, QueryKind::Distance, QueryKind::Intersect}) {
+        const std::string where = "mode " + std::to_string(mode) + " pose " + std::to_string(i) + " kind " +
+                                  std::to_string(static_cast<int>(kind));
+        QueryResult tree, reference;
+        body_trees.query(RigidTransform::identity(), in_bore, kind, tree);
+        per_partition.query(RigidTransform::identity(), in_bore, kind, reference);
+        expect_same(tree, reference, "shaft in bore, " + where);
+        if (kind == QueryKind::Penetration) (reference.depth > 0 ? deep : reference.intersecting ? touching : apart) += 1;
+        body_holed.query(random, RigidTransform::identity(), kind, tree);
+        per_partition_holed.query(random, RigidTransform::identity(), kind, reference);
+        expect_same(tree, reference, "cylinder in holed box, " + where);
+        if (kind == QueryKind::Penetration) (reference.depth > 0 ? deep : reference.intersecting ? touching : apart) += 1;
+      }
+      const std::array<double, 3> point{push(rng) * 10, push(rng) * 10, push(rng) * 10};
+      EXPECT_EQ(body_trees.depth_inside(1, in_bore, point), per_partition.depth_inside(1, in_bore, point));
+      EXPECT_EQ(body_holed.depth_inside(1, RigidTransform::identity(), point),
+                per_partition_holed.depth_inside(1, RigidTransform::identity(), point));
+    }
+  }
+  // Both kinds of answer are exercised (penetrating, merely touching or apart).
+  EXPECT_GT(deep, 0);
+  EXPECT_GT(touching + apart, 0);
+}
+
+// Penetration's flood and the per-pair mask: a shaft (side meshed with edges of at most 1 mm, so
+// that its side has vertices between its rims) from z = 0.1 to 9.9 in a bore through a block 10
+// thick, pushed 0.2 sideways into the bore's wall. All pairs on, the side's vertices inside the
+// wall are the deepest: depth 0.2 (to the bore mesh's chords), A (the block) leaving along +x. The
+// bore-shaft side pair off, those vertices are that pair's overlap and skipped; what is left is the
+// rims of the end discs sunk 0.1 under the block's faces next to the bore (their disc's pairs on):
+// depth 0.1 exactly (to the faces z = 0 and 10), along z.
+TEST(Collision, SwitchedOffPairOverlapIsNotFlooded) {
+  const Body block = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, 0), 20, 20, 10).Shape(),
+                                               BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp::DZ()), 3, 12).Shape())
+                                   .Shape());
+  Body shaft;
+  shaft.shape = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, 0.1), gp::DZ()), 3, 9.8).Shape();
+  shaft.partitions = partition_shape(shaft.shape, Tolerances{});
+  MeshOptions options;
+  options.deflection = 0.01;
+  options.max_edge_length = 1.0;
+  const MeshResult meshed = mesh_body(shaft.shape, shaft.partitions, options);
+  ASSERT_TRUE(meshed.status.ok()) << meshed.status.describe();
+  shaft.model = build_collision_model(meshed.mesh).model;
+  ASSERT_TRUE(shaft.model);
+  int bore = -1, side = -1;
+  for (const Partition& p : block.partitions.partitions)
+    if (p.params.kind == SurfaceKind::Cylinder) bore = p.id;
+  for (const Partition& p : shaft.partitions.partitions)
+    if (p.params.kind == SurfaceKind::Cylinder) side = p.id;
+  ASSERT_GE(bore, 0);
+  ASSERT_GE(side, 0);
+  CollisionPair pair(block.model, shaft.model);
+  QueryResult on, off;
+  const RigidTransform pushed = RigidTransform::translated(0.2, 0, 0);
+  pair.query(RigidTransform::identity(), pushed, QueryKind::Penetration, on);
+  EXPECT_NEAR(on.depth, 0.205, 0.0051);
+  EXPECT_GT(on.direction[0], 0.99);
+  pair.set_pair_enabled(bore, side, false);
+  pair.query(RigidTransform::identity(), pushed, QueryKind::Penetration, off);
+  EXPECT_TRUE(off.intersecting);
+  EXPECT_NEAR(off.depth, 0.1, 1e-9);
+  EXPECT_NEAR(std::abs(off.direction[2]), 1.0, 1e-9);
+}

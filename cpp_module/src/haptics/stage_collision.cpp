@@ -191,11 +191,13 @@ bool StageCollision::analytic_contact_of(Neighbour& n, const Pose& pose, double 
   for (Neighbour::AnalyticPair& pair : n.analytic) {
     CollisionPair& mesh = *n.pair;
     if (!mesh.partition_enabled(0, pair.moving) || !mesh.partition_enabled(1, pair.other)) continue;
-    // Bounding spheres farther apart than the reach: neither the meshes nor a closed form need it.
+    // Bounding spheres farther apart than the reach: no closed form needed; the pair stays with the
+    // meshes, whose boxes prune it for free (switched off, the penetration flood would skip a vertex
+    // sunk deeper than the reach whose nearest surface is that partition: see set_pair_enabled).
     const double apart =
         (pose * moving_centres_[pair.moving] - pair.other_centre).norm() - moving_radii_[pair.moving] - pair.other_radius;
     if (apart > reach) {
-      mesh.set_pair_enabled(pair.moving, pair.other, false);
+      mesh.set_pair_enabled(pair.moving, pair.other, true);
       continue;
     }
     if (!analytic_contact(moving_placed_[pair.moving], pair.other_patch, c)) {
@@ -236,6 +238,8 @@ int StageCollision::contacts(const Pose& pose, int group, double reach, ContactP
     if (n >= capacity) break;
     if (!box.intersects(nb.box)) continue;
     ContactPoint closed;
+    if (!analytic_on_)  // the closed forms switched off since they last left pairs to them: the meshes answer all
+      for (const Neighbour::AnalyticPair& pair : nb.analytic) nb.pair->set_pair_enabled(pair.moving, pair.other, true);
     const bool closed_found = analytic_on_ && analytic_contact_of(nb, pose, reach, closed);
     nb.pair->set_distance_limit(closed_found ? std::max(0.0, closed.gap) : reach);
     nb.pair->query(place, still, QueryKind::Penetration, result_);

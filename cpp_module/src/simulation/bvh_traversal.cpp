@@ -325,6 +325,46 @@ bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, 
   return hits.size() > before;
 }
 
+bool Traversal::touching_pairs_filtered(const Bvh& a, const Bvh& b, const Relative& rel, double touching,
+                                        LeafFilter& filter) {
+  // As touching_pairs, each node pair also pruned by the partitions under it.
+  stack_.clear();
+  ++bv_tests;
+  const bool wide = touching > kWideTouching;
+  if (!filter.open(0, 0)) return false;
+  if (wide) {
+    const BoxSeparation root = bv_separation(a, 0, b, 0, rel);
+    if (root.disjoint && root.margin > touching) return false;
+  } else if (!bv_overlap(a, 0, b, 0, rel)) {
+    return false;
+  }
+  stack_.push_back({0, 0, 0});
+  Vector3d pa, pb;
+  bool any = false;
+  while (!stack_.empty()) {
+    const Entry e = stack_.back();
+    stack_.pop_back();
+    const auto& na = a.getBV(e.a);
+    const auto& nb = b.getBV(e.b);
+    if (na.isLeaf() && nb.isLeaf()) {
+      const int ta = na.primitiveId(), tb = nb.primitiveId();
+      if (!filter.live(ta, tb)) continue;
+      ++triangle_tests;
+      if (triangle_distance(a, ta, b, tb, rel, pa, pb) <= touching) {
+        any = true;
+        if (!filter.hit(ta, tb)) break;
+      }
+      continue;
+    }
+    bv_tests += 2;
+    split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, BoxSeparation separation) {
+      if ((!separation.disjoint || (wide && separation.margin <= touching)) && filter.open(child_a, child_b))
+        stack_.push_back({child_a, child_b, 0});
+    });
+  }
+  return any;
+}
+
 bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,
                                          const std::vector<int>& parent_b, const Relative& rel, double touching,
                                          const std::vector<FrontEntry>& front, double moved, bool pull_up,

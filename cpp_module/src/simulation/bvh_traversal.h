@@ -69,6 +69,18 @@ struct BoxSeparation {
 BoxSeparation box_separation(const fcl::Matrix3d& B, const fcl::Vector3d& T, const fcl::Vector3d& a,
                              const fcl::Vector3d& b);
 
+// What a traversal of two whole-body trees (leaves tagged by partition) may visit: a node pair is
+// opened only while open() says some partition pair still wanted lies under both nodes, a leaf pair
+// measured only when live() says its partition pair is wanted; hit() receives each touching leaf pair
+// (primitive ids) and returns false to stop the traversal.
+class LeafFilter {
+ public:
+  virtual ~LeafFilter() = default;
+  virtual bool open(int node_a, int node_b) = 0;
+  virtual bool live(int triangle_a, int triangle_b) = 0;
+  virtual bool hit(int triangle_a, int triangle_b) = 0;
+};
+
 class Traversal {
  public:
   // A depth-first stack holds about one entry per level of both trees: reserved for trees up to
@@ -108,6 +120,10 @@ class Traversal {
   // disjoint but may be closer than `touching` are opened too (their distance bound decides).
   bool touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
                       std::vector<TriangleHit>& hits);
+
+  // touching_pairs on two whole-body trees, filtered by partition (LeafFilter): one traversal for
+  // every partition pair instead of one per pair. Returns whether any pair touched.
+  bool touching_pairs_filtered(const Bvh& a, const Bvh& b, const Relative& rel, double touching, LeafFilter& filter);
 
   // touching_pairs with limit 1 started from `front` (empty: the roots) instead of the roots; the
   // front where this search stopped descending goes into `next` (its capacity is never exceeded:

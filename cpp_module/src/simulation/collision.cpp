@@ -9,6 +9,8 @@
 #include <string>
 #include <cstddef>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -59,6 +61,7 @@ struct CollisionPair::State {
   CollisionModelPtr models[2];
   std::vector<char> enabled[2];
   std::vector<char> pair_enabled;  // a * partitions of B + b
+  std::size_t pairs_off = 0;       // zeros in pair_enabled
   // Per query: world boxes of the partitions, candidate partition pairs.
   std::vector<Eigen::Vector3d> box_center[2], box_half[2];
   struct Candidate {
@@ -100,6 +103,21 @@ struct CollisionPair::State {
   Fronts intersect_fronts, distance_fronts;
   std::vector<bvh::FrontEntry> front_next;
   bool front_tracking = true;
+  // Point queries and Penetration's touching pairs on the bodies' one trees (set_body_tree); off by
+  // default: measured no faster in contact and twice slower out of it (docs/haptics.md).
+  bool body_tree = false;
+  // Penetration on the bodies' trees: touching pairs found per partition pair (a * partitions of B +
+  // b), and per partition bucket of A (p % 64) the buckets of B still wanted (bit q % 64).
+  std::vector<std::uint32_t> pair_hit_count;
+  std::uint64_t wanted_rows[64] = {};
+  // Wanted partition pairs (for the rows): within touching by their boxes, enabled, not yet full.
+  std::vector<char> pair_wanted;
+  void rebuild_wanted_rows() {
+    std::fill(std::begin(wanted_rows), std::end(wanted_rows), 0);
+    const std::size_t nb = enabled[1].size();
+    for (std::size_t k = 0; k < pair_wanted.size(); ++k)
+      if (pair_wanted[k]) wanted_rows[(k / nb) % 64] |= std::uint64_t{1} << ((k % nb) % 64);
+  }
   void clear_fronts() {
     intersect_fronts.clear();
     distance_fronts.clear();
@@ -137,6 +155,8 @@ CollisionPair::CollisionPair(CollisionModelPtr a, CollisionModelPtr b) : state_(
   s.candidates.reserve(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count());
   s.stack.reserve(kMaxFloodVertices * 4);
   s.hits.reserve(kMaxContactsPerPair);
+  s.pair_hit_count.assign(s.pair_enabled.size(), 0);
+  s.pair_wanted.assign(s.pair_enabled.size(), 0);
   for (auto& ring : s.ring) ring.reserve(kMaxRing);
   s.cached_hit.assign(static_cast<std::size_t>(s.models[0]->partition_count()) * s.models[1]->partition_count(),
                       {-1, -1});
@@ -191,6 +211,8 @@ void CollisionPair::set_pair_enabled(int partition_a, int partition_b, bool enab
   const int na = static_cast<int>(s.enabled[0].size()), nb = static_cast<int>(s.enabled[1].size());
   if (partition_a < 0 || partition_a >= na || partition_b < 0 || partition_b >= nb) return;
   char& flag = s.pair_enabled[static_cast<std::size_t>(partition_a) * nb + partition_b];
+  if (flag && !enabled) ++s.pairs_off;
+  if (!flag && enabled) --s.pairs_off;
   flag = enabled ? 1 : 0;
   // No front to restart: each front covers its own partition pair, which is skipped while off.
 }
@@ -205,6 +227,7 @@ bool CollisionPair::pair_enabled(int partition_a, int partition_b) const {
 void CollisionPair::enable_all() {
   for (auto& flags : state_->enabled) std::fill(flags.begin(), flags.end(), 1);
   std::fill(state_->pair_enabled.begin(), state_->pair_enabled.end(), 1);
+  state_->pairs_off = 0;
   state_->clear_fronts();
 }
 
@@ -220,6 +243,8 @@ void CollisionPair::set_warm_start(bool enabled) {
   std::fill(state_->cached_hit.begin(), state_->cached_hit.end(), bvh::TriangleHit{-1, -1});
   state_->clear_fronts();
 }
+
+void CollisionPair::set_body_tree(bool enabled) { state_->body_tree = enabled; }
 
 void CollisionPair::set_front_tracking(bool enabled) {
   state_->front_tracking = enabled;
@@ -353,28 +378,41 @@ Eigen::Vector3d pseudo_normal(const CollisionModel::Impl& impl, int t, const Eig
 
 // Closest point of a body's whole surface (every partition) to world point p: its distance, the point
 // (world and body frame) and the mesh triangle it lies on (-1 when the body has none). `hint`, a
-// mesh triangle near p (-1: none), bounds the search from the start.
+// mesh triangle near p (-1: none), bounds the search from the start. One traversal of the body's
+// tree (`body_tree`), or (the default) one per partition's tree nearer than the best so far; the
+// same distance either way (ties between triangles may go to another of the tied ones).
 double closest_point(const CollisionModel::Impl& impl, const fcl::Transform3d& transform, bvh::Traversal& traversal,
                      const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local, int& triangle,
-                     int hint = -1) {
+                     int hint = -1, bool body_tree = true) {
   const Eigen::Vector3d in_body = transform.inverse(Eigen::Isometry) * p;
   bvh::Closest best;
   best.distance = std::numeric_limits<double>::infinity();
   triangle = -1;
-  if (hint >= 0) {
-    const int id = impl.local_triangle[hint];
-    ++traversal.triangle_tests;
-    best.distance = bvh::Traversal::point_triangle_distance(*impl.subs[impl.mesh.triangle_partition[hint]].bvh, id,
-                                                            in_body, best.point_a);
-    best.triangle_a = id;
-    triangle = hint;
-  }
-  for (const auto& sub : impl.subs) {
-    if (!sub.bvh) continue;
-    if (box_gap(in_body, Eigen::Vector3d::Zero(), sub.center, sub.half) >= best.distance) continue;
-    const double before = best.distance;
-    traversal.point_distance(*sub.bvh, in_body, best);
-    if (best.distance < before) triangle = sub.triangle[best.triangle_a];
+  if (body_tree) {
+    if (!impl.body) return best.distance;
+    if (hint >= 0) {
+      ++traversal.triangle_tests;
+      best.distance = bvh::Traversal::point_triangle_distance(*impl.body, hint, in_body, best.point_a);
+      best.triangle_a = hint;
+    }
+    traversal.point_distance(*impl.body, in_body, best);
+    triangle = best.triangle_a;  // primitive ids of the body's tree are mesh triangles
+  } else {
+    if (hint >= 0) {
+      const int id = impl.local_triangle[hint];
+      ++traversal.triangle_tests;
+      best.distance = bvh::Traversal::point_triangle_distance(*impl.subs[impl.mesh.triangle_partition[hint]].bvh, id,
+                                                              in_body, best.point_a);
+      best.triangle_a = id;
+      triangle = hint;
+    }
+    for (const auto& sub : impl.subs) {
+      if (!sub.bvh) continue;
+      if (box_gap(in_body, Eigen::Vector3d::Zero(), sub.center, sub.half) >= best.distance) continue;
+      const double before = best.distance;
+      traversal.point_distance(*sub.bvh, in_body, best);
+      if (best.distance < before) triangle = sub.triangle[best.triangle_a];
+    }
   }
   if (triangle < 0) return best.distance;
   local = best.point_a;
@@ -452,7 +490,89 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       }
       s.stack.clear();
     }
+    // Seeds of the flood: corners of an intersecting triangle pair (mesh triangles), tagged by side
+    // (vertex * 2 + side).
+    auto seed = [&](int mesh_triangle_a, int mesh_triangle_b) {
+      const auto& ta = s.impl(0).mesh.triangles[mesh_triangle_a];
+      const auto& tb = s.impl(1).mesh.triangles[mesh_triangle_b];
+      for (int k = 0; k < 3; ++k) {
+        if (s.stamp[0][ta[k]] != s.query_stamp) {
+          s.stamp[0][ta[k]] = s.query_stamp;
+          s.stack.push_back(ta[k] * 2);
+        }
+        if (s.stamp[1][tb[k]] != s.query_stamp) {
+          s.stamp[1][tb[k]] = s.query_stamp;
+          s.stack.push_back(tb[k] * 2 + 1);
+        }
+      }
+    };
+    if (want_all && s.body_tree) {
+      // One traversal of the two bodies' trees for every partition pair: a leaf pair counts when its
+      // partition pair is a candidate within touching that has fewer than kMaxContactsPerPair
+      // touching pairs so far; node pairs holding no such partition pair are not opened.
+      std::fill(s.pair_wanted.begin(), s.pair_wanted.end(), 0);
+      bool any_wanted = false;
+      for (const State::Candidate& c : s.candidates) {
+        const std::size_t index = static_cast<std::size_t>(c.a) * subs_b.size() + c.b;
+        s.cached_hit[index] = {-1, -1};
+        s.pair_hit_count[index] = 0;
+        if (c.lower_bound > s.touching) continue;
+        s.pair_wanted[index] = 1;
+        any_wanted = true;
+      }
+      if (any_wanted) {
+        s.rebuild_wanted_rows();
+        struct Filter final : bvh::LeafFilter {
+          State& s;
+          const std::uint64_t* mask_a;
+          const std::uint64_t* mask_b;
+          const std::vector<int>& part_a;
+          const std::vector<int>& part_b;
+          std::size_t nb;
+          decltype(seed)& seed_corners;
+          Filter(State& state, decltype(seed)& seeding)
+              : s(state),
+                mask_a(state.impl(0).body_partitions.data()),
+                mask_b(state.impl(1).body_partitions.data()),
+                part_a(state.impl(0).mesh.triangle_partition),
+                part_b(state.impl(1).mesh.triangle_partition),
+                nb(state.enabled[1].size()),
+                seed_corners(seeding) {}
+          bool open(int node_a, int node_b) override {
+            const std::uint64_t under_b = mask_b[node_b];
+            for (std::uint64_t m = mask_a[node_a]; m; m &= m - 1)
+              if (s.wanted_rows[__builtin_ctzll(m)] & under_b) return true;
+            return false;
+          }
+          bool live(int ta, int tb) override {
+            return s.pair_wanted[static_cast<std::size_t>(part_a[ta]) * nb + part_b[tb]] != 0;
+          }
+          bool hit(int ta, int tb) override {
+            const int pa = part_a[ta], pb = part_b[tb];
+            const std::size_t index = static_cast<std::size_t>(pa) * nb + pb;
+            if (s.pair_hit_count[index]++ == 0)
+              s.cached_hit[index] = {s.impl(0).local_triangle[ta], s.impl(1).local_triangle[tb]};
+            s.partition_hit[0][pa] = s.partition_hit[1][pb] = 1;
+            seed_corners(ta, tb);
+            if (s.pair_hit_count[index] >= kMaxContactsPerPair) {  // this pair is full
+              s.pair_wanted[index] = 0;
+              s.rebuild_wanted_rows();
+            }
+            return true;
+          }
+        } filter(s, seed);
+        any_hit = s.traversal.touching_pairs_filtered(*s.impl(0).body, *s.impl(1).body, s.relative, s.touching, filter);
+        // The touching pair reported: the first found of the lowest partition pair that touches.
+        for (const State::Candidate& c : s.candidates) {
+          const bvh::TriangleHit hit = s.cached_hit[static_cast<std::size_t>(c.a) * subs_b.size() + c.b];
+          if (hit.triangle_a < 0) continue;
+          record_pair(c.a, c.b, hit.triangle_a, hit.triangle_b);
+          break;
+        }
+      }
+    }
     for (const State::Candidate& c : s.candidates) {
+      if (want_all && s.body_tree) break;  // done above
       bvh::TriangleHit& cached_hit = s.cached_hit[static_cast<std::size_t>(c.a) * subs_b.size() + c.b];
       if (c.lower_bound > s.touching) {
         cached_hit = {-1, -1};
@@ -493,23 +613,9 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       any_hit = true;
       s.partition_hit[0][c.a] = s.partition_hit[1][c.b] = 1;
       if (out.partition_a < 0) record_pair(c.a, c.b, s.hits[0].triangle_a, s.hits[0].triangle_b);
-      if (want_all) {
-        // Seeds of the flood: corners of the intersecting triangles, tagged by side (vertex * 2 + side).
-        for (const bvh::TriangleHit& hit : s.hits) {
-          const auto& ta = s.impl(0).mesh.triangles[subs_a[c.a].triangle[hit.triangle_a]];
-          const auto& tb = s.impl(1).mesh.triangles[subs_b[c.b].triangle[hit.triangle_b]];
-          for (int k = 0; k < 3; ++k) {
-            if (s.stamp[0][ta[k]] != s.query_stamp) {
-              s.stamp[0][ta[k]] = s.query_stamp;
-              s.stack.push_back(ta[k] * 2);
-            }
-            if (s.stamp[1][tb[k]] != s.query_stamp) {
-              s.stamp[1][tb[k]] = s.query_stamp;
-              s.stack.push_back(tb[k] * 2 + 1);
-            }
-          }
-        }
-      }
+      if (want_all)
+        for (const bvh::TriangleHit& hit : s.hits)
+          seed(subs_a[c.a].triangle[hit.triangle_a], subs_b[c.b].triangle[hit.triangle_b]);
     }
     if (!any_hit && s.margin >= 0) {
       // With a margin, overlaps whose boundaries do not meet count too: one body wholly inside the
@@ -529,7 +635,7 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
           Eigen::Vector3d closest, local;
           int triangle = -1;
           const double gap = closest_point(s.impl(other), s.transform[other], s.traversal, point, closest, local,
-                                           triangle);
+                                           triangle, -1, s.body_tree);
           if (triangle < 0 || gap <= s.margin) continue;
           const Eigen::Vector3d normal = s.transform[other].linear() * pseudo_normal(s.impl(other), triangle, local);
           if ((point - closest).dot(normal) >= 0) continue;  // outside
@@ -636,9 +742,21 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
   auto closest_on = [&](int side, const Eigen::Vector3d& p, Eigen::Vector3d& closest, Eigen::Vector3d& local,
                         int& triangle) {
     const double gap =
-        closest_point(s.impl(side), s.transform[side], s.traversal, p, closest, local, triangle, last_closest[side]);
+        closest_point(s.impl(side), s.transform[side], s.traversal, p, closest, local, triangle, last_closest[side],
+                      s.body_tree);
     if (triangle >= 0) last_closest[side] = triangle;
     return gap;
+  };
+  const std::size_t partitions_b = subs_b.size();
+  auto masked_vertex = [&](int side, int vertex, int nearest_partition) {
+    const CollisionModel::Impl& body = s.impl(side);
+    for (int k = body.corner_start[vertex]; k < body.corner_start[vertex + 1]; ++k) {
+      const int own = body.mesh.triangle_partition[body.corner_of[k]];
+      const std::size_t index = side == 0 ? static_cast<std::size_t>(own) * partitions_b + nearest_partition
+                                          : static_cast<std::size_t>(nearest_partition) * partitions_b + own;
+      if (s.pair_enabled[index]) return false;
+    }
+    return true;
   };
   std::size_t tested[2] = {0, 0};
   while (!s.stack.empty()) {
@@ -655,6 +773,10 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
     if (triangle < 0) continue;
     const Eigen::Vector3d normal = s.transform[other].linear() * pseudo_normal(s.impl(other), triangle, local);
     if ((p - closest).dot(normal) >= 0) continue;  // outside the other body
+    // A vertex all of whose partitions are switched off against the partition of the other body's
+    // surface nearest to it (set_pair_enabled: a pair answered elsewhere, in closed form) lies in
+    // that pair's overlap, which is not this query's: it is neither counted nor flooded from.
+    if (s.pairs_off > 0 && masked_vertex(side, vertex, s.impl(other).mesh.triangle_partition[triangle])) continue;
     if (gap > out.depth) {
       out.depth = gap;
       const Eigen::Vector3d move = side == 0 ? closest - p : p - closest;  // how A leaves
@@ -678,7 +800,7 @@ double CollisionPair::depth_inside(int side, const RigidTransform& place, const 
   const Eigen::Vector3d p(point[0], point[1], point[2]);
   Eigen::Vector3d closest, local;
   int triangle = -1;
-  const double best = closest_point(s.impl(side), transform, s.traversal, p, closest, local, triangle);
+  const double best = closest_point(s.impl(side), transform, s.traversal, p, closest, local, triangle, -1, s.body_tree);
   if (triangle < 0) return 0;
   const Eigen::Vector3d normal = transform.linear() * pseudo_normal(s.impl(side), triangle, local);
   return (p - closest).dot(normal) < 0 ? best : 0;

@@ -1,4 +1,4 @@
-// Building a collision model: the per-partition hierarchies (FCL), normals,
+// Building a collision model: the body's and the per-partition hierarchies (FCL), normals,
 // angle-weighted pseudo-normals, vertex and corner adjacency.
 #include <algorithm>
 #include <cmath>
@@ -80,6 +80,27 @@ CollisionModelResult build_collision_model(const TaggedMesh& mesh) {
         sub.parent[sub.bvh->getBV(node).leftChild()] = sub.parent[sub.bvh->getBV(node).rightChild()] = node;
     sub.center = sub.bvh->aabb_local.center();
     sub.half = 0.5 * (sub.bvh->aabb_local.max_ - sub.bvh->aabb_local.min_);
+  }
+
+  {
+    std::vector<fcl::Vector3d> points;
+    points.reserve(mesh.vertices.size());
+    for (const auto& v : mesh.vertices) points.emplace_back(v[0], v[1], v[2]);
+    std::vector<fcl::Triangle> triangles;
+    triangles.reserve(n);
+    for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+    impl.body = std::make_shared<Bvh>();
+    impl.body->beginModel(static_cast<int>(triangles.size()), static_cast<int>(points.size()));
+    impl.body->addSubModel(points, triangles);
+    impl.body->endModel();
+    // Children come after their parent in FCL's node array: leaves up, in reverse.
+    impl.body_partitions.assign(impl.body->getNumBVs(), 0);
+    for (int node = impl.body->getNumBVs() - 1; node >= 0; --node) {
+      const auto& bv = impl.body->getBV(node);
+      impl.body_partitions[node] =
+          bv.isLeaf() ? std::uint64_t{1} << (mesh.triangle_partition[bv.primitiveId()] % 64)
+                      : impl.body_partitions[bv.leftChild()] | impl.body_partitions[bv.rightChild()];
+    }
   }
 
   impl.normals.resize(n);

@@ -1,8 +1,10 @@
 // Stage 5 (simulation): the inside of a CollisionModel (private to the collision sources): one
-// FCL OBBRSS hierarchy per partition, and the mesh's normals, pseudo-normals
+// FCL OBBRSS hierarchy over the whole body (its leaves' primitive ids are the mesh's triangles, whose
+// partition the mesh tags), one per partition, and the mesh's normals, pseudo-normals
 // and adjacency that the penetration flood and the warm start walk.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -23,6 +25,14 @@ struct CollisionModel::Impl {
     Eigen::Vector3d half{-1, -1, -1};
   };
   TaggedMesh mesh;
+  // Every triangle in one hierarchy, in mesh order (a leaf's primitiveId() is the mesh triangle,
+  // mesh.triangle_partition[] its partition), on the mesh's vertices: the point queries (the
+  // penetration flood's closest points, depth_inside) judge against the whole surface, so they
+  // walk one tree instead of one per partition.
+  std::shared_ptr<fcl::BVHModel<fcl::OBBRSSd>> body;
+  // Per node of `body`: bit (p % 64) set for each partition p among its leaves, so that a traversal
+  // skips node pairs holding no partition pair it wants (exact up to 64 partitions, conservative above).
+  std::vector<std::uint64_t> body_partitions;
   std::vector<Sub> subs;                     // one per partition
   std::vector<Eigen::Vector3d> normals;      // unit normal of each triangle
   // Angle-weighted pseudo-normals (Baerentzen and Aanaes): the sign of

@@ -32,6 +32,11 @@ class StageCollision : public CollisionQuery {
   void use_analytic(const std::vector<BodyPartitions>& partitions);
   void set_analytic(bool enabled) { analytic_on_ = enabled && !moving_patches_.empty(); }
   bool analytic() const { return analytic_on_; }
+  // The mesh queries' point queries on each body's one tree (default) or per partition as before
+  // (CollisionPair::set_body_tree: the reference the benchmark compares with in the same run).
+  void set_body_trees(bool enabled) {
+    for (Neighbour& n : neighbours_) n.pair->set_body_tree(enabled);
+  }
   // Of the last contacts() query: analytic pairs answered in closed form,
   // and pairs left to the meshes (profiling, tests).
   int last_closed_form_pairs() const { return closed_form_pairs_; }

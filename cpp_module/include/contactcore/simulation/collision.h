@@ -116,7 +116,11 @@ class CollisionPair {
   // Per partition pair (a of A, b of B): a pair switched off here is skipped by every query while
   // both partitions stay on for their other pairs (a pair answered in closed form elsewhere, see
   // analytic_distance.h). Every pair starts enabled; enable_all() restores them too. Ids out of
-  // range are ignored. Allocation-free.
+  // range are ignored. Allocation-free. Penetration's flood skips a vertex all of whose
+  // partitions are switched off against the partition of the other body's surface nearest to it
+  // (that overlap is the switched-off pair's), neither counting its depth nor flooding from it.
+  // (Partitions switched off by set_partition_enabled still count there: the flood judges against
+  // the whole surface.)
   void set_pair_enabled(int partition_a, int partition_b, bool enabled);
   bool pair_enabled(int partition_a, int partition_b) const;
 
@@ -142,6 +146,11 @@ class CollisionPair {
   // pairs back up to their parent. The front always covers every triangle pair (a cut of the test
   // tree), so the answer is the cold one whatever the motion; its storage is reserved here.
   void set_front_tracking(bool enabled);
+
+  // Point queries (the penetration flood's closest points, depth_inside, the margin's inside test)
+  // on the body's one tree (on by default) or, off, on each partition's tree as before (the
+  // reference the benchmarks compare with). The same distances either way.
+  void set_body_tree(bool enabled);
 
   // Distances above `limit` are not needed (a haptic loop's safety distance): Distance, and
   // Penetration when apart, then answer "farther": distance infinity, no points, at the cost of a
