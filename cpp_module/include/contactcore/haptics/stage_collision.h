@@ -32,8 +32,8 @@ class StageCollision : public CollisionQuery {
   void use_analytic(const std::vector<BodyPartitions>& partitions);
   void set_analytic(bool enabled) { analytic_on_ = enabled && !moving_patches_.empty(); }
   bool analytic() const { return analytic_on_; }
-  // The mesh queries' point queries on each body's one tree (default) or per partition as before
-  // (CollisionPair::set_body_tree: the reference the benchmark compares with in the same run).
+  // The mesh queries on each body's one tree or (the default) one tree per partition
+  // (CollisionPair::set_body_tree: the benchmark compares the two in the same run).
   void set_body_trees(bool enabled) {
     for (Neighbour& n : neighbours_) n.pair->set_body_tree(enabled);
   }

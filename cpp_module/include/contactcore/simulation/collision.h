@@ -2,7 +2,8 @@
 // OBBRSS bounding volume hierarchies). A body's model is one sub-BVH per
 // partition, so switching a partition off for a pair costs one flag and the
 // queries skip its triangles without rebuilding anything (the paper's Fig.
-// 4c: the bore and shaft of the joint being followed).
+// 4c: the bore and shaft of the joint being followed), and one BVH over the
+// whole body with each leaf's partition (set_body_tree).
 //
 // Real-time use (the haptic servo loop): a CollisionModel is immutable after
 // build and can be shared by any number of threads; a CollisionPair holds the
@@ -147,9 +148,11 @@ class CollisionPair {
   // tree), so the answer is the cold one whatever the motion; its storage is reserved here.
   void set_front_tracking(bool enabled);
 
-  // Point queries (the penetration flood's closest points, depth_inside, the margin's inside test)
-  // on the body's one tree (on by default) or, off, on each partition's tree as before (the
-  // reference the benchmarks compare with). The same distances either way.
+  // Penetration's touching triangle pairs in one traversal of the two bodies' one trees (leaves
+  // filtered by their partitions, nodes by the partitions under them), and the point queries (the
+  // penetration flood's closest points, depth_inside, the margin's inside test) on the body's tree,
+  // instead of one tree per partition (the default: measured as fast in contact and faster out of
+  // it, docs/haptics.md). The same answers either way (ties between triangles aside).
   void set_body_tree(bool enabled);
 
   // Distances above `limit` are not needed (a haptic loop's safety distance): Distance, and
