@@ -18,16 +18,18 @@ namespace contactcore {
 
 // The common volume (mm^3) of bodies `a` and `b` (their partitions and
 // shapes) when, about `axis`, one of them has only planes across the axis and
-// coaxial cylinders and cones, and every face of the other that comes within
-// the first one's reach (its largest radius and axial range, grown by a
+// coaxial cylinders, cones, spheres centred on it and halves of coaxial torus
+// tubes (tori stored as tori), and every face of the other within the first
+// one's reach (each of its faces' axial range and largest radius, grown by a
 // margin) is one of those too: then, at each axial position, both bodies are
 // sets of radial intervals bounded by those faces, their common area a sum of
-// rings, exactly quadratic in z between the faces' ends and the crossings of
-// their radii (two-point Gauss exact). Which side of a radius is material comes
-// from the face's material side; a section where the second body has no face
-// within reach is classified once (BRepClass3d). std::nullopt when neither body
-// qualifies (another face in reach, a sphere or torus, a B-spline not
-// recognised): the caller falls back to a Boolean.
+// rings, quadratic in z between the faces' ends and the crossings of their
+// radii over cylinders, cones and spheres (two-point Gauss exact), smooth over
+// torus halves (32 sub-slices). Which side of a radius is material comes from
+// the face's material side; a section where the second body has no face within
+// reach is classified once (BRepClass3d). std::nullopt when neither body
+// qualifies (another face in reach, a B-spline not recognised): the caller
+// falls back to a Boolean.
 std::optional<double> coaxial_common_volume(const BodyPartitions& a, const TopoDS_Shape& shape_a,
                                             const BodyPartitions& b, const TopoDS_Shape& shape_b,
                                             const gp_Ax1& axis, const Tolerances& tol);
