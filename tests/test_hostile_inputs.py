@@ -71,8 +71,13 @@ def test_every_hostile_input_ends_with_its_exit_code_and_message(corpus):
 def test_corpus_covers_every_command(corpus):
     commands = {("mesh" if c["argv"][0] == "mesh" else "trial" if c["argv"][0] == "trial" else
                  "--joints" if "--joints" in c["argv"] else "--disassembly" if "--disassembly" in c["argv"] else
-                 "contacts") for c in corpus}
-    assert commands == {"contacts", "mesh", "trial", "--joints", "--disassembly"}
+                 "--export-urdf" if "--export-urdf" in c["argv"] else
+                 "--export-mjcf" if "--export-mjcf" in c["argv"] else "contacts") for c in corpus}
+    assert commands == {"contacts", "mesh", "trial", "--joints", "--disassembly", "--export-urdf", "--export-mjcf"}
+    # Issue 25 item 4: the missing file is exit 3 for every one of them.
+    missing = {next((a for a in ("mesh", "trial", "--joints", "--disassembly", "--export-urdf", "--export-mjcf")
+                     if a in c["argv"]), "contacts") for c in corpus if c["name"].startswith("missing file")}
+    assert missing == commands and all(c["exit"] == 3 for c in corpus if c["name"].startswith("missing file"))
     assert sum(1 for c in corpus if c["refusal"]) >= 30
 
 
