@@ -135,6 +135,10 @@ def test_annotation_entries_are_checked():
         annotations.parse([{"a": "A", "b": "B", "intent": "interference", "fit": "p6"}])
     with pytest.raises(core.ArgumentError, match="unknown field"):
         annotations.parse([{"a": "A", "b": "B", "intent": "bonded", "glue": "epoxy"}])
+    with pytest.raises(core.ArgumentError, match="a threaded contact has no fit"):
+        annotations.parse([{"a": "A", "b": "B", "intent": "threaded", "fit": "H7/g6"}])
+    (screw,) = annotations.parse([{"a": "Screw", "b": "Cover", "type": "CLJ", "intent": "threaded"}])
+    assert (screw.intent, screw.type) == ("threaded", "CLJ")
     (note,) = annotations.parse([{"a": "A", "b": "B", "intent": "transition", "fit": "H7/k6"}])
     assert (note.a, note.b, note.intent, note.fit, note.type) == ("A", "B", "transition", "H7/k6", None)
 

@@ -66,7 +66,8 @@ def parse(entries, source="annotations"):
         if fit is not None and not _FIT.match(fit):
             raise core.ArgumentError(f"{where}: '{fit}' is not an ISO 286 fit code such as H7/g6 or H7/p6")
         if fit is not None and entry["intent"] in ("ignored", "threaded"):
-            raise core.ArgumentError(f"{where}: an {entry['intent']} contact has no ISO 286 fit ('{fit}')")
+            raise core.ArgumentError(f"{where}: {'an' if entry['intent'] == 'ignored' else 'a'} {entry['intent']} "
+                                     f"contact has no fit ('{fit}')")
         out.append(Annotation(entry["a"], entry["b"], entry["intent"], entry.get("type"), fit, entry.get("note"),
                               where=f"{where}"))
     return out

@@ -212,7 +212,8 @@ def check_annotation(obj, intent=None, fit=None):
         return None
     where = f"contact '{obj.Label}'"
     if intent in ("ignored", "threaded"):
-        raise core.ArgumentError(f"{where}: an {intent} contact has no ISO 286 fit ('{fit}')")
+        raise core.ArgumentError(f"{where}: {'an' if intent == 'ignored' else 'a'} {intent} contact has no "
+                                 f"fit ('{fit}')")
     if obj.ContactType not in annotations.FIT_TYPES:
         raise core.ArgumentError(f"{where}: fit {fit} needs a cylindrical contact "
                                  f"({', '.join(annotations.FIT_TYPES)}) to give its diameter, not "

@@ -605,6 +605,14 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
     for (const FaceFailure& failed : meshed.failed_faces)
       result.messages.push_back("body '" + body.name + "': Face" + std::to_string(failed.face) +
                                 " not meshed (" + failed.message + "): its collision model has a hole there");
+    if (meshed.status.ok() && meshed.mesh.triangles.empty() && !meshed.failed_faces.empty())
+      // OCCT's mesher failed on every face. Its per-face catch also swallows out-of-memory
+      // (Standard_OutOfMemory): under a 120 MB limit the motor's front cover came back empty and was
+      // then refused as "an empty mesh" (exit 3, as if the file were bad). Say what happened.
+      meshed.status = Status::failure(StatusCode::GeometryError,
+                                      "OCCT could not tessellate any of the body's " +
+                                          std::to_string(meshed.failed_faces.size()) +
+                                          " faces (its mesher fails so when memory runs out too)");
     if (!meshed.status.ok()) {
       result.status = meshed.status;
       result.status.body = body.name;
