@@ -9,7 +9,6 @@ import os
 import sys
 import traceback
 
-import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtWidgets
 
@@ -54,10 +53,8 @@ def answer(fmt_index, path, screenshot):
 
 def run():
     main = FreeCADGui.getMainWindow()
-    main.resize(1280, 960)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    doc = session_helpers.open_sample_in_workbench()
     report["command_listed"] = "Contacts_ExportMechanism" in FreeCADGui.listCommands()
-    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
     from contactwb.gui.commands.mechanism import Contacts_ExportMechanism
     report["active_before"] = Contacts_ExportMechanism().IsActive()
     from contactwb.make import make_contact_analysis
