@@ -20,7 +20,7 @@ DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
   libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
   libocct-visualization-dev libhidapi-dev pybind11-dev python3-pybind11 \
   python3-dev cmake make g++ libtbb-dev libeigen3-dev graphviz libfcl-dev pkg-config ccache \
-  python3-pyside2.qtsvg
+  python3-pyside2.qtsvg ninja-build
 # What `make test`, `make bench`, `make sanitize` and `make fuzz` add.
 DEB_TEST_PACKAGES := $(DEB_PACKAGES) libcoin-dev python3-pytest googletest libgtest-dev \
   libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev liburdfdom-tools libmujoco-dev
@@ -50,9 +50,14 @@ LAUNCHER     := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=cc
 CONFIGURE    := cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON) $(LAUNCHER)
 
 # A first configure for `make run` asks for neither GoogleTest nor Google
-# Benchmark (a fresh machine has only the run packages).
+# Benchmark (a fresh machine has only the run packages). With Ninja (looked
+# for when the recipe runs: `make deps` may just have installed it) the three
+# targets of the extension compile side by side: Make's generator builds
+# target after target, a core, then haptics, then bindings, each ending with
+# one core idle. A build folder keeps its generator: later configures
+# (`make build`) give none.
 $(BUILD_DIR)/CMakeCache.txt:
-	$(CONFIGURE) -DCONTACTS_BUILD_TESTS=OFF -DCONTACTS_BUILD_BENCH=OFF
+	$(CONFIGURE) $$(command -v ninja >/dev/null && echo -G Ninja) -DCONTACTS_BUILD_TESTS=OFF -DCONTACTS_BUILD_BENCH=OFF
 
 # Everything: the extension, the GoogleTest suites, benchmarks and fuzz replays.
 build:

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_timing.h"
 #include "contactcore/contacts/contacts.h"
 #include "contactcore/haptics/simulated.h"
 #include "contactcore/haptics/stage_collision.h"
@@ -39,16 +40,8 @@ double wall_now() {
   clock_gettime(CLOCK_MONOTONIC, &ts);
   return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
-double cpu_now() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p / 100.0 * (v.size() - 1) + 0.5))];
-}
+double cpu_now() { return bench::thread_cpu_seconds(); }
+using bench::percentile;
 
 // The motor, its partitions and collision models as TrialScene makes them
 // (SceneOptions' defaults), and one trial scene per moving part.

@@ -24,6 +24,7 @@
 
 #include <BRepTools.hxx>
 
+#include "bench_timing.h"
 #include "contactcore/contacts/contacts.h"
 #include "contactcore/haptics/spacemouse.h"
 #include "contactcore/haptics/trial.h"
@@ -35,17 +36,8 @@ namespace {
 
 double now() { return steady_seconds(); }
 
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-double percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, static_cast<std::size_t>(p / 100.0 * (v.size() - 1) + 0.5))];
-}
+double cpu_seconds() { return bench::thread_cpu_seconds(); }
+using bench::percentile;
 
 TrialScript insertion() {
   TrialScript s;

@@ -22,14 +22,13 @@ scanner. A second table gives each stage's share of the end-to-end time
   bench/bench_interferences.py [--build-dir build] [--repeat 3] [--write docs/benchmarks.md]
 """
 import argparse
-import json
 import os
 import platform
-import subprocess
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from contacts_runs import best_runs  # noqa: E402
 from markdown_sections import write_section  # noqa: E402
 from run_benchmarks import shares_table  # noqa: E402
 
@@ -76,19 +75,7 @@ def five_bspline_solids(path):
 
 def run(build_dir, files, repeat):
     exe = os.path.join(build_dir, "bench", "bench_contacts")
-    out = subprocess.run([exe, "--reference", "--repeat", str(repeat), *files], capture_output=True, text=True)
-    rows = {}
-    for line in out.stdout.splitlines():
-        if not line.startswith("{"):
-            continue
-        row = json.loads(line)
-        if "error" in row:
-            raise SystemExit(f"bench_contacts failed on {row['file']}: {row['error']}")
-        key = "seconds" if row["run"] == "bare" else "total"
-        best = rows.setdefault(row["file"], {}).get(row["run"])
-        if best is None or row[key] < best[key]:
-            rows[row["file"]][row["run"]] = row
-    return rows
+    return best_runs(exe, files, repeat, extra_args=["--reference"])
 
 
 def table(cases, rows):

@@ -37,6 +37,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from contacts_runs import best_runs  # noqa: E402
 from markdown_sections import write_section  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -114,25 +115,11 @@ def run_ours(build_dir, files, repeat):
     (the largest files read for a minute)."""
     exe = os.path.join(build_dir, "bench", "bench_contacts")
     rows = {}
-    _bench_rows(exe, files, 1, rows)
+    best_runs(exe, files, 1, rows)
     quick = [f for f in files if rows[f]["ours"]["total"] < 10]
     if repeat > 1 and quick:
-        _bench_rows(exe, quick, repeat - 1, rows)
+        best_runs(exe, quick, repeat - 1, rows)
     return rows
-
-
-def _bench_rows(exe, files, repeat, rows):
-    out = subprocess.run([exe, "--repeat", str(repeat), *files], capture_output=True, text=True)
-    for line in out.stdout.splitlines():
-        if not line.startswith("{"):
-            continue
-        row = json.loads(line)
-        if "error" in row:
-            raise SystemExit(f"bench_contacts failed on {row['file']}: {row['error']}")
-        key = "seconds" if row["run"] == "bare" else "total"
-        best = rows.setdefault(row["file"], {}).get(row["run"])
-        if best is None or row[key] < best[key]:
-            rows[row["file"]][row["run"]] = row
 
 
 def scripted_baseline(solids):
@@ -358,46 +345,43 @@ def haptic_query_tables(runs):
     """Markdown tables of the query, tick and loop rows; `runs` is [(label, results, load)]."""
     def f(value, digits=1):
         return "-" if value is None else f"{value:.{digits}f}"
+
+    def rows_under(prefix):
+        """(machine label, load, the name after prefix, row, that run's results) of each row named prefix..."""
+        for label, results, load in runs:
+            for name, row in results.items():
+                if name.startswith(prefix):
+                    yield label, load, name[len(prefix):], row, results
     lines = ["| machine | load avg at start | pair (part / neighbour) | closed forms: query p50 us | p99 us | "
              "CPU p99 us | closed-form pairs / query | mesh fallbacks / query | meshes only: p50 us | p99 us | "
              "p99 ratio | meshes only on body trees: CPU p50 us | body trees / per-partition trees CPU p50 |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for label, results, load in runs:
-        for name, row in results.items():
-            if not name.startswith("contact_query/closed_form/"):
-                continue
-            pair = name[len("contact_query/closed_form/"):]
-            mesh = results.get("contact_query/meshes_only/" + pair, {})
-            ratio = mesh.get("p99_us", 0) / row["p99_us"] if row.get("p99_us") else None
-            bodies = results.get("contact_query/meshes_only_body_trees/" + pair, {})
-            trees = (bodies["cpu_p50_us"] / mesh["cpu_p50_us"]
-                     if mesh.get("cpu_p50_us") and bodies.get("cpu_p50_us") else None)
-            lines.append(f"| {label} | {load} | {pair} | {f(row['p50_us'])} | {f(row['p99_us'])} | "
-                         f"{f(row['cpu_p99_us'])} | {f(row['closed_pairs'])} | {f(row['mesh_fallbacks'])} | "
-                         f"{f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} | {f(ratio)}x | "
-                         f"{f(bodies.get('cpu_p50_us'))} | {f(trees, 2)}x |")
+    for label, load, pair, row, results in rows_under("contact_query/closed_form/"):
+        mesh = results.get("contact_query/meshes_only/" + pair, {})
+        ratio = mesh.get("p99_us", 0) / row["p99_us"] if row.get("p99_us") else None
+        bodies = results.get("contact_query/meshes_only_body_trees/" + pair, {})
+        trees = (bodies["cpu_p50_us"] / mesh["cpu_p50_us"]
+                 if mesh.get("cpu_p50_us") and bodies.get("cpu_p50_us") else None)
+        lines.append(f"| {label} | {load} | {pair} | {f(row['p50_us'])} | {f(row['p99_us'])} | "
+                     f"{f(row['cpu_p99_us'])} | {f(row['closed_pairs'])} | {f(row['mesh_fallbacks'])} | "
+                     f"{f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} | {f(ratio)}x | "
+                     f"{f(bodies.get('cpu_p50_us'))} | {f(trees, 2)}x |")
     lines += ["", "| machine | part | servo tick, closed forms: p50 us | p99 us | CPU p99 us | contacts / tick | "
               "meshes only: p50 us | p99 us |", "|---|---|---|---|---|---|---|---|"]
-    for label, results, load in runs:
-        for name, row in results.items():
-            if not name.startswith("servo_tick/closed_form/"):
-                continue
-            part = name.split("/")[-1]
-            mesh = results.get("servo_tick/meshes_only/" + part, {})
-            lines.append(f"| {label} | {part} | {f(row['p50_us'])} | {f(row['p99_us'])} | {f(row['cpu_p99_us'])} | "
-                         f"{f(row['contacts'])} | {f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} |")
+    for label, _, rest, row, results in rows_under("servo_tick/closed_form/"):
+        part = rest.split("/")[-1]
+        mesh = results.get("servo_tick/meshes_only/" + part, {})
+        lines.append(f"| {label} | {part} | {f(row['p50_us'])} | {f(row['p99_us'])} | {f(row['cpu_p99_us'])} | "
+                     f"{f(row['contacts'])} | {f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} |")
     lines += ["", "| machine | part | priority | ticks | rate Hz | jitter p50 us | jitter p99 us | step p50 us | "
               "step p99 us | overruns | late wake-ups |", "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for label, results, load in runs:
-        for name, row in results.items():
-            if not name.startswith("realtime_loop/"):
-                continue
-            _, priority, part = name.split("/")[:3]
-            granted = "SCHED_FIFO 80" if row.get("fifo") else ("normal" if priority == "normal" else
-                                                                "SCHED_FIFO refused: normal")
-            lines.append(f"| {label} | {part} | {granted} | {int(row['ticks'])} | {f(row['rate_hz'])} | "
-                         f"{f(row['jitter_p50_us'])} | {f(row['jitter_p99_us'])} | {f(row['step_p50_us'])} | "
-                         f"{f(row['step_p99_us'])} | {int(row['overruns'])} | {int(row['late_wakeups'])} |")
+    for label, _, rest, row, _ in rows_under("realtime_loop/"):
+        priority, part = rest.split("/")[:2]
+        granted = "SCHED_FIFO 80" if row.get("fifo") else ("normal" if priority == "normal" else
+                                                            "SCHED_FIFO refused: normal")
+        lines.append(f"| {label} | {part} | {granted} | {int(row['ticks'])} | {f(row['rate_hz'])} | "
+                     f"{f(row['jitter_p50_us'])} | {f(row['jitter_p99_us'])} | {f(row['step_p50_us'])} | "
+                     f"{f(row['step_p99_us'])} | {int(row['overruns'])} | {int(row['late_wakeups'])} |")
     return "\n".join(lines)
 
 

@@ -12,26 +12,14 @@ from contactwb.core import extension  # noqa: F401  (FreeCAD set up, the extensi
 from contactwb.document.identify import is_contact, is_joint
 from contactwb.make import analysis_of_scope, make_contact_analysis
 from contactwb.objects.body_watcher import RECOMPUTE_TRANSACTION
+from headless_helpers import three_boxes
 
 
 @pytest.fixture
 def boxes():
     """Base 10x10x10; Top 6x4x5 on it (PLF 24 mm2); Side 10x10x10 beside
     Base (PLF 100 mm2); undo on, as in the GUI."""
-    doc = FreeCAD.newDocument("IdentityTest")
-    doc.UndoMode = 1
-    base = doc.addObject("Part::Box", "Base")
-    top = doc.addObject("Part::Box", "Top")
-    top.Length, top.Width, top.Height = 6, 4, 5
-    top.Placement.Base = FreeCAD.Vector(2, 3, 10)
-    side = doc.addObject("Part::Box", "Side")
-    side.Placement.Base = FreeCAD.Vector(10, 0, 0)
-    base.Label, top.Label, side.Label = "Base", "Top", "Side"
-    doc.recompute()
-    name = doc.Name
-    yield doc
-    if name in FreeCAD.listDocuments():
-        FreeCAD.closeDocument(name)
+    yield from three_boxes("IdentityTest", undo=True, labels=True)
 
 
 def state(group):

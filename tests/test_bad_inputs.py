@@ -10,6 +10,8 @@ import sys
 
 import pytest
 
+import headless_helpers
+
 from contactwb import analysis, core
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -111,14 +113,7 @@ def test_brep_cut_short_is_an_error_not_a_loop():
             core.contactcore.partition_brep(text[:int(len(text) * fraction)])
 
 
-def _motor_shapes():
-    import Part
-    shapes = []
-    for body in core.contactcore.read_step(MOTOR).bodies:
-        shape = Part.Shape()
-        shape.importBrepFromString(body.brep)
-        shapes.append((body.name, shape))
-    return shapes
+_motor_shapes = headless_helpers.motor_shapes
 
 
 @pytest.mark.parametrize("factor", [1e-6, 1e6])

@@ -14,6 +14,8 @@ import time
 
 import pytest
 
+import headless_helpers
+
 from contactwb import analysis, core, meshes
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -83,14 +85,7 @@ def test_corpus_covers_every_command(corpus):
     assert sum(1 for c in corpus if c["refusal"]) >= 30
 
 
-def _motor_shapes():
-    import Part
-    shapes = []
-    for body in core.contactcore.read_step(MOTOR).bodies:
-        shape = Part.Shape()
-        shape.importBrepFromString(body.brep)
-        shapes.append((body.name, shape))
-    return shapes
+_motor_shapes = headless_helpers.motor_shapes
 
 
 @pytest.mark.parametrize("distance", [1e5, 1e6, 1e9])

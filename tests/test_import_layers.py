@@ -82,6 +82,16 @@ def _is_package(path):
     return os.path.basename(path) == "__init__.py"
 
 
+def _from_base(package, node):
+    """The absolute module a `from ... import` node of a module of `package` names
+    (relative levels resolved)."""
+    if not node.level:
+        return node.module
+    parts = package.split(".")
+    parts = parts[:len(parts) - (node.level - 1)]
+    return ".".join(parts + ([node.module] if node.module else []))
+
+
 def imports_of(name, path, modules):
     """[(target, imported name or None, line)]: every import in the file, at
     any depth (function-local ones too), relative ones resolved. `target` is
@@ -95,12 +105,7 @@ def imports_of(name, path, modules):
             for alias in node.names:
                 found.append((alias.name, None, node.lineno))
         elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                parts = package.split(".")
-                parts = parts[:len(parts) - (node.level - 1)]
-                base = ".".join(parts + ([node.module] if node.module else []))
-            else:
-                base = node.module
+            base = _from_base(package, node)
             for alias in node.names:
                 candidate = f"{base}.{alias.name}"
                 if candidate in modules:
@@ -120,12 +125,7 @@ def packages_run_by(name, path, modules):
     found = set()
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom):
-            if node.level:
-                parts = package.split(".")
-                parts = parts[:len(parts) - (node.level - 1)]
-                base = ".".join(parts + ([node.module] if node.module else []))
-            else:
-                base = node.module
+            base = _from_base(package, node)
             if base in modules and _is_package(modules[base]):
                 found.add(base)
     return found

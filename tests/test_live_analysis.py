@@ -10,24 +10,14 @@ import FreeCAD
 from contactwb import analysis, export, freecad_setup
 from contactwb.make import make_contact_analysis, update_contact_analysis
 from contactwb.objects.contact_objects import is_contact
+from headless_helpers import three_boxes
 
 
 @pytest.fixture
 def boxes():
     """Base 10x10x10; Top 6x4x5 on it (PLF area 24); Side 10x10x10 beside
     Base (PLF area 100, x = 10)."""
-    doc = FreeCAD.newDocument("LiveTest")
-    base = doc.addObject("Part::Box", "Base")
-    top = doc.addObject("Part::Box", "Top")
-    top.Length, top.Width, top.Height = 6, 4, 5
-    top.Placement.Base = FreeCAD.Vector(2, 3, 10)
-    side = doc.addObject("Part::Box", "Side")
-    side.Placement.Base = FreeCAD.Vector(10, 0, 0)
-    doc.recompute()
-    name = doc.Name
-    yield doc
-    if name in FreeCAD.listDocuments():
-        FreeCAD.closeDocument(name)
+    yield from three_boxes("LiveTest")
 
 
 def pairs(group):

@@ -17,7 +17,7 @@ import os
 import sys
 import time
 
-from contactwb.cli.process import finite_number, nonnegative_count, run as run_command
+from contactwb.cli.process import finite_number, internal_error, nonnegative_count, run as run_command, unsafe_output
 from contactwb.cli.process import EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED  # noqa: F401
 
 
@@ -128,13 +128,8 @@ def _contacts(argv):
         if problem:
             print(f"contacts: {problem}", file=sys.stderr)
             return EXIT_USAGE
-    if args.graph:
-        from contactwb.core import output_files
-        try:
-            output_files.check_target(args.graph)
-        except output_files.UnsafeTarget as error:
-            print(f"contacts: --graph {error}", file=sys.stderr)
-            return EXIT_USAGE
+    if args.graph and unsafe_output("contacts", "--graph", args.graph):
+        return EXIT_USAGE
     if args.disassembly:
         from contactwb.cli.mesh import print_disassembly  # the module, not the package: no cycle through cli/__init__
         return print_disassembly(os.fsdecode(args.file), args.json, args.linear, args.angular,
@@ -217,11 +212,7 @@ def _contacts(argv):
         print(f"contacts: cannot read '{path}': {error}", file=sys.stderr)
         return EXIT_INPUT
     except Exception as error:  # a bug: say so, without a traceback unless asked
-        if os.environ.get("CONTACTS_DEBUG"):
-            raise
-        print(f"contacts: internal error ({type(error).__name__}: {error}); "
-              "set CONTACTS_DEBUG=1 for the traceback and please report it", file=sys.stderr)
-        return EXIT_INTERNAL
+        return internal_error("contacts", error)
     exported = None
     if exporting:
         from contactwb.cli.export_mechanism import export

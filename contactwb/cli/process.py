@@ -126,13 +126,31 @@ def run(name, body, own_process=True):
     except SystemExit:
         raise
     except Exception as error:  # a bug: say so, without a traceback unless asked
-        if os.environ.get("CONTACTS_DEBUG"):
-            raise
-        print(f"{name}: internal error ({type(error).__name__}: {error}); "
-              "set CONTACTS_DEBUG=1 for the traceback and please report it", file=sys.stderr)
-        return EXIT_INTERNAL
+        return internal_error(name, error)
     flushed = finish_output(name)
     return code if flushed is None else flushed
+
+
+def internal_error(name, error):
+    """For an `except Exception as error:` block, a bug: re-raises it with its
+    traceback when $CONTACTS_DEBUG is set, else says so in one line: exit 5."""
+    if os.environ.get("CONTACTS_DEBUG"):
+        raise  # the exception being handled, its traceback whole
+    print(f"{name}: internal error ({type(error).__name__}: {error}); "
+          "set CONTACTS_DEBUG=1 for the traceback and please report it", file=sys.stderr)
+    return EXIT_INTERNAL
+
+
+def unsafe_output(name, option, path):
+    """Whether `path`, given to `option`, is no place to write (output_files.check_target):
+    if so, says why as `name: option <why>` (then the caller exits 2)."""
+    from contactwb.core import output_files
+    try:
+        output_files.check_target(path)
+    except output_files.UnsafeTarget as error:
+        print(f"{name}: {option} {error}", file=sys.stderr)
+        return True
+    return False
 
 
 def display_name(path):

@@ -21,7 +21,7 @@ import json
 import os
 import sys
 
-from contactwb.cli.process import escape_controls, finite_number, run as run_command
+from contactwb.cli.process import escape_controls, finite_number, run as run_command, unsafe_output
 from contactwb.cli.process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE
 
 _finite = finite_number
@@ -86,12 +86,8 @@ def _trial(argv):
         parser.error("--hid-file is for --device replay")
     file = os.fsdecode(args.file)
     script_path = os.fsdecode(args.script) if args.script else None
-    if args.record:
-        try:
-            output_files.check_target(args.record)
-        except output_files.UnsafeTarget as error:
-            print(f"contacts trial: --record {error}", file=sys.stderr)
-            return EXIT_USAGE
+    if args.record and unsafe_output("contacts trial", "--record", args.record):
+        return EXIT_USAGE
 
     from contactwb import core
     from contactwb.core import trial

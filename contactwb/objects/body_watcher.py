@@ -105,20 +105,21 @@ class BodyWatcher:
 
     def slotUndoDocument(self, doc):
         # the recompute entry undone: undo the user's action it followed too
-        if self.chaining or doc.Name not in self.documents:
-            return
-        if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
-                and doc.UndoNames[0] not in OWN_TRANSACTIONS:
-            self._chain(doc.undo)
-        self._restore_states(doc)
+        self._undo_or_redo_with_recompute(doc, doc.undo)
 
     def slotRedoDocument(self, doc):
         # the user's action redone: its recompute entry too
+        self._undo_or_redo_with_recompute(doc, doc.redo)
+
+    def _undo_or_redo_with_recompute(self, doc, step):
+        """After an undo or redo of a watched document: when our recompute
+        entry and the user's action it followed are split by it, `step`
+        (doc.undo or doc.redo) once more so they go together."""
         if self.chaining or doc.Name not in self.documents:
             return
         if doc.RedoNames[:1] == [RECOMPUTE_TRANSACTION] and doc.UndoNames \
                 and doc.UndoNames[0] not in OWN_TRANSACTIONS:
-            self._chain(doc.redo)
+            self._chain(step)
         self._restore_states(doc)
 
     @staticmethod

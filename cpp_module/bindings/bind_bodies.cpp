@@ -24,8 +24,8 @@ MassProperties mass_of(const Body& body) {
 
 void bind_bodies(py::module_& m) {
   py::class_<Body>(m, "Body", "A solid of the assembly with its global placement (mm).")
-      .def_readonly("name", &Body::name, "unique within the assembly")
-      .def_readonly("path", &Body::path, "assembly tree path, 'Root/Sub/Part' (STEP) or the caller's")
+      .def_property_readonly("name", read_only(&Body::name), "unique within the assembly")
+      .def_property_readonly("path", read_only(&Body::path), "assembly tree path, 'Root/Sub/Part' (STEP) or the caller's")
       .def_property_readonly("brep", [](const Body& b) { return call_guarded([&] { return shape_to_brep(b.shape); }); },
                              "The located shape as BRep text (Part.Shape.importBrepFromString).")
       .def_property_readonly("volume", [](const Body& b) { return mass_of(b).volume; },
@@ -50,12 +50,12 @@ void bind_bodies(py::module_& m) {
       .def("__repr__", [](const Body& b) { return "<Body '" + b.name + "' path='" + b.path + "'>"; });
 
   py::class_<Assembly>(m, "Assembly", "Bodies of an assembly, in mm, with the source file's unit.")
-      .def_readonly("bodies", &Assembly::bodies, "[Body], in the file's order")
-      .def_readonly("units", &Assembly::units, "unit of the source file ('mm', 'inch', ...); shapes are always in mm")
-      .def_readonly("source_unit_in_mm", &Assembly::source_unit_in_mm,
+      .def_property_readonly("bodies", read_only(&Assembly::bodies), "[Body], in the file's order")
+      .def_property_readonly("units", read_only(&Assembly::units), "unit of the source file ('mm', 'inch', ...); shapes are always in mm")
+      .def_property_readonly("source_unit_in_mm", read_only(&Assembly::source_unit_in_mm),
           "mm per unit of the source file (25.4 for an inch file)")
-      .def_readonly("messages", &Assembly::messages, "what was skipped and why (open shells, ...)")
-      .def_readonly("reader", &Assembly::reader, "STEP: 'products' (the fast read) or 'xde' (its fallback); else ''")
+      .def_property_readonly("messages", read_only(&Assembly::messages), "what was skipped and why (open shells, ...)")
+      .def_property_readonly("reader", read_only(&Assembly::reader), "STEP: 'products' (the fast read) or 'xde' (its fallback); else ''")
       .def("to_brep", [](const Assembly& a) { return call_guarded([&] { return shape_to_brep(assembly_compound(a)); }); },
            "All bodies as one compound, BRep text.")
       .def(

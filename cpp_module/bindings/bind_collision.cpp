@@ -48,21 +48,21 @@ void bind_collision(py::module_& m) {
       py::arg("mesh"));
 
   py::class_<QueryResult>(m, "QueryResult", "Intersection, distance, closest points, depth of a pair query")
-      .def_readonly("intersecting", &QueryResult::intersecting, "the two meshes intersect")
-      .def_readonly("distance", &QueryResult::distance, "mm >= 0; 0 when intersecting; infinity when not measured")
-      .def_readonly("point_a", &QueryResult::point_a, "(x, y, z) mm, world: closest (or touching) point of A")
-      .def_readonly("point_b", &QueryResult::point_b, "(x, y, z) mm, world: closest (or touching) point of B")
-      .def_readonly("triangle_a", &QueryResult::triangle_a, "index into A's triangles, -1: none")
-      .def_readonly("triangle_b", &QueryResult::triangle_b, "index into B's triangles, -1: none")
-      .def_readonly("face_a", &QueryResult::face_a, "1-based FaceN of triangle_a")
-      .def_readonly("face_b", &QueryResult::face_b, "1-based FaceN of triangle_b")
-      .def_readonly("partition_a", &QueryResult::partition_a, "partition of triangle_a, -1: none")
-      .def_readonly("partition_b", &QueryResult::partition_b, "partition of triangle_b, -1: none")
-      .def_readonly("depth", &QueryResult::depth, "mm: penetration depth (kind 'penetration'), 0 when not penetrating")
-      .def_readonly("direction", &QueryResult::direction,
+      .def_property_readonly("intersecting", read_only(&QueryResult::intersecting), "the two meshes intersect")
+      .def_property_readonly("distance", read_only(&QueryResult::distance), "mm >= 0; 0 when intersecting; infinity when not measured")
+      .def_property_readonly("point_a", read_only(&QueryResult::point_a), "(x, y, z) mm, world: closest (or touching) point of A")
+      .def_property_readonly("point_b", read_only(&QueryResult::point_b), "(x, y, z) mm, world: closest (or touching) point of B")
+      .def_property_readonly("triangle_a", read_only(&QueryResult::triangle_a), "index into A's triangles, -1: none")
+      .def_property_readonly("triangle_b", read_only(&QueryResult::triangle_b), "index into B's triangles, -1: none")
+      .def_property_readonly("face_a", read_only(&QueryResult::face_a), "1-based FaceN of triangle_a")
+      .def_property_readonly("face_b", read_only(&QueryResult::face_b), "1-based FaceN of triangle_b")
+      .def_property_readonly("partition_a", read_only(&QueryResult::partition_a), "partition of triangle_a, -1: none")
+      .def_property_readonly("partition_b", read_only(&QueryResult::partition_b), "partition of triangle_b, -1: none")
+      .def_property_readonly("depth", read_only(&QueryResult::depth), "mm: penetration depth (kind 'penetration'), 0 when not penetrating")
+      .def_property_readonly("direction", read_only(&QueryResult::direction),
           "unit (x, y, z) in which A must move to reduce the penetration")
-      .def_readonly("partitions_a", &QueryResult::partitions_a, "A's partitions in the intersection, ascending")
-      .def_readonly("partitions_b", &QueryResult::partitions_b, "B's partitions in the intersection, ascending")
+      .def_property_readonly("partitions_a", read_only(&QueryResult::partitions_a), "A's partitions in the intersection, ascending")
+      .def_property_readonly("partitions_b", read_only(&QueryResult::partitions_b), "B's partitions in the intersection, ascending")
       .def("__repr__", [](const QueryResult& r) {
         return std::string("<QueryResult ") + (r.intersecting ? "intersecting" : "apart") +
                " distance=" + std::to_string(r.distance) + " depth=" + std::to_string(r.depth) + ">";

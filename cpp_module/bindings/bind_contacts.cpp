@@ -54,15 +54,15 @@ void bind_contacts(py::module_& m) {
       .value("TRF", ContactType::TRF);
 
   py::class_<Contact>(m, "Contact", "A functional contact between two bodies.")
-      .def_readonly("type", &Contact::type, "ContactType")
+      .def_property_readonly("type", read_only(&Contact::type), "ContactType")
       .def_property_readonly("type_name", [](const Contact& c) { return std::string(to_string(c.type)); },
           "'PLF', 'CLJ', 'CJU', 'SPF', 'LAF', 'SPT' or 'TRF'")
-      .def_readonly("body_a", &Contact::body_a, "index into Assembly.bodies, body_a < body_b")
-      .def_readonly("body_b", &Contact::body_b, "index into Assembly.bodies")
-      .def_readonly("partition_a", &Contact::partition_a, "partition id within body_a")
-      .def_readonly("partition_b", &Contact::partition_b, "partition id within body_b")
-      .def_readonly("faces_a", &Contact::faces_a, "1-based FaceN indices of body_a's faces in contact")
-      .def_readonly("faces_b", &Contact::faces_b, "1-based FaceN indices of body_b's faces in contact")
+      .def_property_readonly("body_a", read_only(&Contact::body_a), "index into Assembly.bodies, body_a < body_b")
+      .def_property_readonly("body_b", read_only(&Contact::body_b), "index into Assembly.bodies")
+      .def_property_readonly("partition_a", read_only(&Contact::partition_a), "partition id within body_a")
+      .def_property_readonly("partition_b", read_only(&Contact::partition_b), "partition id within body_b")
+      .def_property_readonly("faces_a", read_only(&Contact::faces_a), "1-based FaceN indices of body_a's faces in contact")
+      .def_property_readonly("faces_b", read_only(&Contact::faces_b), "1-based FaceN indices of body_b's faces in contact")
       .def_property_readonly("face_names_a", [](const Contact& c) { return face_names(c.faces_a); },
           "['FaceN', ...] of body_a")
       .def_property_readonly("face_names_b", [](const Contact& c) { return face_names(c.faces_b); },
@@ -71,15 +71,15 @@ void bind_contacts(py::module_& m) {
           "(x, y, z) mm: PLF a point of the common area; revolution: on the axis; sphere: centre")
       .def_property_readonly("direction", [](const Contact& c) { return to_tuple(c.direction); },
           "unit (x, y, z): PLF outward normal of body_a; revolution: axis")
-      .def_readonly("radius", &Contact::radius, "mm: CLJ, SPF, LAF, SPT (ball radius), TRF (minor radius); else 0")
-      .def_readonly("half_angle", &Contact::half_angle, "radians: CJU; else 0")
-      .def_readonly("area", &Contact::area, "mm^2, exact common area (LAF, SPT: 0, they touch along a circle)")
-      .def_readonly("partial", &Contact::partial, "a revolution contact spanning less than pi radians")
-      .def_readonly("span", &Contact::span, "radians: common angular span (revolution contacts)")
-      .def_readonly("tolerances", &Contact::tolerances, "Tolerances used")
+      .def_property_readonly("radius", read_only(&Contact::radius), "mm: CLJ, SPF, LAF, SPT (ball radius), TRF (minor radius); else 0")
+      .def_property_readonly("half_angle", read_only(&Contact::half_angle), "radians: CJU; else 0")
+      .def_property_readonly("area", read_only(&Contact::area), "mm^2, exact common area (LAF, SPT: 0, they touch along a circle)")
+      .def_property_readonly("partial", read_only(&Contact::partial), "a revolution contact spanning less than pi radians")
+      .def_property_readonly("span", read_only(&Contact::span), "radians: common angular span (revolution contacts)")
+      .def_property_readonly("tolerances", read_only(&Contact::tolerances), "Tolerances used")
       .def_property_readonly("region_axis", [](const Contact& c) { return to_tuple(c.region_axis); },
                              "SPF, LAF, SPT: middle of the directions from the centre to the common region")
-      .def_readonly("region_angle", &Contact::region_angle,
+      .def_property_readonly("region_angle", read_only(&Contact::region_angle),
                     "SPF, LAF, SPT: the common region lies within this angle of region_axis (pi: all around)")
       .def_property_readonly("has_region", [](const Contact& c) { return !c.region.IsNull(); },
                              "whether the common region was computed (find_contacts(regions=...), "
@@ -126,12 +126,12 @@ void bind_contacts(py::module_& m) {
           "'sphere_on_plane', 'sphere_on_cylinder', 'cylinder_on_plane' or 'cylinder_on_cylinder'")
       .def_property_readonly("kind", [](const HigherPair& h) { return std::string(h.is_line() ? "line" : "point"); },
           "'point' or 'line'")
-      .def_readonly("body_a", &HigherPair::body_a, "index into Assembly.bodies")
-      .def_readonly("body_b", &HigherPair::body_b, "index into Assembly.bodies")
-      .def_readonly("partition_a", &HigherPair::partition_a, "partition id within body_a")
-      .def_readonly("partition_b", &HigherPair::partition_b, "partition id within body_b")
-      .def_readonly("faces_a", &HigherPair::faces_a, "1-based FaceN indices of body_a's faces in contact")
-      .def_readonly("faces_b", &HigherPair::faces_b, "1-based FaceN indices of body_b's faces in contact")
+      .def_property_readonly("body_a", read_only(&HigherPair::body_a), "index into Assembly.bodies")
+      .def_property_readonly("body_b", read_only(&HigherPair::body_b), "index into Assembly.bodies")
+      .def_property_readonly("partition_a", read_only(&HigherPair::partition_a), "partition id within body_a")
+      .def_property_readonly("partition_b", read_only(&HigherPair::partition_b), "partition id within body_b")
+      .def_property_readonly("faces_a", read_only(&HigherPair::faces_a), "1-based FaceN indices of body_a's faces in contact")
+      .def_property_readonly("faces_b", read_only(&HigherPair::faces_b), "1-based FaceN indices of body_b's faces in contact")
       .def_property_readonly("face_names_a", [](const HigherPair& h) { return face_names(h.faces_a); },
           "['FaceN', ...] of body_a")
       .def_property_readonly("face_names_b", [](const HigherPair& h) { return face_names(h.faces_b); },
@@ -144,20 +144,20 @@ void bind_contacts(py::module_& m) {
           "(x, y, z) mm: a line contact's first end (a point contact: the point)")
       .def_property_readonly("end", [](const HigherPair& h) { return to_tuple(h.end); },
           "(x, y, z) mm: a line contact's other end (a point contact: the point)")
-      .def_readonly("length", &HigherPair::length, "mm: a line contact's length (0: a point)")
+      .def_property_readonly("length", read_only(&HigherPair::length), "mm: a line contact's length (0: a point)")
       .def("__repr__", [](const HigherPair& h) {
         return std::string("<HigherPair ") + to_string(h.type) + " bodies " + std::to_string(h.body_a) + "-" +
                std::to_string(h.body_b) + ">";
       });
 
   py::class_<StageTimes>(m, "StageTimes", "Seconds spent in each stage.")
-      .def_readonly("partitions", &StageTimes::partitions, "seconds partitioning the bodies")
-      .def_readonly("broad_phase", &StageTimes::broad_phase, "seconds finding body pairs with meeting boxes")
-      .def_readonly("candidates", &StageTimes::candidates, "seconds finding candidate partition pairs")
-      .def_readonly("area", &StageTimes::area, "seconds testing candidates (common areas)")
-      .def_readonly("validity", &StageTimes::validity, "seconds of the solid checks")
-      .def_readonly("interferences", &StageTimes::interferences, "seconds of the interference pass")
-      .def_readonly("regions", &StageTimes::regions, "seconds computing common regions (regions=...)")
+      .def_property_readonly("partitions", read_only(&StageTimes::partitions), "seconds partitioning the bodies")
+      .def_property_readonly("broad_phase", read_only(&StageTimes::broad_phase), "seconds finding body pairs with meeting boxes")
+      .def_property_readonly("candidates", read_only(&StageTimes::candidates), "seconds finding candidate partition pairs")
+      .def_property_readonly("area", read_only(&StageTimes::area), "seconds testing candidates (common areas)")
+      .def_property_readonly("validity", read_only(&StageTimes::validity), "seconds of the solid checks")
+      .def_property_readonly("interferences", read_only(&StageTimes::interferences), "seconds of the interference pass")
+      .def_property_readonly("regions", read_only(&StageTimes::regions), "seconds computing common regions (regions=...)")
       .def("__repr__", [](const StageTimes& t) {
         std::ostringstream out;
         out << "<StageTimes partitions=" << t.partitions << " broad_phase=" << t.broad_phase
@@ -166,22 +166,22 @@ void bind_contacts(py::module_& m) {
       });
 
   py::class_<SkippedPair>(m, "SkippedPair", "A candidate pair whose test failed: skipped, the rest kept.")
-      .def_readonly("body_a", &SkippedPair::body_a, "index into Assembly.bodies")
-      .def_readonly("body_b", &SkippedPair::body_b, "index into Assembly.bodies")
-      .def_readonly("partition_a", &SkippedPair::partition_a, "partition id within body_a")
-      .def_readonly("partition_b", &SkippedPair::partition_b, "partition id within body_b")
-      .def_readonly("faces_a", &SkippedPair::faces_a, "1-based FaceN of partition_a")
-      .def_readonly("faces_b", &SkippedPair::faces_b, "1-based FaceN of partition_b")
-      .def_readonly("message", &SkippedPair::message, "why the test failed (OCCT's message)")
+      .def_property_readonly("body_a", read_only(&SkippedPair::body_a), "index into Assembly.bodies")
+      .def_property_readonly("body_b", read_only(&SkippedPair::body_b), "index into Assembly.bodies")
+      .def_property_readonly("partition_a", read_only(&SkippedPair::partition_a), "partition id within body_a")
+      .def_property_readonly("partition_b", read_only(&SkippedPair::partition_b), "partition id within body_b")
+      .def_property_readonly("faces_a", read_only(&SkippedPair::faces_a), "1-based FaceN of partition_a")
+      .def_property_readonly("faces_b", read_only(&SkippedPair::faces_b), "1-based FaceN of partition_b")
+      .def_property_readonly("message", read_only(&SkippedPair::message), "why the test failed (OCCT's message)")
       .def("__repr__", [](const SkippedPair& s) {
         return "<SkippedPair bodies " + std::to_string(s.body_a) + "-" + std::to_string(s.body_b) + ": " +
                s.message + ">";
       });
 
   py::class_<Interference>(m, "Interference", "Two bodies whose material overlaps (never a contact).")
-      .def_readonly("body_a", &Interference::body_a, "index into Assembly.bodies, body_a < body_b")
-      .def_readonly("body_b", &Interference::body_b, "index into Assembly.bodies")
-      .def_readonly("volume", &Interference::volume, "common volume, mm^3")
+      .def_property_readonly("body_a", read_only(&Interference::body_a), "index into Assembly.bodies, body_a < body_b")
+      .def_property_readonly("body_b", read_only(&Interference::body_b), "index into Assembly.bodies")
+      .def_property_readonly("volume", read_only(&Interference::volume), "common volume, mm^3")
       .def_property_readonly("has_solid", [](const Interference& i) { return !i.solid.IsNull(); },
                              "whether the overlapping solid was computed (find_contacts(regions=...))")
       .def_property_readonly("solid_brep", [](const Interference& i) {
@@ -193,24 +193,24 @@ void bind_contacts(py::module_& m) {
       });
 
   py::class_<InvalidBody>(m, "InvalidBody", "A body whose solid is not valid (BRepCheck).")
-      .def_readonly("body", &InvalidBody::body, "index into Assembly.bodies")
-      .def_readonly("faces", &InvalidBody::faces, "1-based FaceN where the fault lies")
-      .def_readonly("reason", &InvalidBody::reason, "what is wrong with the solid");
+      .def_property_readonly("body", read_only(&InvalidBody::body), "index into Assembly.bodies")
+      .def_property_readonly("faces", read_only(&InvalidBody::faces), "1-based FaceN where the fault lies")
+      .def_property_readonly("reason", read_only(&InvalidBody::reason), "what is wrong with the solid");
 
   py::class_<ContactsResult>(m, "ContactsResult", "Contacts of an assembly and what led to them.")
-      .def_readonly("interferences", &ContactsResult::interferences, "[Interference]: bodies whose material overlaps")
-      .def_readonly("invalid_bodies", &ContactsResult::invalid_bodies, "[InvalidBody]: solids that are not valid")
-      .def_readonly("tolerances", &ContactsResult::tolerances, "Tolerances used")
-      .def_readonly("partitions", &ContactsResult::partitions, "[BodyPartitions], one per body")
-      .def_readonly("body_pairs", &ContactsResult::body_pairs, "[(i, j)] with meeting boxes, i < j (broad phase)")
-      .def_readonly("candidates", &ContactsResult::candidates, "number of candidate partition pairs tested")
-      .def_readonly("contacts", &ContactsResult::contacts, "[Contact]")
-      .def_readonly("higher_pairs", &ContactsResult::higher_pairs, "[HigherPair]: point and line contacts, apart from the contacts")
-      .def_readonly("skipped", &ContactsResult::skipped, "[SkippedPair]: candidate pairs whose test failed")
-      .def_readonly("messages", &ContactsResult::messages, "warnings (OCCT's, bodies skipped)")
-      .def_readonly("clearances", &ContactsResult::clearances, "[Clearance] (with clearance_gap > 0)")
-      .def_readonly("times", &ContactsResult::times, "StageTimes")
-      .def_readonly("regions_computed", &ContactsResult::regions_computed,
+      .def_property_readonly("interferences", read_only(&ContactsResult::interferences), "[Interference]: bodies whose material overlaps")
+      .def_property_readonly("invalid_bodies", read_only(&ContactsResult::invalid_bodies), "[InvalidBody]: solids that are not valid")
+      .def_property_readonly("tolerances", read_only(&ContactsResult::tolerances), "Tolerances used")
+      .def_property_readonly("partitions", read_only(&ContactsResult::partitions), "[BodyPartitions], one per body")
+      .def_property_readonly("body_pairs", read_only(&ContactsResult::body_pairs), "[(i, j)] with meeting boxes, i < j (broad phase)")
+      .def_property_readonly("candidates", read_only(&ContactsResult::candidates), "number of candidate partition pairs tested")
+      .def_property_readonly("contacts", read_only(&ContactsResult::contacts), "[Contact]")
+      .def_property_readonly("higher_pairs", read_only(&ContactsResult::higher_pairs), "[HigherPair]: point and line contacts, apart from the contacts")
+      .def_property_readonly("skipped", read_only(&ContactsResult::skipped), "[SkippedPair]: candidate pairs whose test failed")
+      .def_property_readonly("messages", read_only(&ContactsResult::messages), "warnings (OCCT's, bodies skipped)")
+      .def_property_readonly("clearances", read_only(&ContactsResult::clearances), "[Clearance] (with clearance_gap > 0)")
+      .def_property_readonly("times", read_only(&ContactsResult::times), "StageTimes")
+      .def_property_readonly("regions_computed", read_only(&ContactsResult::regions_computed),
                     "common regions and overlapping solids computed by the last region pass")
       .def("__repr__", [](const ContactsResult& r) {
         return "<ContactsResult " + std::to_string(r.contacts.size()) + " contacts, " +

@@ -6,23 +6,23 @@ namespace contactcore::bindings {
 
 void bind_disassembly(py::module_& m) {
   py::class_<DisassemblyStep>(m, "DisassemblyStep", "Parts moved together along one direction")
-      .def_readonly("parts", &DisassemblyStep::parts, "part indices moved together, ascending")
-      .def_readonly("direction", &DisassemblyStep::direction, "unit (x, y, z)")
-      .def_readonly("blocked_before", &DisassemblyStep::blocked_before,
+      .def_property_readonly("parts", read_only(&DisassemblyStep::parts), "part indices moved together, ascending")
+      .def_property_readonly("direction", read_only(&DisassemblyStep::direction), "unit (x, y, z)")
+      .def_property_readonly("blocked_before", read_only(&DisassemblyStep::blocked_before),
                     "parts that blocked it along its direction at first, all removed before it")
-      .def_readonly("released", &DisassemblyStep::released,
+      .def_property_readonly("released", read_only(&DisassemblyStep::released),
                     "indices of the threaded cylindrical contacts released (unscrewed) for this step");
 
   py::class_<DisassemblyResult>(m, "DisassemblyResult", "Removal order, blocking graphs, or why none exists")
-      .def_readonly("steps", &DisassemblyResult::steps, "[DisassemblyStep] in removal order (the base is not a step)")
-      .def_readonly("base", &DisassemblyResult::base, "the part left (the largest of the sub-assembly left), -1 "
+      .def_property_readonly("steps", read_only(&DisassemblyResult::steps), "[DisassemblyStep] in removal order (the base is not a step)")
+      .def_property_readonly("base", read_only(&DisassemblyResult::base), "the part left (the largest of the sub-assembly left), -1 "
                     "when the sequence stops early")
-      .def_readonly("base_parts", &DisassemblyResult::base_parts, "every part left")
-      .def_readonly("complete", &DisassemblyResult::complete, "every part but the base removed")
-      .def_readonly("reason", &DisassemblyResult::reason, "why no sequence exists (when not complete)")
-      .def_readonly("messages", &DisassemblyResult::messages, "warnings (faces left out, invalid solids)")
-      .def_readonly("directions", &DisassemblyResult::directions, "[unit (x, y, z)]: every candidate direction used")
-      .def_readonly("blocking", &DisassemblyResult::blocking,
+      .def_property_readonly("base_parts", read_only(&DisassemblyResult::base_parts), "every part left")
+      .def_property_readonly("complete", read_only(&DisassemblyResult::complete), "every part but the base removed")
+      .def_property_readonly("reason", read_only(&DisassemblyResult::reason), "why no sequence exists (when not complete)")
+      .def_property_readonly("messages", read_only(&DisassemblyResult::messages), "warnings (faces left out, invalid solids)")
+      .def_property_readonly("directions", read_only(&DisassemblyResult::directions), "[unit (x, y, z)]: every candidate direction used")
+      .def_property_readonly("blocking", read_only(&DisassemblyResult::blocking),
           "blocking[d][i]: parts blocking part i along directions[d]");
 
   m.def(

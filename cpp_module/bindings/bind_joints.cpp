@@ -26,13 +26,13 @@ py::list rotations(const std::vector<FreeRotation>& axes) {
 
 void bind_joints(py::module_& m) {
   py::class_<Clearance>(m, "Clearance", "A fit with play (same surface, radii or planes a small gap apart).")
-      .def_readonly("body_a", &Clearance::body_a, "index into Assembly.bodies, body_a < body_b")
-      .def_readonly("body_b", &Clearance::body_b, "index into Assembly.bodies")
-      .def_readonly("partition_a", &Clearance::partition_a, "partition id within body_a")
-      .def_readonly("partition_b", &Clearance::partition_b, "partition id within body_b")
+      .def_property_readonly("body_a", read_only(&Clearance::body_a), "index into Assembly.bodies, body_a < body_b")
+      .def_property_readonly("body_b", read_only(&Clearance::body_b), "index into Assembly.bodies")
+      .def_property_readonly("partition_a", read_only(&Clearance::partition_a), "partition id within body_a")
+      .def_property_readonly("partition_b", read_only(&Clearance::partition_b), "partition id within body_b")
       .def_property_readonly("kind", [](const Clearance& c) { return std::string(to_string(c.kind)); },
           "surface kind name: 'Cylinder', 'Sphere', 'Plane', ...")
-      .def_readonly("gap", &Clearance::gap, "mm, radial (cylinders, spheres) or normal (planes)")
+      .def_property_readonly("gap", read_only(&Clearance::gap), "mm, radial (cylinders, spheres) or normal (planes)")
       .def("__repr__", [](const Clearance& c) {
         std::ostringstream out;
         out << "<Clearance " << to_string(c.kind) << " bodies " << c.body_a << "-" << c.body_b << " gap=" << c.gap
@@ -41,30 +41,30 @@ void bind_joints(py::module_& m) {
       });
 
   py::class_<OneSidedStop>(m, "OneSidedStop", "A unilateral contact: b may move with u . normal >= 0 at point.")
-      .def_readonly("contact", &OneSidedStop::contact, "index into ContactsResult.contacts")
-      .def_readonly("higher_pair", &OneSidedStop::higher_pair, "index into ContactsResult.higher_pairs (-1: a surface contact)")
+      .def_property_readonly("contact", read_only(&OneSidedStop::contact), "index into ContactsResult.contacts")
+      .def_property_readonly("higher_pair", read_only(&OneSidedStop::higher_pair), "index into ContactsResult.higher_pairs (-1: a surface contact)")
       .def_property_readonly("point", [](const OneSidedStop& s) { return to_tuple(s.point); },
           "(x, y, z) mm where the unilateral force acts")
       .def_property_readonly("normal", [](const OneSidedStop& s) { return to_tuple(s.normal); },
           "unit (x, y, z) out of a's material");
 
   py::class_<PairJoint>(m, "PairJoint", "What two bodies in contact allow each other (b relative to a).")
-      .def_readonly("body_a", &PairJoint::body_a, "index into Assembly.bodies, body_a < body_b")
-      .def_readonly("body_b", &PairJoint::body_b, "index into Assembly.bodies")
-      .def_readonly("contacts", &PairJoint::contacts, "indices into ContactsResult.contacts")
-      .def_readonly("higher_pairs", &PairJoint::higher_pairs, "indices into ContactsResult.higher_pairs")
-      .def_readonly("annotated_rigid", &PairJoint::annotated_rigid, "made rigid by the designer's annotations")
+      .def_property_readonly("body_a", read_only(&PairJoint::body_a), "index into Assembly.bodies, body_a < body_b")
+      .def_property_readonly("body_b", read_only(&PairJoint::body_b), "index into Assembly.bodies")
+      .def_property_readonly("contacts", read_only(&PairJoint::contacts), "indices into ContactsResult.contacts")
+      .def_property_readonly("higher_pairs", read_only(&PairJoint::higher_pairs), "indices into ContactsResult.higher_pairs")
+      .def_property_readonly("annotated_rigid", read_only(&PairJoint::annotated_rigid), "made rigid by the designer's annotations")
       .def_property_readonly("type", [](const PairJoint& j) { return std::string(to_string(j.type)); },
           "ISO 3952 name: 'rigid', 'revolute', 'cylindrical', ...")
-      .def_readonly("dof", &PairJoint::dof, "degrees of freedom, = len(free_twists)")
-      .def_readonly("free_twists", &PairJoint::free_twists,
+      .def_property_readonly("dof", read_only(&PairJoint::dof), "degrees of freedom, = len(free_twists)")
+      .def_property_readonly("free_twists", read_only(&PairJoint::free_twists),
                     "basis of free twists (wx, wy, wz, vx, vy, vz), v at the global origin")
       .def_property_readonly("rotations", [](const PairJoint& j) { return rotations(j.rotations); },
                              "[(point, direction)] per rotational DOF")
       .def_property_readonly("translations", [](const PairJoint& j) { return directions(j.translations); },
           "[unit (x, y, z)] per translational DOF")
-      .def_readonly("pitch", &PairJoint::pitch, "mm per radian (helical joints only)")
-      .def_readonly("stops", &PairJoint::stops, "[OneSidedStop]: unilateral contacts")
+      .def_property_readonly("pitch", read_only(&PairJoint::pitch), "mm per radian (helical joints only)")
+      .def_property_readonly("stops", read_only(&PairJoint::stops), "[OneSidedStop]: unilateral contacts")
       .def_property_readonly("free_directions", [](const PairJoint& j) { return directions(j.free_directions); },
                              "generators of the cone of directions in which b can leave a")
       .def("__repr__", [](const PairJoint& j) {
@@ -72,37 +72,37 @@ void bind_joints(py::module_& m) {
                " dof=" + std::to_string(j.dof) + ">";
       });
 
-  py::class_<JointsResult>(m, "JointsResult").def_readonly("joints", &JointsResult::joints,
+  py::class_<JointsResult>(m, "JointsResult").def_property_readonly("joints", read_only(&JointsResult::joints),
       "[PairJoint], one per body pair in contact, sorted (a, b)");
 
   py::class_<PassiveSpin>(m, "PassiveSpin", "A rotation a body makes alone, every neighbour held still.")
-      .def_readonly("body", &PassiveSpin::body, "index into Assembly.bodies")
+      .def_property_readonly("body", read_only(&PassiveSpin::body), "index into Assembly.bodies")
       .def_property_readonly("point", [](const PassiveSpin& s) { return to_tuple(s.axis.point); },
           "(x, y, z) mm on the axis")
       .def_property_readonly("direction", [](const PassiveSpin& s) { return to_tuple(s.axis.direction); },
           "unit (x, y, z) of the axis");
 
   py::class_<GroupMotion>(m, "GroupMotion", "A rigid group's motion relative to the ground, passive spins aside.")
-      .def_readonly("group", &GroupMotion::group, "index into MobilityResult.groups")
+      .def_property_readonly("group", read_only(&GroupMotion::group), "index into MobilityResult.groups")
       .def_property_readonly("type", [](const GroupMotion& g) { return std::string(to_string(g.type)); },
           "ISO 3952 name of the motion")
-      .def_readonly("dof", &GroupMotion::dof, "degrees of freedom")
+      .def_property_readonly("dof", read_only(&GroupMotion::dof), "degrees of freedom")
       .def_property_readonly("rotations", [](const GroupMotion& g) { return rotations(g.rotations); },
           "[(point, direction)] per rotational DOF")
       .def_property_readonly("translations", [](const GroupMotion& g) { return directions(g.translations); },
           "[unit (x, y, z)] per translational DOF")
-      .def_readonly("pitch", &GroupMotion::pitch, "mm per radian (helical only)")
-      .def_readonly("passive_spins", &GroupMotion::passive_spins, "[PassiveSpin] of the group's bodies");
+      .def_property_readonly("pitch", read_only(&GroupMotion::pitch), "mm per radian (helical only)")
+      .def_property_readonly("passive_spins", read_only(&GroupMotion::passive_spins), "[PassiveSpin] of the group's bodies");
 
   py::class_<MobilityResult>(m, "MobilityResult", "Degrees of freedom, rigid groups and their motions.")
-      .def_readonly("ground", &MobilityResult::ground, "index of the body held still")
-      .def_readonly("dof", &MobilityResult::dof, "every free motion, passive spins included")
-      .def_readonly("passive", &MobilityResult::passive, "number of passive spins")
-      .def_readonly("groups", &MobilityResult::groups, "[[body index]]: rigid groups, groups[0] holds the ground")
-      .def_readonly("group_of_body", &MobilityResult::group_of_body, "group index per body")
-      .def_readonly("group_motions", &MobilityResult::group_motions, "[GroupMotion], one per group, same order")
-      .def_readonly("passive_spins", &MobilityResult::passive_spins, "[PassiveSpin]")
-      .def_readonly("components", &MobilityResult::components,
+      .def_property_readonly("ground", read_only(&MobilityResult::ground), "index of the body held still")
+      .def_property_readonly("dof", read_only(&MobilityResult::dof), "every free motion, passive spins included")
+      .def_property_readonly("passive", read_only(&MobilityResult::passive), "number of passive spins")
+      .def_property_readonly("groups", read_only(&MobilityResult::groups), "[[body index]]: rigid groups, groups[0] holds the ground")
+      .def_property_readonly("group_of_body", read_only(&MobilityResult::group_of_body), "group index per body")
+      .def_property_readonly("group_motions", read_only(&MobilityResult::group_motions), "[GroupMotion], one per group, same order")
+      .def_property_readonly("passive_spins", read_only(&MobilityResult::passive_spins), "[PassiveSpin]")
+      .def_property_readonly("components", read_only(&MobilityResult::components),
           "[[body index]]: connected components of the contact graph");
 
   m.def(

@@ -47,9 +47,9 @@ void bind_meshes(py::module_& m) {
   py::class_<TaggedMesh>(m, "TaggedMesh", "Triangles sharing vertices, each tagged with its FaceN and partition")
       .def_property_readonly("vertices", &vertex_list, "[(x, y, z)] in mm")
       .def_property_readonly("triangles", &triangle_list, "[(i, j, k)], counter-clockwise seen from outside")
-      .def_readonly("triangle_face", &TaggedMesh::triangle_face, "1-based FaceN of each triangle")
-      .def_readonly("triangle_partition", &TaggedMesh::triangle_partition, "partition id of each triangle")
-      .def_readonly("partition_count", &TaggedMesh::partition_count, "number of partitions of the body")
+      .def_property_readonly("triangle_face", read_only(&TaggedMesh::triangle_face), "1-based FaceN of each triangle")
+      .def_property_readonly("triangle_partition", read_only(&TaggedMesh::triangle_partition), "partition id of each triangle")
+      .def_property_readonly("partition_count", read_only(&TaggedMesh::partition_count), "number of partitions of the body")
       .def(
           "write_ply",
           [](const TaggedMesh& mesh, const std::string& path) { raise_if_failed(guarded([&] { return write_ply(mesh, path); })); },
@@ -60,26 +60,26 @@ void bind_meshes(py::module_& m) {
       });
 
   py::class_<MeshQuality>(m, "MeshQuality", "Closure and shape of a mesh's triangles")
-      .def_readonly("triangles", &MeshQuality::triangles, "number of triangles")
-      .def_readonly("boundary_edges", &MeshQuality::boundary_edges, "edges in one triangle only")
-      .def_readonly("nonmanifold_edges", &MeshQuality::nonmanifold_edges, "edges in three or more triangles")
-      .def_readonly("watertight", &MeshQuality::watertight, "every edge in exactly two triangles")
-      .def_readonly("min_angle_deg", &MeshQuality::min_angle_deg, "degrees: smallest angle of any triangle")
-      .def_readonly("aspect_p50", &MeshQuality::aspect_p50, "median aspect ratio (1: equilateral)")
-      .def_readonly("aspect_p90", &MeshQuality::aspect_p90, "90th percentile aspect ratio")
-      .def_readonly("aspect_p99", &MeshQuality::aspect_p99, "99th percentile aspect ratio")
-      .def_readonly("aspect_max", &MeshQuality::aspect_max, "largest aspect ratio")
-      .def_readonly("max_edge_length", &MeshQuality::max_edge_length, "mm: longest edge");
+      .def_property_readonly("triangles", read_only(&MeshQuality::triangles), "number of triangles")
+      .def_property_readonly("boundary_edges", read_only(&MeshQuality::boundary_edges), "edges in one triangle only")
+      .def_property_readonly("nonmanifold_edges", read_only(&MeshQuality::nonmanifold_edges), "edges in three or more triangles")
+      .def_property_readonly("watertight", read_only(&MeshQuality::watertight), "every edge in exactly two triangles")
+      .def_property_readonly("min_angle_deg", read_only(&MeshQuality::min_angle_deg), "degrees: smallest angle of any triangle")
+      .def_property_readonly("aspect_p50", read_only(&MeshQuality::aspect_p50), "median aspect ratio (1: equilateral)")
+      .def_property_readonly("aspect_p90", read_only(&MeshQuality::aspect_p90), "90th percentile aspect ratio")
+      .def_property_readonly("aspect_p99", read_only(&MeshQuality::aspect_p99), "99th percentile aspect ratio")
+      .def_property_readonly("aspect_max", read_only(&MeshQuality::aspect_max), "largest aspect ratio")
+      .def_property_readonly("max_edge_length", read_only(&MeshQuality::max_edge_length), "mm: longest edge");
 
   py::class_<MeshResult>(m, "MeshResult", "A body's tagged mesh and its quality")
-      .def_readonly("mesh", &MeshResult::mesh, "TaggedMesh")
-      .def_readonly("quality", &MeshResult::quality, "MeshQuality")
+      .def_property_readonly("mesh", read_only(&MeshResult::mesh), "TaggedMesh")
+      .def_property_readonly("quality", read_only(&MeshResult::quality), "MeshQuality")
       .def_property_readonly("failed_faces", [](const MeshResult& r) {
         py::list out;
         for (const FaceFailure& f : r.failed_faces) out.append(py::make_tuple("Face" + std::to_string(f.face), f.message));
         return out;
       }, "[(\"FaceN\", message)]: faces OCCT could not tessellate, left out of the mesh")
-      .def_readonly("invalid_reason", &MeshResult::invalid_reason, "why the body is not a valid solid ('': valid)")
+      .def_property_readonly("invalid_reason", read_only(&MeshResult::invalid_reason), "why the body is not a valid solid ('': valid)")
       .def_property_readonly("invalid_faces", [](const MeshResult& r) { return face_names(r.invalid_faces); },
                              "the faces of the fault ([]: the whole solid)");
 

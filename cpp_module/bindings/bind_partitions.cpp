@@ -102,14 +102,14 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<SurfaceParams>(m, "SurfaceParams", "Analytic surface parameters in global coordinates (mm, rad)")
-      .def_readonly("kind", &SurfaceParams::kind, "SurfaceKind")
+      .def_property_readonly("kind", read_only(&SurfaceParams::kind), "SurfaceKind")
       .def_property_readonly("location", [](const SurfaceParams& s) { return to_tuple(s.location); },
           "(x, y, z) mm: plane: a point; cylinder: on the axis; cone: apex; sphere, torus: centre")
       .def_property_readonly("axis", [](const SurfaceParams& s) { return to_tuple(s.axis); },
           "unit (x, y, z): plane: outward normal; cone: from the apex into the opening; cylinder, torus: axis (compare as lines)")
-      .def_readonly("radius", &SurfaceParams::radius, "mm: cylinder, sphere; torus: major radius")
-      .def_readonly("minor_radius", &SurfaceParams::minor_radius, "mm: torus")
-      .def_readonly("half_angle", &SurfaceParams::half_angle, "radians: cone, in (0, pi/2)")
+      .def_property_readonly("radius", read_only(&SurfaceParams::radius), "mm: cylinder, sphere; torus: major radius")
+      .def_property_readonly("minor_radius", read_only(&SurfaceParams::minor_radius), "mm: torus")
+      .def_property_readonly("half_angle", read_only(&SurfaceParams::half_angle), "radians: cone, in (0, pi/2)")
       .def("__repr__", [](const SurfaceParams& s) {
         return "<SurfaceParams " + describe(s) + " location=" +
                triple(s.location.X(), s.location.Y(), s.location.Z()) + " axis=" +
@@ -119,9 +119,9 @@ void bind_partitions(py::module_& m) {
   py::class_<Extent>(m, "Extent", "Where a face or partition lies on its surface")
       .def_property_readonly("ref_dir", [](const Extent& e) { return to_tuple(e.ref_dir); },
           "unit (x, y, z) perpendicular to the axis: where angles start; plane: the outline's x axis")
-      .def_readonly("axial_min", &Extent::axial_min,
+      .def_property_readonly("axial_min", read_only(&Extent::axial_min),
           "mm along the axis from the surface's location (revolution surfaces)")
-      .def_readonly("axial_max", &Extent::axial_max,
+      .def_property_readonly("axial_max", read_only(&Extent::axial_max),
           "mm along the axis from the surface's location (revolution surfaces)")
       .def_property_readonly("angular", &angular_list, "[(start, span)] in radians")
       .def_property_readonly("outline", &outline_list, "plane outline: [[(x, y)]], outer loops counter-clockwise")
@@ -140,16 +140,16 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<FaceInfo>(m, "FaceInfo", "One typed face; index and name follow FreeCAD's Shape.Faces")
-      .def_readonly("index", &FaceInfo::index, "1-based, in FreeCAD's Shape.Faces order")
+      .def_property_readonly("index", read_only(&FaceInfo::index), "1-based, in FreeCAD's Shape.Faces order")
       .def_property_readonly("name", [](const FaceInfo& f) { return face_name(f.index); },
           "FreeCAD's sub-element name, 'FaceN'")
-      .def_readonly("params", &FaceInfo::params, "SurfaceParams of the face's surface, global")
-      .def_readonly("side", &FaceInfo::side, "MaterialSide: where the body's material lies")
-      .def_readonly("recognised", &FaceInfo::recognised, "stored as a free-form surface, typed by fitting")
-      .def_readonly("max_deviation", &FaceInfo::max_deviation,
+      .def_property_readonly("params", read_only(&FaceInfo::params), "SurfaceParams of the face's surface, global")
+      .def_property_readonly("side", read_only(&FaceInfo::side), "MaterialSide: where the body's material lies")
+      .def_property_readonly("recognised", read_only(&FaceInfo::recognised), "stored as a free-form surface, typed by fitting")
+      .def_property_readonly("max_deviation", read_only(&FaceInfo::max_deviation),
           "mm: of the fitted surface on samples (recognised faces)")
-      .def_readonly("area", &FaceInfo::area, "mm^2, exact (Green's theorem on the boundary)")
-      .def_readonly("extent", &FaceInfo::extent, "Extent: where the face lies on its surface")
+      .def_property_readonly("area", read_only(&FaceInfo::area), "mm^2, exact (Green's theorem on the boundary)")
+      .def_property_readonly("extent", read_only(&FaceInfo::extent), "Extent: where the face lies on its surface")
       .def_property_readonly("box", [](const FaceInfo& f) { return box_tuple(f.box); },
           "(xmin, ymin, zmin, xmax, ymax, zmax) mm, or None")
       .def("__repr__", [](const FaceInfo& f) {
@@ -160,13 +160,13 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<Partition>(m, "Partition", "A maximal set of adjacent faces on the same surface")
-      .def_readonly("id", &Partition::id, "0-based within its body")
-      .def_readonly("faces", &Partition::faces, "1-based face indices, ascending")
+      .def_property_readonly("id", read_only(&Partition::id), "0-based within its body")
+      .def_property_readonly("faces", read_only(&Partition::faces), "1-based face indices, ascending")
       .def_property_readonly("face_names", [](const Partition& p) { return face_names(p.faces); }, "['FaceN', ...]")
-      .def_readonly("params", &Partition::params, "SurfaceParams shared by its faces, global")
-      .def_readonly("side", &Partition::side, "MaterialSide")
-      .def_readonly("area", &Partition::area, "mm^2, the sum of its faces'")
-      .def_readonly("extent", &Partition::extent, "Extent: axial range and angular union; plane outlines of all faces")
+      .def_property_readonly("params", read_only(&Partition::params), "SurfaceParams shared by its faces, global")
+      .def_property_readonly("side", read_only(&Partition::side), "MaterialSide")
+      .def_property_readonly("area", read_only(&Partition::area), "mm^2, the sum of its faces'")
+      .def_property_readonly("extent", read_only(&Partition::extent), "Extent: axial range and angular union; plane outlines of all faces")
       .def_property_readonly("box", [](const Partition& p) { return box_tuple(p.box); },
           "(xmin, ymin, zmin, xmax, ymax, zmax) mm, or None")
       .def("__repr__", [](const Partition& p) {
@@ -177,9 +177,9 @@ void bind_partitions(py::module_& m) {
       });
 
   py::class_<BodyPartitions>(m, "BodyPartitions", "Typed faces and maximal partitions of one body")
-      .def_readonly("faces", &BodyPartitions::faces, "[FaceInfo], one per face in FaceN order")
-      .def_readonly("partitions", &BodyPartitions::partitions, "[Partition], by id")
-      .def_readonly("tolerances", &BodyPartitions::tolerances, "the tolerances this body was partitioned with")
+      .def_property_readonly("faces", read_only(&BodyPartitions::faces), "[FaceInfo], one per face in FaceN order")
+      .def_property_readonly("partitions", read_only(&BodyPartitions::partitions), "[Partition], by id")
+      .def_property_readonly("tolerances", read_only(&BodyPartitions::tolerances), "the tolerances this body was partitioned with")
       .def_property_readonly("ok", [](const BodyPartitions& b) { return b.status.ok(); },
           "True when the body was partitioned without error")
       .def_property_readonly("status", [](const BodyPartitions& b) { return b.status.describe(); },

@@ -11,16 +11,16 @@ namespace contactcore::bindings {
 void bind_simplify(py::module_& m) {
   py::class_<SimulationModels>(m, "SimulationModels",
                                "A body's view model (original B-rep) and collision model (simplified)")
-      .def_readonly("view", &SimulationModels::view, "MeshResult of the original B-rep")
-      .def_readonly("view_deviation", &SimulationModels::view_deviation,
+      .def_property_readonly("view", read_only(&SimulationModels::view), "MeshResult of the original B-rep")
+      .def_property_readonly("view_deviation", read_only(&SimulationModels::view_deviation),
                     "mm: farthest point of the view mesh from the original B-rep")
-      .def_readonly("collision", &SimulationModels::collision, "MeshResult of the simplified (or original) shape")
-      .def_readonly("simplified", &SimulationModels::simplified, "small features were removed")
-      .def_readonly("collision_hausdorff", &SimulationModels::collision_hausdorff,
+      .def_property_readonly("collision", read_only(&SimulationModels::collision), "MeshResult of the simplified (or original) shape")
+      .def_property_readonly("simplified", read_only(&SimulationModels::simplified), "small features were removed")
+      .def_property_readonly("collision_hausdorff", read_only(&SimulationModels::collision_hausdorff),
                     "mm: two-sided Hausdorff distance to the original when simplified, else the mesh's deviation")
-      .def_readonly("removed_faces", &SimulationModels::removed_faces, "1-based FaceN of the original")
-      .def_readonly("features_kept", &SimulationModels::features_kept, "small features OCCT could not remove")
-      .def_readonly("message", &SimulationModels::message, "why the simplification was refused, if it was");
+      .def_property_readonly("removed_faces", read_only(&SimulationModels::removed_faces), "1-based FaceN of the original")
+      .def_property_readonly("features_kept", read_only(&SimulationModels::features_kept), "small features OCCT could not remove")
+      .def_property_readonly("message", read_only(&SimulationModels::message), "why the simplification was refused, if it was");
 
   m.def(
       "simulation_models",

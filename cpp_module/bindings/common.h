@@ -21,6 +21,7 @@
 #include "contactcore/common/errors.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/partitions/partitions.h"
+#include "read_only_getters.h"
 
 namespace contactcore::bindings {
 

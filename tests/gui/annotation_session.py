@@ -7,29 +7,25 @@ again after each step; undone step by step; redone; saved, reopened and
 recomputed. Writes what it saw to $CONTACTS_GUI_RESULT."""
 import json
 import os
+import sys
 import tempfile
-import traceback
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtWidgets
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": {}}
 state = {}
 
 
-def step(function):
-    try:
-        function()
-    except Exception:
-        report["errors"][function.__name__] = traceback.format_exc()
-    FreeCADGui.updateGui()
+step = session_helpers.stepper(report["errors"], settle_rounds=1)
 
 
-def contacts_of(group):
-    from contactwb.document.identify import is_contact
-    return [c for c in group.Group if is_contact(c)]
+contacts_of = session_helpers.contacts_of
 
 
 def dof(group):
@@ -196,10 +192,7 @@ def save_reopen_recompute():
     marks = {identity(c): (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
     path = os.path.join(tempfile.mkdtemp(prefix="contacts-annotations-"), "motor_annotated.FCStd")
     name = group.Name
-    doc.saveAs(path)
-    FreeCAD.closeDocument(doc.Name)
-    doc = FreeCAD.openDocument(path)
-    FreeCADGui.updateGui()
+    doc = session_helpers.save_and_reopen(doc, path)
     group = doc.getObject(name)
     reopened = {identity(c): (c.Intent, c.Fit) for c in contacts_of(group) if c.Intent != "none"}
     # move the axis away and back: the contacts are found again (same objects by identity)
@@ -219,16 +212,10 @@ def save_reopen_recompute():
 
 
 def report_view():
-    texts = []
-    for dock in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDockWidget):
-        if dock.objectName() == "Report view":
-            texts += [edit.toPlainText() for edit in dock.findChildren(QtWidgets.QTextEdit)]
-    report["report_view"] = "\n".join(texts)
+    report["report_view"] = session_helpers.report_view_text()
 
 
 for function in (find_and_derive, annotate_as_the_file, a_contradicting_fit_is_refused, undo_and_redo,
                  save_reopen_recompute, report_view):
     step(function)
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.write_report_and_exit(report)

@@ -6,17 +6,20 @@ recompute, undo; ghost, isolate, show all. Each step records what the
 document holds afterwards (objects, names, numbers, labels, undo names) and
 its duration; screenshots go to $CONTACTS_GUI_OUT. Each step records its own
 traceback, so one failure does not hide the others."""
-import json
 import os
 import re
+import sys
 import tempfile
 import time
-import traceback
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtWidgets
 from pivy import coin
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+from session_helpers import settle  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": {}, "times": {}}
@@ -24,18 +27,7 @@ state = {}
 LABEL = re.compile(r"^(PLF|CLJ|CJU|SPF|LAF|SPT|TRF) (\d+): (.+) \u2013 (.+)$")
 
 
-def step(function):
-    """Runs one step; its exception goes to the report under its name."""
-    try:
-        function()
-    except Exception:
-        report["errors"][function.__name__] = traceback.format_exc()
-    settle()
-
-
-def settle():
-    for _ in range(5):  # deferred work: view providers attached, drawings rebuilt
-        FreeCADGui.updateGui()
+step = session_helpers.stepper(report["errors"])
 
 
 class Timer:
@@ -53,18 +45,10 @@ class Timer:
 
 
 def save_view(name, width=900, height=650):
-    settle()
-    path = os.path.join(out_dir, name)
-    FreeCADGui.activeDocument().activeView().saveImage(path, width, height, "White")
-    return path
+    return session_helpers.save_view(out_dir, name, width, height)
 
 
-def report_view_text():
-    texts = []
-    for dock in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDockWidget):
-        if dock.objectName() == "Report view":
-            texts += [edit.toPlainText() for edit in dock.findChildren(QtWidgets.QTextEdit)]
-    return "\n".join(texts)
+report_view_text = session_helpers.report_view_text
 
 
 def new_report_text():
@@ -102,9 +86,7 @@ def analyses(doc):
     return found(doc)
 
 
-def contacts_of(group):
-    from contactwb.document.identify import is_contact
-    return [c for c in group.Group if is_contact(c)]
+contacts_of = session_helpers.contacts_of
 
 
 def joints_of(group):
@@ -314,6 +296,4 @@ def report_view():
 for function in (open_sample, find_contacts_twice, delete_recompute_undo_derive, move_recompute_undo,
                  interferences, view_only_actions, report_view):
     step(function)
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.write_report_and_exit(report)

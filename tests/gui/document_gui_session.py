@@ -25,11 +25,13 @@ import traceback
 
 import FreeCAD
 import FreeCADGui
-from PySide2 import QtWidgets
 
 # tests/, for the document builder shared with tests/test_documents.py (FreeCAD runs this file with
 # only its own and the workbenches' folders on sys.path)
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+from session_helpers import settle  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 step = os.environ["CONTACTS_DOC_STEP"]
@@ -39,11 +41,6 @@ report = {"errors": [], "step": step, "workbench_importable": importlib.util.fin
 def class_name(proxy):
     # FreeCAD 0.20 puts an int in a Python view provider that has no proxy
     return None if proxy is None or isinstance(proxy, int) else type(proxy).__name__
-
-
-def settle():
-    for _ in range(5):  # deferred work: view providers attached, drawings rebuilt
-        FreeCADGui.updateGui()
 
 
 def describe(doc):
@@ -69,12 +66,7 @@ def describe(doc):
     return objects
 
 
-def report_view():
-    texts = []
-    for dock in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDockWidget):
-        if dock.objectName() == "Report view":
-            texts += [edit.toPlainText() for edit in dock.findChildren(QtWidgets.QTextEdit)]
-    return "\n".join(texts)
+report_view = session_helpers.report_view_text
 
 
 def screenshot(name):

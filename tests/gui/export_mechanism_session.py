@@ -5,24 +5,21 @@ its contacts, runs Contacts_ExportMechanism twice through its dialog (filled
 and accepted by a timer, as a user would): URDF into a folder, then MJCF into
 an .xml file; saves the dialog and the window, and writes what it saw to
 $CONTACTS_GUI_RESULT."""
-import json
 import os
-import time
+import sys
 import traceback
 
-import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtWidgets
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": [], "dialogs": []}
 
 
-def wait(seconds):
-    end = time.monotonic() + seconds
-    while time.monotonic() < end:
-        QtWidgets.QApplication.processEvents()
-        time.sleep(0.005)
+wait = session_helpers.wait
 
 
 def answer(fmt_index, path, screenshot):
@@ -56,10 +53,8 @@ def answer(fmt_index, path, screenshot):
 
 def run():
     main = FreeCADGui.getMainWindow()
-    main.resize(1280, 960)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    doc = session_helpers.open_sample_in_workbench()
     report["command_listed"] = "Contacts_ExportMechanism" in FreeCADGui.listCommands()
-    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
     from contactwb.gui.commands.mechanism import Contacts_ExportMechanism
     report["active_before"] = Contacts_ExportMechanism().IsActive()
     from contactwb.make import make_contact_analysis
@@ -94,10 +89,4 @@ def run():
     report["window_png"] = path
 
 
-try:
-    run()
-except Exception:
-    report["errors"].append(traceback.format_exc())
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.run_and_report(run, report)

@@ -6,38 +6,28 @@ the panel is selected and highlighted in the view, one selected in the tree
 selects its row; a click on a glyph in the 3D view selects its joint; the
 glyphs' labels; the joint arrows' colour against the selection green.
 Screenshots go to $CONTACTS_GUI_OUT."""
-import json
 import os
-import traceback
+import sys
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtGui, QtWidgets
 from pivy import coin
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+from session_helpers import settle  # noqa: E402
+
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": {}}
 state = {}
 
 
-def step(function):
-    try:
-        function()
-    except Exception:
-        report["errors"][function.__name__] = traceback.format_exc()
-    settle()
-
-
-def settle():
-    for _ in range(5):
-        FreeCADGui.updateGui()
+step = session_helpers.stepper(report["errors"])
 
 
 def save_view(name, width=900, height=650):
-    settle()
-    path = os.path.join(out_dir, name)
-    FreeCADGui.activeDocument().activeView().saveImage(path, width, height, "Current")
-    return path
+    return session_helpers.save_view(out_dir, name, width, height, "Current")
 
 
 def derive_joints():
@@ -260,6 +250,4 @@ def arrow_colour():
 for function in (derive_joints, graph_zoom, selection_both_ways, glyph_pick_and_labels, arrow_colour,
                  palette_and_legends):
     step(function)
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.write_report_and_exit(report)

@@ -4,39 +4,28 @@ regions (issue 21), the interferences as first-class results and the
 contacts made visible (selection highlight through the parts, see-through
 mode), on the motor with the GUI's own commands. Each step records what the
 document and the view hold; screenshots go to $CONTACTS_GUI_OUT."""
-import json
-import math
 import os
-import traceback
+import sys
 
 import FreeCAD
 import FreeCADGui
 import numpy
 from PySide2 import QtGui
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+from session_helpers import settle  # noqa: E402
+
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": {}}
 state = {}
 
 
-def step(function):
-    try:
-        function()
-    except Exception:
-        report["errors"][function.__name__] = traceback.format_exc()
-    settle()
-
-
-def settle():
-    for _ in range(5):
-        FreeCADGui.updateGui()
+step = session_helpers.stepper(report["errors"])
 
 
 def save_view(name, width=900, height=650):
-    settle()
-    path = os.path.join(out_dir, name)
-    FreeCADGui.activeDocument().activeView().saveImage(path, width, height, "White")
-    return path
+    return session_helpers.save_view(out_dir, name, width, height)
 
 
 def pixels(path):
@@ -52,9 +41,7 @@ def near(rgb, colour, within=60):
     return int((numpy.abs(rgb - target).max(axis=2) <= within).sum())
 
 
-def contacts_of(group):
-    from contactwb.document.identify import is_contact
-    return [c for c in group.Group if is_contact(c)]
+contacts_of = session_helpers.contacts_of
 
 
 def paint_state(group):
@@ -228,6 +215,4 @@ def highlight_and_see_through():
 
 for function in (open_and_find, turn_one_part, interferences, highlight_and_see_through):
     step(function)
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.write_report_and_exit(report)

@@ -1,9 +1,11 @@
 """What the session scripts (run inside FreeCAD's GUI, tests/gui/*_session.py)
-share: waiting with the event loop running, and a window grab with the 3D
-view's own render pasted in. A session imports it after putting its own folder
+share: settling and waiting with the event loop running, the step runner that
+keeps each step's traceback, the 3D view saved as a picture, a window grab
+with the 3D view's own render pasted in, the report written at the end. A session imports it after putting its own folder
 on sys.path (FreeCAD runs a script with only its own folders there)."""
 import os
 import time
+import traceback
 
 import FreeCADGui
 from PySide2 import QtWidgets
@@ -15,6 +17,41 @@ def wait(seconds):
     while time.monotonic() < end:
         QtWidgets.QApplication.processEvents()
         time.sleep(0.005)
+
+
+def settle(rounds=5):
+    """Lets FreeCAD's GUI catch up `rounds` times: deferred work (view
+    providers attached, drawings rebuilt) done before anything is looked at."""
+    for _ in range(rounds):
+        FreeCADGui.updateGui()
+
+
+def stepper(errors, settle_rounds=5):
+    """A session's `step(function)`: runs function, keeps its traceback in
+    errors[function's name] (one failing step does not hide the others), then
+    settles the GUI `settle_rounds` times."""
+    def step(function):
+        try:
+            function()
+        except Exception:
+            errors[function.__name__] = traceback.format_exc()
+        settle(settle_rounds)
+    return step
+
+
+def save_view(out_dir, name, width=900, height=650, background="White", settle_rounds=5):
+    """The active 3D view rendered to out_dir/name (width x height pixels, on
+    `background`: "White", "Current", ...) once the GUI has settled: its path."""
+    settle(settle_rounds)
+    path = os.path.join(out_dir, name)
+    FreeCADGui.activeDocument().activeView().saveImage(path, width, height, background)
+    return path
+
+
+def contacts_of(group):
+    """The contact objects of an analysis group."""
+    from contactwb.document.identify import is_contact
+    return [c for c in group.Group if is_contact(c)]
 
 
 def grab_window_with_view(out_dir, name):
@@ -43,6 +80,48 @@ def grab_window_with_view(out_dir, name):
     return path, bool(viewers)
 
 
+def grab_window(out_dir, name):
+    """grab_window_with_view once the GUI has settled: the picture's path."""
+    settle()
+    return grab_window_with_view(out_dir, name)[0]
+
+
+def report_view_text():
+    """All the text of FreeCAD's Report view (messages, warnings, tracebacks)."""
+    texts = []
+    for dock in FreeCADGui.getMainWindow().findChildren(QtWidgets.QDockWidget):
+        if dock.objectName() == "Report view":
+            texts += [edit.toPlainText() for edit in dock.findChildren(QtWidgets.QTextEdit)]
+    return "\n".join(texts)
+
+
+def with_modal_dialog(command, handle, first_ms=300, period_ms=200):
+    """Runs FreeCAD command `command`, which opens a modal dialog (and returns
+    when it closes), and calls handle(dialog) once the dialog is up (looked
+    for after first_ms, then every period_ms); handle closes it."""
+    from PySide2 import QtCore
+
+    def poll():
+        dialog = QtWidgets.QApplication.activeModalWidget()
+        if dialog is None:
+            QtCore.QTimer.singleShot(period_ms, poll)
+            return
+        handle(dialog)
+
+    QtCore.QTimer.singleShot(first_ms, poll)
+    FreeCADGui.runCommand(command)
+
+
+def save_and_reopen(doc, path):
+    """Saves doc as path, closes it, opens the file again: the reopened document."""
+    import FreeCAD
+    doc.saveAs(path)
+    FreeCAD.closeDocument(doc.Name)
+    doc = FreeCAD.openDocument(path)
+    FreeCADGui.updateGui()
+    return doc
+
+
 def open_sample_in_workbench():
     """The main window at 1280x960, the workbench active and $CONTACTS_SAMPLE open: its document."""
     import FreeCAD
@@ -54,12 +133,17 @@ def open_sample_in_workbench():
 def run_and_report(run, report):
     """Runs the session, keeps its traceback in report["errors"], writes the report to
     $CONTACTS_GUI_RESULT and ends FreeCAD (os._exit: no dialog can hold it open)."""
-    import json
-    import traceback
     try:
         run()
     except Exception:
         report["errors"].append(traceback.format_exc())
+    write_report_and_exit(report)
+
+
+def write_report_and_exit(report):
+    """Writes the report (JSON) to $CONTACTS_GUI_RESULT and ends FreeCAD
+    (os._exit: no dialog can hold it open)."""
+    import json
     with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
         json.dump(report, stream, indent=1)
     os._exit(0)

@@ -8,7 +8,6 @@ undoes, and writes what it saw to $CONTACTS_GUI_RESULT."""
 import os
 import sys
 
-import FreeCAD
 import FreeCADGui
 from pivy import coin
 
@@ -46,11 +45,8 @@ def centre_on_screen(view, model):
 
 
 def run():
-    main = FreeCADGui.getMainWindow()
-    main.resize(1280, 960)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    doc = session_helpers.open_sample_in_workbench()
     report["command_listed"] = "Contacts_ShowSimulationModel" in FreeCADGui.listCommands()
-    doc = FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
     cover = next(o for o in doc.Objects if o.Label == "Front-cover")
     bearing = next(o for o in doc.Objects if o.Label == "Bearing-front")
     FreeCADGui.Selection.clearSelection()

@@ -6,18 +6,17 @@ the toolbar; the table opened: its order, its summary pane, the room left to
 the 3D view, the plane contacts' extent; Zoom to and Isolate from the table,
 judged on the rendered view (the contact's box projected on the screen, the
 paint's pixels). Screenshots go to $CONTACTS_GUI_OUT."""
-import json
 import os
 import sys
 import time
-import traceback
 
 import FreeCAD
 import FreeCADGui
-from PySide2 import QtCore, QtGui, QtWidgets
+from PySide2 import QtGui, QtWidgets
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
 import session_helpers  # noqa: E402
+from session_helpers import settle  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": {}, "times": {}}
@@ -29,24 +28,11 @@ PINS = 20            # the first blocks (row order) hold a pin
 PIN_RADIUS = 2.0
 
 
-def step(function):
-    try:
-        function()
-    except Exception:
-        report["errors"][function.__name__] = traceback.format_exc()
-    settle()
-
-
-def settle():
-    for _ in range(5):
-        FreeCADGui.updateGui()
+step = session_helpers.stepper(report["errors"])
 
 
 def grab_window(name):
-    """The main window with the 3D view rendered into it (a grab leaves the
-    OpenGL view blank under Xvfb)."""
-    settle()
-    return session_helpers.grab_window_with_view(out_dir, name)[0]
+    return session_helpers.grab_window(out_dir, name)
 
 
 def colour_pixels(path, colour, tolerance=0.2):
@@ -65,10 +51,7 @@ def colour_pixels(path, colour, tolerance=0.2):
 
 
 def save_view(name, width=900, height=650):
-    settle()
-    path = os.path.join(out_dir, name)
-    FreeCADGui.activeDocument().activeView().saveImage(path, width, height, "White")
-    return path
+    return session_helpers.save_view(out_dir, name, width, height)
 
 
 def make_grid():
@@ -258,6 +241,4 @@ def isolate():
 
 for function in (open_grid, find_contacts, table_at_500, zoom_to, isolate):
     step(function)
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.write_report_and_exit(report)

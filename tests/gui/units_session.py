@@ -7,7 +7,6 @@ with Contacts_ImportStep (the bundled motor and inch case, and the shared
 files when ../shared/data is there): names from the STEP products, an inch
 file's sizes and areas in mm. Screenshots go to $CONTACTS_GUI_OUT."""
 import glob
-import json
 import os
 import sys
 import re
@@ -19,6 +18,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
 import session_helpers  # noqa: E402
+from session_helpers import settle  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 repo = os.environ["CONTACTS_REPO"]
@@ -27,24 +27,11 @@ report = {"errors": {}}
 state = {}
 
 
-def step(function):
-    try:
-        function()
-    except Exception:
-        report["errors"][function.__name__] = traceback.format_exc()
-    settle()
-
-
-def settle():
-    for _ in range(5):
-        FreeCADGui.updateGui()
+step = session_helpers.stepper(report["errors"])
 
 
 def grab_window(name):
-    """The main window with the 3D view rendered into it (a grab leaves the
-    OpenGL view blank under Xvfb)."""
-    settle()
-    return session_helpers.grab_window_with_view(out_dir, name)[0]
+    return session_helpers.grab_window(out_dir, name)
 
 
 def preferences_dialog():
@@ -54,11 +41,7 @@ def preferences_dialog():
     FreeCADGui.activateWorkbench("ContactsWorkbench")
     seen = {}
 
-    def inspect():
-        dialog = QtWidgets.QApplication.activeModalWidget()
-        if dialog is None:
-            QtCore.QTimer.singleShot(200, inspect)
-            return
+    def inspect(dialog):
         try:
             groups = {}
             for listing in dialog.findChildren(QtWidgets.QListWidget):
@@ -82,8 +65,7 @@ def preferences_dialog():
             seen["error"] = traceback.format_exc()
         dialog.reject()
 
-    QtCore.QTimer.singleShot(300, inspect)
-    FreeCADGui.runCommand("Std_DlgPreferences")
+    session_helpers.with_modal_dialog("Std_DlgPreferences", inspect)
     report["preferences"] = seen
 
 
@@ -265,6 +247,4 @@ def shared_imports():
 
 for function in (preferences_dialog, task_panel_units, areas_alike, imports, shared_imports):
     step(function)
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.write_report_and_exit(report)

@@ -9,26 +9,23 @@ tests/gui/test_gui_workflow.py. Each step records its own traceback, so one
 failure does not hide the others."""
 import json
 import os
+import sys
 import tempfile
-import traceback
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtCore, QtWidgets
 from pivy import coin
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
+
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": {}}
 state = {}
 
 
-def step(function):
-    """Runs one step; its exception goes to the report under its name."""
-    try:
-        function()
-    except Exception:
-        report["errors"][function.__name__] = traceback.format_exc()
-    FreeCADGui.updateGui()
+step = session_helpers.stepper(report["errors"], settle_rounds=1)
 
 
 def grab_window(name):
@@ -66,10 +63,7 @@ def widen_combo_view(width=430):
 
 
 def save_view(name, width=800, height=600):
-    FreeCADGui.updateGui()
-    path = os.path.join(out_dir, name)
-    FreeCADGui.activeDocument().activeView().saveImage(path, width, height, "White")
-    return path
+    return session_helpers.save_view(out_dir, name, width, height, settle_rounds=1)
 
 
 def analyses(doc):
@@ -515,10 +509,7 @@ def save_and_reopen():
     path = os.path.join(folder, "motor_live.FCStd")
     labels = [c.Label for c in group.Group]
     name = group.Name
-    doc.saveAs(path)
-    FreeCAD.closeDocument(doc.Name)
-    doc = FreeCAD.openDocument(path)
-    FreeCADGui.updateGui()
+    doc = session_helpers.save_and_reopen(doc, path)
     group = doc.getObject(name)
     result = {"labels_same": [c.Label for c in group.Group] == labels, "scope": group.Scope,
               "live": group.UpdateOnRecompute, "drawn": len(group.ViewObject.Proxy.overlay.names),
@@ -625,11 +616,7 @@ def preferences_dialog():
     """The Contacts page is in FreeCAD's Preferences dialog (looked at, then closed)."""
     seen = {}
 
-    def inspect():
-        dialog = QtWidgets.QApplication.activeModalWidget()
-        if dialog is None:
-            QtCore.QTimer.singleShot(200, inspect)
-            return
+    def inspect(dialog):
         pages = [w for w in dialog.findChildren(QtWidgets.QWidget) if w.objectName() == "ContactsPreferences"]
         seen["page"] = bool(pages)
         if pages:
@@ -637,19 +624,13 @@ def preferences_dialog():
             seen["paint"] = combos[0].currentText() if combos else None
         dialog.reject()
 
-    QtCore.QTimer.singleShot(300, inspect)
-    FreeCADGui.runCommand("Std_DlgPreferences")
+    session_helpers.with_modal_dialog("Std_DlgPreferences", inspect)
     report["preferences_dialog"] = seen
 
 
 def report_view():
     """The Report view's text: tracebacks and errors the workbench printed."""
-    main = FreeCADGui.getMainWindow()
-    texts = []
-    for dock in main.findChildren(QtWidgets.QDockWidget):
-        if dock.objectName() == "Report view":
-            texts += [edit.toPlainText() for edit in dock.findChildren(QtWidgets.QTextEdit)]
-    report["report_view"] = "\n".join(texts)
+    report["report_view"] = session_helpers.report_view_text()
 
 
 for function in (open_sample, panel_whole_document, update_in_place, other_scopes, table,
@@ -657,6 +638,4 @@ for function in (open_sample, panel_whole_document, update_in_place, other_scope
                  export_command, joints, ghost_and_context_menu, partitions, save_and_reopen, asm4_pick, cancel_in_panel,
                  compound_import, preferences_dialog, report_view):
     step(function)
-with open(os.environ["CONTACTS_GUI_RESULT"], "w") as stream:
-    json.dump(report, stream, indent=1)
-os._exit(0)
+session_helpers.write_report_and_exit(report)

@@ -28,6 +28,17 @@ def _analysis(doc):
     return found[0] if len(found) == 1 else None
 
 
+def _add_path_row(form, label, edit, browse):
+    """A form row: the path field `edit` and a Browse... button calling `browse`."""
+    from PySide2 import QtWidgets
+    button = QtWidgets.QPushButton("Browse...")
+    button.clicked.connect(browse)
+    row = QtWidgets.QHBoxLayout()
+    row.addWidget(edit)
+    row.addWidget(button)
+    form.addRow(label, row)
+
+
 class ExportMechanismDialog:
     """Format, path, annotation file, density and ground of the export (a modal QDialog)."""
 
@@ -49,20 +60,10 @@ class ExportMechanismDialog:
             self.format.addItem(text)
         form.addRow("Format:", self.format)
         self.path = QtWidgets.QLineEdit()
-        browse = QtWidgets.QPushButton("Browse...")
-        browse.clicked.connect(self.browse_path)
-        row = QtWidgets.QHBoxLayout()
-        row.addWidget(self.path)
-        row.addWidget(browse)
-        form.addRow("Write to:", row)
+        _add_path_row(form, "Write to:", self.path, self.browse_path)
         self.annotations = QtWidgets.QLineEdit(sidecar_annotations(doc) or "")
         self.annotations.setPlaceholderText("none: contacts as drawn")
-        browse_notes = QtWidgets.QPushButton("Browse...")
-        browse_notes.clicked.connect(self.browse_annotations)
-        row = QtWidgets.QHBoxLayout()
-        row.addWidget(self.annotations)
-        row.addWidget(browse_notes)
-        form.addRow("Annotations:", row)
+        _add_path_row(form, "Annotations:", self.annotations, self.browse_annotations)
         self.density = QtWidgets.QDoubleSpinBox()
         self.density.setRange(1.0, 100000.0)
         self.density.setDecimals(1)

@@ -351,6 +351,16 @@ void keep_reader_notes(const OcctGuard& guard, std::vector<std::string>& message
   }
 }
 
+// The read's error when OCCT's STEP transfer throws: the exception's type
+// and message, and the file's damaged entities when the check found any.
+std::string transfer_failure(const Standard_Failure& failure, const StepModelCheck& check) {
+  std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
+  if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
+  message += ")";
+  if (check.damaged_count) message += "; damaged entities: " + describe_damaged(check);
+  return message;
+}
+
 }  // namespace
 
 AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMode mode, std::size_t max_bodies) {
@@ -452,11 +462,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
               OCC_CATCH_SIGNALS
               outcome = read_products(*plan.plan, reader, result.assembly, progress, 0.3, 1.0);
             } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
-              std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
-              if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
-              message += ")";
-              if (check.damaged_count) message += "; damaged entities: " + describe_damaged(check);
-              fail(StatusCode::ReadError, message);
+              fail(StatusCode::ReadError, transfer_failure(failure, check));
             }
             if (result.status.ok() && outcome.outcome == ProductRead::Cancelled) fail(StatusCode::Cancelled, "cancelled");
             if (result.status.ok() && outcome.outcome == ProductRead::NotServed) {
@@ -491,11 +497,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
           Handle(detail::OcctBreak) indicator = new detail::OcctBreak(watch, 0.3, 0.9);
           transferred = xde_reader->Transfer(doc, indicator->Start());
         } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
-          std::string message = std::string("STEP transfer failed inside OCCT (") + failure.DynamicType()->Name();
-          if (failure.GetMessageString() && *failure.GetMessageString()) message += ": " + std::string(failure.GetMessageString());
-          message += ")";
-          if (check.damaged_count) message += "; damaged entities: " + describe_damaged(check);
-          fail(StatusCode::ReadError, message);
+          fail(StatusCode::ReadError, transfer_failure(failure, check));
         }
         if (result.status.ok() && watch.cancelled()) fail(StatusCode::Cancelled, "cancelled");
         if (result.status.ok() && !transferred) {

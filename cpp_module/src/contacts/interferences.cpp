@@ -191,20 +191,26 @@ double common_solid_volume(const TopoDS_Shape& shape) {
   return props.Mass();
 }
 
-double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b, double tolerance) {
-  // Arguments and tools set apart so the fuzzy value (coincident faces) applies.
+// Builds op, the Boolean common of a and b with the fuzzy value `tolerance`,
+// serially. Arguments and tools set apart so the fuzzy value (coincident
+// faces) applies; non-destructive: never grow the tolerances of the bodies'
+// own edges and vertices (their boxes, and a second analysis of the same
+// shapes, must not change).
+void build_fuzzy_common(BRepAlgoAPI_Common& op, const TopoDS_Shape& a, const TopoDS_Shape& b, double tolerance) {
   TopTools_ListOfShape arguments, tools;
   arguments.Append(a);
   tools.Append(b);
-  BRepAlgoAPI_Common op;
   op.SetArguments(arguments);
   op.SetTools(tools);
   op.SetFuzzyValue(tolerance);
-  // Never grow the tolerances of the bodies' own edges and vertices: their
-  // boxes, and a second analysis of the same shapes, must not change.
   op.SetNonDestructive(Standard_True);
   op.SetRunParallel(false);
   op.Build();
+}
+
+double common_volume(const TopoDS_Shape& a, const TopoDS_Shape& b, double tolerance) {
+  BRepAlgoAPI_Common op;
+  build_fuzzy_common(op, a, b, tolerance);
   if (!op.IsDone()) return -1;
   return common_solid_volume(op.Shape());
 }
@@ -235,16 +241,8 @@ TopoDS_Shape clipped(const TopoDS_Shape& shape, const Bnd_Box& box, double toler
   double x0, y0, z0, x1, y1, z1;
   box.Get(x0, y0, z0, x1, y1, z1);
   const TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(x0, y0, z0), gp_Pnt(x1, y1, z1)).Shape();
-  TopTools_ListOfShape arguments, tools;
-  arguments.Append(shape);
-  tools.Append(block);
   BRepAlgoAPI_Common op;
-  op.SetArguments(arguments);
-  op.SetTools(tools);
-  op.SetFuzzyValue(tolerance);
-  op.SetNonDestructive(Standard_True);
-  op.SetRunParallel(false);
-  op.Build();
+  build_fuzzy_common(op, shape, block, tolerance);
   if (!op.IsDone() || op.HasErrors()) return TopoDS_Shape();
   return op.Shape();
 }

@@ -69,6 +69,58 @@ std::vector<HidFieldRef> elements_in(const HidReportDescriptor& d, const HidRepo
   return out;
 }
 
+// The elements and selectors find_pid_layout looks up, as data: where each
+// goes in PidLayout, the report it is in, its PID usage (and, for a selector,
+// the collection of the array field offering it).
+struct ElementLookup {
+  HidFieldRef PidLayout::*element;
+  HidReportRef PidLayout::*report;
+  std::uint16_t usage;
+};
+struct SelectorLookup {
+  HidSelector PidLayout::*selector;
+  HidReportRef PidLayout::*report;
+  std::uint16_t collection, usage;
+};
+const ElementLookup kElementLookups[] = {
+    {&PidLayout::effect_block, &PidLayout::set_effect, pid::kEffectBlockIndex},
+    {&PidLayout::duration, &PidLayout::set_effect, pid::kDuration},
+    {&PidLayout::trigger_repeat, &PidLayout::set_effect, pid::kTriggerRepeatInterval},
+    {&PidLayout::sample_period, &PidLayout::set_effect, pid::kSamplePeriod},
+    {&PidLayout::gain, &PidLayout::set_effect, pid::kGain},
+    {&PidLayout::trigger_button, &PidLayout::set_effect, pid::kTriggerButton},
+    {&PidLayout::start_delay, &PidLayout::set_effect, pid::kStartDelay},
+    {&PidLayout::direction_enable, &PidLayout::set_effect, pid::kDirectionEnable},
+    {&PidLayout::constant_block, &PidLayout::set_constant_force, pid::kEffectBlockIndex},
+    {&PidLayout::magnitude, &PidLayout::set_constant_force, pid::kMagnitude},
+    {&PidLayout::operation_block, &PidLayout::effect_operation, pid::kEffectBlockIndex},
+    {&PidLayout::loop_count, &PidLayout::effect_operation, pid::kLoopCount},
+    {&PidLayout::device_gain_value, &PidLayout::device_gain, pid::kDeviceGain},
+    {&PidLayout::load_block, &PidLayout::block_load, pid::kEffectBlockIndex},
+    {&PidLayout::condition_block, &PidLayout::set_condition, pid::kEffectBlockIndex},
+    {&PidLayout::parameter_offset, &PidLayout::set_condition, pid::kParameterBlockOffset},
+    {&PidLayout::cp_offset, &PidLayout::set_condition, pid::kCpOffset},
+    {&PidLayout::positive_coefficient, &PidLayout::set_condition, pid::kPositiveCoefficient},
+    {&PidLayout::negative_coefficient, &PidLayout::set_condition, pid::kNegativeCoefficient},
+    {&PidLayout::positive_saturation, &PidLayout::set_condition, pid::kPositiveSaturation},
+    {&PidLayout::negative_saturation, &PidLayout::set_condition, pid::kNegativeSaturation},
+    {&PidLayout::dead_band, &PidLayout::set_condition, pid::kDeadBand},
+};
+const SelectorLookup kSelectorLookups[] = {
+    {&PidLayout::effect_type_constant, &PidLayout::set_effect, pid::kEffectType, pid::kEtConstantForce},
+    {&PidLayout::op_start, &PidLayout::effect_operation, pid::kEffectOperation, pid::kOpEffectStart},
+    {&PidLayout::op_stop, &PidLayout::effect_operation, pid::kEffectOperation, pid::kOpEffectStop},
+    {&PidLayout::enable_actuators, &PidLayout::device_control, pid::kDeviceControl, pid::kDcEnableActuators},
+    {&PidLayout::disable_actuators, &PidLayout::device_control, pid::kDeviceControl, pid::kDcDisableActuators},
+    {&PidLayout::stop_all, &PidLayout::device_control, pid::kDeviceControl, pid::kDcStopAllEffects},
+    {&PidLayout::create_constant, &PidLayout::create_new_effect, pid::kEffectType, pid::kEtConstantForce},
+    {&PidLayout::load_success, &PidLayout::block_load, pid::kBlockLoadStatus, pid::kBlockLoadSuccess},
+    {&PidLayout::effect_type_spring, &PidLayout::set_effect, pid::kEffectType, pid::kEtSpring},
+    {&PidLayout::effect_type_damper, &PidLayout::set_effect, pid::kEffectType, pid::kEtDamper},
+    {&PidLayout::create_spring, &PidLayout::create_new_effect, pid::kEffectType, pid::kEtSpring},
+    {&PidLayout::create_damper, &PidLayout::create_new_effect, pid::kEffectType, pid::kEtDamper},
+};
+
 std::vector<std::uint8_t> blank(const PidLayout& layout, const HidReportRef& report) {
   std::vector<std::uint8_t> out(report.size, 0);
   if (layout.descriptor.uses_report_ids && !out.empty()) out[0] = report.id;
@@ -108,50 +160,14 @@ bool find_pid_layout(const std::uint8_t* data, std::size_t size, PidLayout& layo
   layout.device_gain = find_report(d, K::Output, pid::kDeviceGainReport);
   layout.create_new_effect = find_report(d, K::Feature, pid::kCreateNewEffectReport);
   layout.block_load = find_report(d, K::Feature, pid::kBlockLoadReport);
+  layout.set_condition = find_report(d, K::Output, pid::kSetConditionReport);
 
-  layout.effect_block = find_element(d, layout.set_effect, pid_usage(pid::kEffectBlockIndex));
-  layout.effect_type_constant = find_selector(d, layout.set_effect, pid::kEffectType, pid::kEtConstantForce);
-  layout.duration = find_element(d, layout.set_effect, pid_usage(pid::kDuration));
-  layout.trigger_repeat = find_element(d, layout.set_effect, pid_usage(pid::kTriggerRepeatInterval));
-  layout.sample_period = find_element(d, layout.set_effect, pid_usage(pid::kSamplePeriod));
-  layout.gain = find_element(d, layout.set_effect, pid_usage(pid::kGain));
-  layout.trigger_button = find_element(d, layout.set_effect, pid_usage(pid::kTriggerButton));
-  layout.start_delay = find_element(d, layout.set_effect, pid_usage(pid::kStartDelay));
-  layout.direction_enable = find_element(d, layout.set_effect, pid_usage(pid::kDirectionEnable));
+  for (const ElementLookup& e : kElementLookups)
+    layout.*e.element = find_element(d, layout.*e.report, pid_usage(e.usage));
+  for (const SelectorLookup& e : kSelectorLookups)
+    layout.*e.selector = find_selector(d, layout.*e.report, e.collection, e.usage);
   layout.axes_enable = elements_in(d, layout.set_effect, pid::kAxesEnable);
   layout.direction = elements_in(d, layout.set_effect, pid::kDirection);
-
-  layout.constant_block = find_element(d, layout.set_constant_force, pid_usage(pid::kEffectBlockIndex));
-  layout.magnitude = find_element(d, layout.set_constant_force, pid_usage(pid::kMagnitude));
-
-  layout.operation_block = find_element(d, layout.effect_operation, pid_usage(pid::kEffectBlockIndex));
-  layout.loop_count = find_element(d, layout.effect_operation, pid_usage(pid::kLoopCount));
-  layout.op_start = find_selector(d, layout.effect_operation, pid::kEffectOperation, pid::kOpEffectStart);
-  layout.op_stop = find_selector(d, layout.effect_operation, pid::kEffectOperation, pid::kOpEffectStop);
-
-  layout.enable_actuators = find_selector(d, layout.device_control, pid::kDeviceControl, pid::kDcEnableActuators);
-  layout.disable_actuators = find_selector(d, layout.device_control, pid::kDeviceControl, pid::kDcDisableActuators);
-  layout.stop_all = find_selector(d, layout.device_control, pid::kDeviceControl, pid::kDcStopAllEffects);
-
-  layout.device_gain_value = find_element(d, layout.device_gain, pid_usage(pid::kDeviceGain));
-
-  layout.create_constant = find_selector(d, layout.create_new_effect, pid::kEffectType, pid::kEtConstantForce);
-  layout.load_block = find_element(d, layout.block_load, pid_usage(pid::kEffectBlockIndex));
-  layout.load_success = find_selector(d, layout.block_load, pid::kBlockLoadStatus, pid::kBlockLoadSuccess);
-
-  layout.set_condition = find_report(d, K::Output, pid::kSetConditionReport);
-  layout.effect_type_spring = find_selector(d, layout.set_effect, pid::kEffectType, pid::kEtSpring);
-  layout.effect_type_damper = find_selector(d, layout.set_effect, pid::kEffectType, pid::kEtDamper);
-  layout.create_spring = find_selector(d, layout.create_new_effect, pid::kEffectType, pid::kEtSpring);
-  layout.create_damper = find_selector(d, layout.create_new_effect, pid::kEffectType, pid::kEtDamper);
-  layout.condition_block = find_element(d, layout.set_condition, pid_usage(pid::kEffectBlockIndex));
-  layout.parameter_offset = find_element(d, layout.set_condition, pid_usage(pid::kParameterBlockOffset));
-  layout.cp_offset = find_element(d, layout.set_condition, pid_usage(pid::kCpOffset));
-  layout.positive_coefficient = find_element(d, layout.set_condition, pid_usage(pid::kPositiveCoefficient));
-  layout.negative_coefficient = find_element(d, layout.set_condition, pid_usage(pid::kNegativeCoefficient));
-  layout.positive_saturation = find_element(d, layout.set_condition, pid_usage(pid::kPositiveSaturation));
-  layout.negative_saturation = find_element(d, layout.set_condition, pid_usage(pid::kNegativeSaturation));
-  layout.dead_band = find_element(d, layout.set_condition, pid_usage(pid::kDeadBand));
 
   for (std::size_t k = 0; k < d.fields.size(); ++k) {
     const HidField& f = d.fields[k];

@@ -85,6 +85,24 @@ bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) 
   return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
 }
 
+// A joint about the other body's surface o (its location and axis) held by
+// the part's surface m (its location, axis and axial extent), of the rigid
+// group of the part's partition (-1: none known).
+JointState axial_joint(JointKind kind, ContactType type, const SurfaceProxy& o, const SurfaceProxy& m,
+                       int partition, const std::vector<int>& groups) noexcept {
+  JointState joint;
+  joint.kind = kind;
+  joint.point = o.location;
+  joint.axis = o.axis.normalized();
+  joint.part_point = m.location;
+  joint.part_axis = m.axis.normalized();
+  joint.part_axial_min = m.axial_min;
+  joint.part_axial_max = m.axial_max;
+  joint.contact_type = static_cast<int>(type);
+  joint.group = partition >= 0 && partition < static_cast<int>(groups.size()) ? groups[partition] : -1;
+  return joint;
+}
+
 }  // namespace
 
 bool outlines_overlap(const SurfaceProxy& m, const Pose& pose, const SurfaceProxy& o) noexcept {
@@ -333,18 +351,9 @@ bool ContactJointFinder::capture(const Pose& pose, JointState& joint) noexcept {
 void ContactJointFinder::fill_axial(const LiveContact& best, int n, JointState& joint) const noexcept {
   const SurfaceProxy& o = contacts_.surfaces(best.body)[best.other_index];
   const SurfaceProxy& m = contacts_.moving_surfaces()[best.moving_index];
-  joint = JointState{};
-  joint.kind = best.type == ContactType::CLJ ? JointKind::Cylindrical : JointKind::Spherical;
-  joint.point = o.location;
-  joint.axis = o.axis.normalized();
-  joint.part_point = m.location;
-  joint.part_axis = m.axis.normalized();
-  joint.part_axial_min = m.axial_min;
-  joint.part_axial_max = m.axial_max;
+  joint = axial_joint(best.type == ContactType::CLJ ? JointKind::Cylindrical : JointKind::Spherical, best.type, o, m,
+                      best.moving_partition, groups_);
   joint.radius = best.type == ContactType::CLJ ? o.radius : 0.0;
-  joint.contact_type = static_cast<int>(best.type);
-  const int partition = best.moving_partition;
-  joint.group = partition >= 0 && partition < static_cast<int>(groups_.size()) ? groups_[partition] : -1;
   // Every body holding the part on this same axis (all the bores of a shaft).
   for (int i = 0; i < n; ++i) {
     const LiveContact& c = live_[i];
@@ -397,16 +406,7 @@ bool ContactJointFinder::cone_seat(const Pose& pose, JointState& joint, const Jo
         if (lateral >= best_lateral) continue;
         best_lateral = lateral;
         found = true;
-        JointState j;
-        j.kind = JointKind::Cylindrical;
-        j.point = o.location;
-        j.axis = o.axis.normalized();
-        j.part_point = m.location;
-        j.part_axis = m.axis.normalized();
-        j.part_axial_min = m.axial_min;
-        j.part_axial_max = m.axial_max;
-        j.contact_type = static_cast<int>(ContactType::CJU);
-        j.group = m.partition >= 0 && m.partition < static_cast<int>(groups_.size()) ? groups_[m.partition] : -1;
+        JointState j = axial_joint(JointKind::Cylindrical, ContactType::CJU, o, m, m.partition, groups_);
         j.bodies[0] = near[k];
         j.body_count = 1;
         // The seat: sign * (apex - o.apex) . u >= 0 with apex - c fixed on the

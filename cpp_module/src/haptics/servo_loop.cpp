@@ -52,6 +52,21 @@ Wrench clamp_to_device(const Wrench& wrench, const DeviceCapabilities& caps) {
 namespace {
 constexpr std::size_t kHistogramBins = 40000;  // 0.25 us each: up to 10 ms
 constexpr double kBinUs = 0.25;
+
+// The p-th percentile (0..100, us) of a kBinUs-bin histogram: the middle of
+// the first bin where the running count reaches p % of the total; 0 if empty.
+double histogram_percentile_us(const std::vector<std::uint32_t>& histogram, double p) {
+  std::uint64_t total = 0;
+  for (auto n : histogram) total += n;
+  if (total == 0) return 0;
+  const double wanted = p / 100.0 * total;
+  std::uint64_t seen = 0;
+  for (std::size_t i = 0; i < histogram.size(); ++i) {
+    seen += histogram[i];
+    if (seen >= wanted) return (static_cast<double>(i) + 0.5) * kBinUs;
+  }
+  return static_cast<double>(histogram.size()) * kBinUs;
+}
 constexpr std::size_t kMaxEvents = 256;
 
 double limited(double value, double limit) { return limit > 0 ? std::min(value, limit) : value; }
@@ -682,16 +697,7 @@ void ServoLoop::note_period(double now) {
 
 double ServoLoop::jitter_percentile_us(double p) const {
   if (config_.lockstep) return 0;
-  std::uint64_t total = 0;
-  for (auto n : jitter_histogram_) total += n;
-  if (total == 0) return 0;
-  const double wanted = p / 100.0 * total;
-  std::uint64_t seen = 0;
-  for (std::size_t i = 0; i < jitter_histogram_.size(); ++i) {
-    seen += jitter_histogram_[i];
-    if (seen >= wanted) return (static_cast<double>(i) + 0.5) * kBinUs;
-  }
-  return static_cast<double>(jitter_histogram_.size()) * kBinUs;
+  return histogram_percentile_us(jitter_histogram_, p);
 }
 
 double ServoLoop::rate_hz() const {
@@ -705,16 +711,7 @@ double ServoLoop::jitter_us() const {
 }
 
 double ServoLoop::step_percentile_us(double p) const {
-  std::uint64_t total = 0;
-  for (auto n : step_histogram_) total += n;
-  if (total == 0) return 0;
-  const double wanted = p / 100.0 * total;
-  std::uint64_t seen = 0;
-  for (std::size_t i = 0; i < step_histogram_.size(); ++i) {
-    seen += step_histogram_[i];
-    if (seen >= wanted) return (static_cast<double>(i) + 0.5) * kBinUs;
-  }
-  return static_cast<double>(step_histogram_.size()) * kBinUs;
+  return histogram_percentile_us(step_histogram_, p);
 }
 
 }  // namespace contactcore::haptics
