@@ -2,6 +2,7 @@
 the model), contact types, clearance gap; progress and Cancel in the panel.
 Run on an existing analysis (selected, or double-clicked) it updates that one
 in place."""
+import time
 from math import degrees, radians
 
 import FreeCAD
@@ -12,6 +13,7 @@ from contactwb.core.kinds import CONTACT_TYPES, SCOPES, TYPE_NAMES
 from contactwb.document.identify import is_alive, is_contact, is_contact_analysis
 from contactwb.gui import settings
 
+PROGRESS_PERIOD_S = 0.1  # the search's progress shown (and Cancel heard) at most ten times a second
 SCOPE_TEXTS = {"Document": "Whole document", "Selection": "Selected parts only",
                "PartAgainstRest": "Selected part against the rest"}
 
@@ -198,9 +200,16 @@ class FindContactsPanel:
         self.cancel_requested = True
 
     def progress(self, stage, fraction):
-        self.status.setText(f"{stage.capitalize()}...")
-        self.progress_bar.setValue(int(fraction * 1000))
-        QtWidgets.QApplication.processEvents()
+        """The core's progress: shown, and Cancel heard, at most every
+        PROGRESS_PERIOD_S (a QProgressBar repaints at once on each value, and
+        processing the events may draw the window and the 3D view: done at
+        each of the core's calls they took most of a search's time)."""
+        now = time.monotonic()
+        if now - self._last_progress >= PROGRESS_PERIOD_S:
+            self._last_progress = now
+            self.status.setText(f"{stage.capitalize()}...")
+            self.progress_bar.setValue(int(fraction * 1000))
+            QtWidgets.QApplication.processEvents()
         return not self.cancel_requested
 
     def run(self):
@@ -216,6 +225,7 @@ class FindContactsPanel:
             self.status.setText("This scope needs parts: select them, then run Find contacts.")
             return False
         self.running, self.cancel_requested = True, False
+        self._last_progress = float("-inf")  # the first call shows
         self.cancel.setEnabled(True)
         # the same scope again: that analysis, updated in place (not a second one)
         target = self.group if is_alive(self.doc, self.group) else analysis_of_scope(self.doc, scope, self.entries)
