@@ -90,6 +90,7 @@ def interrupted(argv, delay, env):
 
 def hostile(env):
     """The issue-25 section: refusals and SIGINT times."""
+    load_before = os.getloadavg()
     rows = []
     with tempfile.TemporaryDirectory(prefix="hostile-inputs-") as out:
         subprocess.run([sys.executable, os.path.join(REPO, "tools", "make_hostile_inputs.py"), "--out", out],
@@ -122,8 +123,10 @@ def hostile(env):
         f"`python3 bench/bench_bad_inputs.py --hostile --write docs/benchmarks.md`: the {len(rows)} refusals of "
         "`tools/make_hostile_inputs.py`, each through the CLI in its own process (start-up included): exit code "
         f"(expected), wall time, peak resident memory; bound {REFUSAL_BOUND[0]:g} s and {REFUSAL_BOUND[1]} MB. "
-        f"**{met} of {len(rows)} met** ({time.strftime('%Y-%m-%d', time.gmtime())}, the 2-core machine shared "
-        "with other builds).", "",
+        f"**{met} of {len(rows)} met** ({time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC, the 2-core machine; "
+        f"load average (1, 5, 15 min) {', '.join(f'{v:.1f}' for v in load_before)} at the start and "
+        f"{', '.join(f'{v:.1f}' for v in os.getloadavg())} at the end: above 2 the machine was shared and the "
+        "times are not those of an idle one).", "",
         "| case | exit (expected) | wall s | peak MB | met |", "|---|---|---:|---:|---|", *rows, "",
         f"SIGINT sent after a delay to long runs: time to the exit (bound {SIGINT_BOUND * 1000:.0f} ms).", "",
         "| run | SIGINT after | exit | ms to exit | met |", "|---|---|---|---:|---|", *signals])

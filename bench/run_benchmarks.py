@@ -21,6 +21,10 @@ in the same run (`make bench`):
 5. interference and validity checks: bench/bench_interferences.py (the motor,
    R08, R01 and five B-spline solids against their bare reads, and the
    whole-solid Boolean pass they replaced).
+6. the servo loop in realtime mode: bench/bench_realtime_loop.py (10 s
+   realtime trials on the motor, Axis in contact and Screw-1 seated, with
+   the simulated hand, idle and beside two busy processes; rate, step and
+   jitter p50/p99, overruns, realtime priority, the CPU from /proc/cpuinfo).
 
 Prints Markdown tables; --write FILE also saves them (docs/benchmarks.md)."""
 import argparse
@@ -511,6 +515,9 @@ def main():
     # Interference and validity checks against the read: their own program and section (issue 24).
     subprocess.run([sys.executable, os.path.join(REPO, "bench", "bench_interferences.py"), "--build-dir", build_dir,
                     "--repeat", str(args.repeat)] + (["--write", args.write] if args.write else []), check=True)
+    # The servo loop in realtime mode: its own program and section (issue 20).
+    subprocess.run([sys.executable, os.path.join(REPO, "bench", "bench_realtime_loop.py"), "--build-dir", build_dir,
+                    "--seconds", str(args.loop_seconds)] + (["--write", args.write] if args.write else []), check=True)
     # Meshes, collision and disassembly: their own program and section (bench/bench_meshes.py).
     if args.skip_meshes:
         return

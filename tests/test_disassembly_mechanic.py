@@ -73,7 +73,7 @@ def annotated_motor():
 
 
 def test_annotated_motor_comes_apart_as_a_mechanic_would(annotated_motor):
-    # The screws are threaded into the back cover (bonded CLJ in the example
+    # The screws are threaded into the back cover (threaded CLJ in the example
     # file): nothing can leave until one is undone, so each is released and
     # unscrewed up its axis (+z, head first); then the front cover with the
     # bearing and seal pressed into it (freed by the last screw); then the
@@ -97,9 +97,9 @@ def test_each_step_says_what_blocked_it_and_why_it_is_free(annotated_motor):
     steps = document["disassembly"]
     for number, screw in enumerate(("Screw-1", "Screw-2", "Screw-3", "Screw-4"), 1):
         step = steps[number - 1]
-        assert step["released"] == [{"a": "Back-cover", "b": screw, "type": "CLJ", "intent": "bonded"}]
+        assert step["released"] == [{"a": "Back-cover", "b": screw, "type": "CLJ", "intent": "threaded"}]
         assert step["blocked_before"] == []
-        assert step["why_free"] == ("its bonded CLJ with Back-cover undone (unscrewed); nothing blocked it along "
+        assert step["why_free"] == ("its threaded CLJ with Back-cover undone (unscrewed); nothing blocked it along "
                                     "(0, 0, 1) from the start")
     front = steps[4]
     assert "released" not in front
@@ -122,7 +122,7 @@ def test_cli_disassembly_with_annotations(capsys):
     assert cli.main([MOTOR, "--disassembly", "--annotations", MOTOR_NOTES]) == 0
     text = capsys.readouterr().out
     assert "  5. Bearing-front, Seal, Front-cover along (0, 0, 1)" in text  # the parts in the file's order
-    assert "free: its bonded CLJ with Back-cover undone (unscrewed)" in text
+    assert "free: its threaded CLJ with Back-cover undone (unscrewed)" in text
     assert "     Stator, Body stay (the base)" in text
     bad = os.path.join(os.path.dirname(MOTOR), "cases", "taper_pin.step")
     assert cli.main([bad, "--disassembly", "--annotations", MOTOR_NOTES]) == cli.EXIT_USAGE
@@ -165,3 +165,78 @@ def test_directions_sampled_inside_the_free_cone(tmp_path):
     # and the judge sees a cut where there is one: the block pushed along +x hits the post
     pushed = {"disassembly": [{"parts": [block_name], "direction": [1.0, 0.0, 0.0]}]}
     assert [c[2] for c in cuts_along_paths(shapes, pushed)][:1] == [n for n in names if n != block_name]
+
+
+# ---------------------------------------------------------------- bonds are never undone, threads are
+
+def pinned_cover():
+    """A base 40 x 40 x 20 with a blind bore r 3 at (20, 20) from z 8 up; a cover 40 x 40 x 5 on it
+    (z 20..25) with a through bore there; a pin r 3 from the bore's floor (z 8) through both, its
+    head r 5 on the cover (z 25..27). Drawn at nominal size: the pin slides in both bores."""
+    base = Part.makeBox(40, 40, 20).cut(Part.makeCylinder(3, 12, V(20, 20, 8)))
+    cover = Part.makeBox(40, 40, 5, V(0, 0, 20)).cut(Part.makeCylinder(3, 5, V(20, 20, 20)))
+    pin = Part.makeCylinder(3, 17, V(20, 20, 8)).fuse(Part.makeCylinder(5, 2, V(20, 20, 25))).removeSplitter()
+    return [("Base", base), ("Cover", cover), ("Pin", pin)]
+
+
+@pytest.fixture(scope="module")
+def pinned_assembly():
+    named = pinned_cover()
+    return named, document_shapes.assembly_from_shapes(named)
+
+
+def pinned_disassembly(pinned_assembly, annotations):
+    named, assembly = pinned_assembly
+    document = meshes.disassembly_json(assembly, meshes.disassemble(assembly, annotations=annotations))
+    if document["complete"]:
+        assert cuts_along_paths(named, document) == []
+    return document
+
+
+def test_a_threaded_pin_is_unscrewed_then_the_cover_lifts(pinned_assembly):
+    # Threaded into the base: nothing can leave (the head holds the cover, the thread the pin)
+    # until the thread is undone: the pin up its axis, then the cover.
+    document = pinned_disassembly(pinned_assembly, [{"a": "Pin", "b": "Base", "type": "CLJ", "intent": "threaded"}])
+    assert document["complete"] is True
+    assert [(s["parts"], s["direction"]) for s in document["disassembly"]] == [
+        (["Pin"], [0.0, 0.0, 1.0]), (["Cover"], [0.0, 0.0, 1.0])]
+    assert document["disassembly"][0]["released"] == [{"a": "Base", "b": "Pin", "type": "CLJ", "intent": "threaded"}]
+    assert document["base_parts"] == ["Base"]
+
+
+def test_a_pin_bonded_into_the_base_is_never_pulled_so_the_cover_is_trapped(pinned_assembly):
+    # Glued into the base, the pin is part of the base's sub-assembly: it is never released
+    # (the rule before treated every bonded cylinder as a thread and unscrewed it), so the cover
+    # under its head cannot leave: no sequence (interlocked), nothing released.
+    document = pinned_disassembly(pinned_assembly, [{"a": "Pin", "b": "Base", "type": "CLJ", "intent": "bonded"}])
+    assert document["complete"] is False
+    assert document["disassembly"] == []
+    assert "interlock" in document["reason"] and "Cover" in document["reason"]
+
+
+def test_a_pin_bonded_into_the_cover_comes_out_with_it_as_one_sub_assembly(pinned_assembly):
+    # Item 6: annotated rigid groups come out as one sub-assembly: the cover with the pin glued in it.
+    document = pinned_disassembly(pinned_assembly, [{"a": "Pin", "b": "Cover", "intent": "bonded"}])
+    assert document["complete"] is True
+    (step,) = document["disassembly"]
+    assert (step["parts"], step["direction"]) == (["Cover", "Pin"], [0.0, 0.0, 1.0])
+    assert "released" not in step
+    assert document["base_parts"] == ["Base"]
+
+
+def test_bonded_motor_screws_stay_in_the_back_cover(tmp_path):
+    # The motor's example with its screws glued (bonded) instead of threaded: the screws are never
+    # unscrewed; they join the back cover's sub-assembly, whose heads trap the front cover:
+    # no sequence; the CLI exits with the analysis-failed code (4), not the usage code (2).
+    entries = json.load(open(MOTOR_NOTES))
+    for entry in entries:
+        if entry["a"].startswith("Screw-"):
+            entry["intent"] = "bonded"
+    notes = tmp_path / "glued.json"
+    notes.write_text(json.dumps(entries))
+    assembly = meshes.read_step_assembly(MOTOR)
+    document = meshes.disassembly_json(assembly, meshes.disassemble(assembly, annotations=str(notes)))
+    assert document["complete"] is False and "interlock" in document["reason"]
+    assert all("released" not in step for step in document["disassembly"])
+    assert not any(p.startswith("Screw-") for step in document["disassembly"] for p in step["parts"])
+    assert cli.main([MOTOR, "--disassembly", "--annotations", str(notes)]) == cli.EXIT_FAILED

@@ -111,3 +111,22 @@ def test_kept_after_a_recompute_when_lost_and_found_again_and_saved(doc, tmp_pat
         assert (clj.Intent, plf.Intent) == ("bonded", "clearance") and joints[("Plate", "Shaft")] == "rigid"
     finally:
         FreeCAD.closeDocument(reopened.Name)
+
+
+def test_threaded_intent_is_rigid_takes_no_fit_and_older_documents_get_the_choice(doc):
+    # "threaded" (a screw in its thread): rigid in the joints like a bond; no ISO 286 fit.
+    group, clj, plf, _ = parts(doc)
+    annotate_contacts([clj], "threaded")
+    _, clj, plf, joints = parts(doc)
+    assert clj.Intent == "threaded" and joints[("Plate", "Shaft")] == "rigid"
+    with pytest.raises(core.ArgumentError, match="a threaded contact has no fit"):
+        annotate_contacts([clj], "threaded", "H7/g6")
+    # A contact saved before "threaded" existed: its choices lack it; restoring adds it, the
+    # contact's own intent kept.
+    from contactwb.objects import contact_objects
+    clj.Intent = "bonded"
+    clj.Intent = ["none", "clearance", "transition", "interference", "bonded", "ignored"]
+    clj.Intent = "bonded"
+    contact_objects._annotation_properties(clj)
+    assert list(clj.getEnumerationsOfProperty("Intent")) == contact_objects.INTENT_CHOICES
+    assert clj.Intent == "bonded"

@@ -20,7 +20,8 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SAMPLES = os.path.join(REPO, "Resources", "samples")
 MOTOR = os.path.join(SAMPLES, "motor.step")
 TRIAL_SCRIPT = os.path.join(REPO, "Resources", "trials", "motor_axis_insertion.json")
-HANG = 30  # seconds: beyond this a case hangs
+HANG = 30  # seconds: beyond this a refusal hangs (the benchmark holds them to 2 s)
+LONG_RUN = 300  # seconds: a run that does the work (the motor's trial: 77 s at load 15, over 120 s at 23)
 CLI = [sys.executable, "-m", "contactwb.cli"]
 
 
@@ -48,10 +49,11 @@ def test_every_hostile_input_ends_with_its_exit_code_and_message(corpus):
     problems = []
     for case in corpus:
         argv = [os.fsencode(a) for a in case["argv"]]
+        bound = HANG if case["refusal"] else LONG_RUN
         try:
-            done = run(argv)
+            done = run(argv, timeout=bound)
         except subprocess.TimeoutExpired:
-            problems.append(f"{case['name']}: still running after {HANG} s")
+            problems.append(f"{case['name']}: still running after {bound} s")
             continue
         err = done.stderr.decode(errors="replace")
         out = done.stdout.decode(errors="replace")
@@ -71,8 +73,13 @@ def test_every_hostile_input_ends_with_its_exit_code_and_message(corpus):
 def test_corpus_covers_every_command(corpus):
     commands = {("mesh" if c["argv"][0] == "mesh" else "trial" if c["argv"][0] == "trial" else
                  "--joints" if "--joints" in c["argv"] else "--disassembly" if "--disassembly" in c["argv"] else
-                 "contacts") for c in corpus}
-    assert commands == {"contacts", "mesh", "trial", "--joints", "--disassembly"}
+                 "--export-urdf" if "--export-urdf" in c["argv"] else
+                 "--export-mjcf" if "--export-mjcf" in c["argv"] else "contacts") for c in corpus}
+    assert commands == {"contacts", "mesh", "trial", "--joints", "--disassembly", "--export-urdf", "--export-mjcf"}
+    # Issue 25 item 4: the missing file is exit 3 for every one of them.
+    missing = {next((a for a in ("mesh", "trial", "--joints", "--disassembly", "--export-urdf", "--export-mjcf")
+                     if a in c["argv"]), "contacts") for c in corpus if c["name"].startswith("missing file")}
+    assert missing == commands and all(c["exit"] == 3 for c in corpus if c["name"].startswith("missing file"))
     assert sum(1 for c in corpus if c["refusal"]) >= 30
 
 
@@ -193,16 +200,16 @@ def test_meshes_json_is_strict_json_and_names_invalid_solids(tmp_path):
 def test_standard_output_closed_full_or_broken(argv, tmp_path):
     argv = [a.replace("{tmp}", str(tmp_path / "out")) for a in argv]
     command = CLI + argv
-    closed = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=HANG * 4,
+    closed = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=LONG_RUN,
                             env=environment(), preexec_fn=lambda: os.close(1))
     assert closed.returncode == 4 and b"standard output is closed" in closed.stderr, closed.stderr
     with open("/dev/full", "w") as full:
-        filled = subprocess.run(command, stdout=full, stderr=subprocess.PIPE, timeout=HANG * 4, env=environment())
+        filled = subprocess.run(command, stdout=full, stderr=subprocess.PIPE, timeout=LONG_RUN, env=environment())
     assert filled.returncode == 4 and b"No space left on device" in filled.stderr, filled.stderr
     assert b"Traceback" not in filled.stderr
     broken = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=environment())
     broken.stdout.close()  # the reader is gone before anything is written: `| head -0`
-    _, err = broken.communicate(timeout=HANG * 4)
+    _, err = broken.communicate(timeout=LONG_RUN)
     assert broken.returncode == 141 and err == b"", err
 
 
@@ -267,6 +274,37 @@ def test_signal_during_disassembly(delay):
     assert "Traceback" not in stderr and stdout == ""
 
 
+# "SIGINT at random points of long runs": delays drawn from a seeded generator (the seed from
+# CONTACTS_SIGINT_SEED, else 25: reproducible, and another seed tries other points).
+_SIGINT_SEED = int(os.environ.get("CONTACTS_SIGINT_SEED", "25"))
+_RANDOM_DELAYS = [round(d, 3) for d in __import__("random").Random(_SIGINT_SEED).choices(
+    [x / 1000 for x in range(400, 3001)], k=6)]
+
+
+@pytest.mark.parametrize("run_index", range(6))
+def test_sigint_at_random_points_of_long_runs(tmp_path, run_index):
+    # Each of the long commands in turn (meshing, a 600 s trial, a disassembly), SIGINT after a
+    # random 0.4 to 3 s, the package's imports included (the interpreter's own start, before any
+    # of our code runs, is the one window left: docs/reliability.md): exit 130 within the bound
+    # (with slack), no traceback, nothing on stdout, no temporary or partial file left.
+    delay = _RANDOM_DELAYS[run_index]
+    script = tmp_path / "long.json"
+    script.write_text(json.dumps({"hand": [{"t": 0}, {"t": 600, "translate": [0, 0, 5]}]}))
+    out = tmp_path / "out"
+    argv = [["mesh", MOTOR, "--out", str(out), "--deflection", "0.0007"],
+            ["trial", MOTOR, "--part", "Axis", "--script", str(script), "--record", str(tmp_path / "path.csv")],
+            [MOTOR, "--disassembly", "--json"]][run_index % 3]
+    code, after, stdout, stderr = _interrupted(argv, delay)
+    assert code == 130, f"seed {_SIGINT_SEED}, delay {delay} s: {stderr}"
+    assert after < 0.5 + SLACK, f"seed {_SIGINT_SEED}, delay {delay} s: {after:.2f} s to the exit"
+    assert "Traceback" not in stderr and stdout == ""
+    left = [f for f in os.listdir(tmp_path) if f.startswith(".")] + \
+        ([f for f in os.listdir(out) if f.startswith(".") or f == "meshes.json"] if out.exists() else [])
+    assert left == [] and not (tmp_path / "path.csv").exists()
+    if out.exists():
+        assert all(_ply_complete(out / f) for f in os.listdir(out))
+
+
 @pytest.mark.parametrize("placement", [
     ((1, 0, 0, 0, 1, 0, 0, 0, 1), (math.nan, 0, 0)),
     ((1, 0, 0, 0, 1, 0, 0, 0, 1), (math.inf, 0, 0)),
@@ -286,3 +324,22 @@ def test_collision_queries_refuse_placements_that_are_not_rigid_motions(placemen
     # A rotation about z by 30 degrees and far away: accepted, apart.
     c, s = math.cos(math.pi / 6), math.sin(math.pi / 6)
     assert not pair.query(None, ((c, -s, 0, s, c, 0, 0, 0, 1), (0, 0, 1000)), "intersect").intersecting
+
+
+@pytest.mark.parametrize("limit_mb", [110, 120, 140, 160, 200])
+@pytest.mark.parametrize("command", ["--disassembly", "trial"])
+def test_under_a_memory_limit_a_valid_file_is_never_called_bad(limit_mb, command):
+    # Issue 25: out of memory was reported as a traceback or as a face OCCT could not tessellate.
+    # Under an address-space limit (prlimit, as a user's ulimit -v) a valid file ends done (0) or
+    # out of memory (4, saying so), never as refused input (3), an internal error (5) or a
+    # traceback. Found this round: `--disassembly` at 120 MB ended "collision model of an empty
+    # or untagged mesh (body 'Front-cover')", exit 3 (OCCT's mesher swallowed the out-of-memory).
+    argv = [MOTOR, "--disassembly"] if command == "--disassembly" else \
+        ["trial", MOTOR, "--part", "Axis", "--script", TRIAL_SCRIPT]
+    done = subprocess.run(["prlimit", f"--as={limit_mb << 20}"] + CLI + argv, capture_output=True, timeout=120,
+                          env=environment())
+    err = done.stderr.decode(errors="replace")
+    assert "Traceback" not in err, err
+    assert done.returncode in (0, 4), f"{limit_mb} MB: exit {done.returncode}: {err[-600:]}"
+    if done.returncode == 4:
+        assert "out of memory" in err or "could not tessellate any of the body's" in err, err

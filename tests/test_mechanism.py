@@ -135,6 +135,10 @@ def test_annotation_entries_are_checked():
         annotations.parse([{"a": "A", "b": "B", "intent": "interference", "fit": "p6"}])
     with pytest.raises(core.ArgumentError, match="unknown field"):
         annotations.parse([{"a": "A", "b": "B", "intent": "bonded", "glue": "epoxy"}])
+    with pytest.raises(core.ArgumentError, match="a threaded contact has no fit"):
+        annotations.parse([{"a": "A", "b": "B", "intent": "threaded", "fit": "H7/g6"}])
+    (screw,) = annotations.parse([{"a": "Screw", "b": "Cover", "type": "CLJ", "intent": "threaded"}])
+    assert (screw.intent, screw.type) == ("threaded", "CLJ")
     (note,) = annotations.parse([{"a": "A", "b": "B", "intent": "transition", "fit": "H7/k6"}])
     assert (note.a, note.b, note.intent, note.fit, note.type) == ("A", "B", "transition", "H7/k6", None)
 
@@ -188,3 +192,34 @@ def test_d03_pin_in_the_arms_slot_is_two_line_contacts(shared_step):
     assert parallel(j.rotations[0]["direction"], (0, 0, 1))
     slide = j.translations[0]["direction"]
     assert abs(sum(a * b for a, b in zip(slide, n0))) < 1e-9 and abs(slide[2]) < 1e-9
+
+
+def test_ball_in_a_v_groove_is_two_point_contacts_and_four_dof():
+    # A 90-degree V-groove along y (walls z = 10 + |x - 20|, cut by a square prism turned 45 degrees)
+    # and a ball r 5 resting on both walls: its centre on x = 20 at z = 10 + 5 sqrt 2. By hand: two
+    # sphere_on_plane points at (20 -+ 5/sqrt 2, 20, 10 + 5/sqrt 2), each with its wall's normal
+    # (+-1, 0, 1)/sqrt 2; no surface contact. Two one-sided points take 2 of 6 DOF: the ball rolls
+    # (3 turns) and runs along the groove (y): 4 DOF; it leaves along +-y or up either wall's normal
+    # (the lift-out +z is in that cone).
+    import math
+    s = math.sqrt(2)
+    prism = Part.makeBox(10 * s, 40, 10 * s, V(-5 * s, 0, -5 * s))
+    prism.rotate(V(0, 0, 0), V(0, 1, 0), 45)
+    prism.translate(V(20, 0, 20))
+    block = Part.makeBox(40, 40, 20).cut(prism)
+    ball = Part.makeSphere(5, V(20, 20, 10 + 5 * s))
+    result, found = joints.joints_in_shapes([("Block", block), ("Ball", ball)], ground="Block")
+    assert result.contacts == []
+    pairs = sorted(result.to_json()["higher_pairs"], key=lambda h: h["point"][0])
+    assert [(h["type"], h["a"], h["b"]) for h in pairs] == [("sphere_on_plane", "Block", "Ball")] * 2
+    assert pairs[0]["point"] == pytest.approx([20 - 5 / s, 20, 10 + 5 / s], abs=1e-9)
+    assert pairs[1]["point"] == pytest.approx([20 + 5 / s, 20, 10 + 5 / s], abs=1e-9)
+    assert pairs[0]["normal"] == pytest.approx([1 / s, 0, 1 / s], abs=1e-9)
+    assert pairs[1]["normal"] == pytest.approx([-1 / s, 0, 1 / s], abs=1e-9)
+    (j,) = found.joints
+    assert (j.dof, len(j.rotations), len(j.translations), j.higher_pairs) == (4, 3, 1, [0, 1])
+    assert parallel(j.translations[0]["direction"], (0, 1, 0))
+    expected = [(0, 1, 0), (0, -1, 0), (1 / s, 0, 1 / s), (-1 / s, 0, 1 / s)]
+    assert sorted(tuple(round(v, 9) + 0.0 for v in d) for d in j.free_directions) == \
+        sorted(tuple(round(v, 9) + 0.0 for v in d) for d in expected)
+    assert found.mobility.dof == 4

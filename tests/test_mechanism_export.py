@@ -192,6 +192,14 @@ def test_motor_without_annotations_exports_its_26_dof_as_a_tree(tmp_path):
     assert document["mobility"]["dof"] == 26
     export = document["export"]
     assert len(export["links"]) == len(document["mobility"]["groups"])
+    # Two loops through the axis (rotor group and seal), each named by its closing joint: both
+    # cylindrical on the motor's axis, between links hanging from the body on that axis, so the
+    # tree already allows them nothing more (no MJCF equality needed).
+    closures = [(c["name"], c["type"], c["equality"], c["kept_by_tree"]) for c in export["closures"]]
+    assert closures == [("Axis__Rotor-back", "cylindrical", None, True), ("Axis__Seal", "cylindrical", None, True)]
+    assert [n.split(" (")[0] for n in export["notes"]] == ["loop closed by joint Axis__Rotor-back",
+                                                          "loop closed by joint Axis__Seal"]
+    assert "<!-- loop closed by joint Axis__Seal (cylindrical" in (tmp_path / "motor.urdf").read_text()
     tool = check_urdf_tool()
     checked = subprocess.run([tool, str(tmp_path / "motor.urdf")], capture_output=True, text=True)
     assert checked.returncode == 0, checked.stdout + checked.stderr
@@ -479,3 +487,128 @@ def test_a_part_touching_nothing_is_a_floating_link_that_falls_freely(tmp_path):
     assert drop == pytest.approx(euler_travel(9.81, result["timestep"], steps), rel=1e-9)
     assert after["Cube"]["xpos"][:2] == pytest.approx(before["Cube"]["xpos"][:2], abs=1e-12)
     assert after["Plate"] == before["Plate"]
+
+
+# ---------------------------------------------------------------- a closed loop: a hand-built four-bar
+
+FOUR_BAR_PINS = {"P1": (0, 0), "P2": (-10, -40), "P3": (65, -45), "P4": (60, 0)}  # (x, z) mm; axes along y
+
+
+def four_bar_bar(p, q, y0, bores, pins, thickness=5.0, width=10.0, pin_radius=3.0, head_radius=4.5):
+    """A bar `width` wide with rounded ends from p to q ((x, z), mm) in y0..y0 + thickness, bores
+    (radius 3) at `bores`, pins (radius 3, 5 long) going +y with a head (radius 4.5, 2 thick) at `pins`."""
+    dx, dz = q[0] - p[0], q[1] - p[1]
+    length = math.hypot(dx, dz)
+    shape = Part.makeBox(length, thickness, width, V(0, y0, -width / 2))
+    for x in (0, length):
+        shape = shape.fuse(Part.makeCylinder(width / 2, thickness, V(x, y0, 0), V(0, 1, 0)))
+    shape.rotate(V(0, 0, 0), V(0, 1, 0), math.degrees(math.atan2(-dz, dx)))
+    shape.translate(V(p[0], 0, p[1]))
+    for b in bores:
+        shape = shape.cut(Part.makeCylinder(pin_radius, thickness, V(b[0], y0, b[1]), V(0, 1, 0)))
+    for c in pins:
+        shape = shape.fuse(Part.makeCylinder(pin_radius, 5, V(c[0], y0 + thickness, c[1]), V(0, 1, 0)))
+        shape = shape.fuse(Part.makeCylinder(head_radius, 2, V(c[0], y0 + thickness + 5, c[1]), V(0, 1, 0)))
+    return shape.removeSplitter()
+
+
+def four_bar():
+    """A four-bar hanging in the x-z plane (gravity -z in MuJoCo) off a ground plate (y <= 0): the
+    ground's headed pins at P1 and P4 through the crank's and the rocker's bores (both in y 0..5,
+    on the plate), the crank's and the rocker's headed pins at P2 and P3 through the coupler's
+    bores (y 5..10, on them). Each pin is held axially by the face under its part and its head:
+    four revolute pair joints about y, one loop, DOF 1; it starts off its equilibrium and swings."""
+    pins = FOUR_BAR_PINS
+    ground = Part.makeBox(100, 10, 30, V(-20, -10, -15))
+    for c in (pins["P1"], pins["P4"]):
+        ground = ground.fuse(Part.makeCylinder(3, 5, V(c[0], 0, c[1]), V(0, 1, 0)))
+        ground = ground.fuse(Part.makeCylinder(4.5, 2, V(c[0], 5, c[1]), V(0, 1, 0)))
+    return [("Ground", ground.removeSplitter()),
+            ("Crank", four_bar_bar(pins["P1"], pins["P2"], 0, [pins["P1"]], [pins["P2"]])),
+            ("Rocker", four_bar_bar(pins["P4"], pins["P3"], 0, [pins["P4"]], [pins["P3"]])),
+            ("Coupler", four_bar_bar(pins["P2"], pins["P3"], 5, [pins["P2"], pins["P3"]], []))]
+
+
+def rotate_by_quaternion(quat, v):
+    w, x, y, z = quat
+    t = (2 * (y * v[2] - z * v[1]), 2 * (z * v[0] - x * v[2]), 2 * (x * v[1] - y * v[0]))
+    return (v[0] + w * t[0] + y * t[2] - z * t[1], v[1] + w * t[1] + z * t[0] - x * t[2],
+            v[2] + w * t[2] + x * t[1] - y * t[0])
+
+
+def closure_gap(result, model, closure):
+    """Distance (m) after stepping between the closure's anchor carried by each of its two links."""
+    after = {b["name"]: b for b in result["after"]["bodies"]}
+    points = []
+    for name in (closure.link_a, closure.link_b):
+        local = tuple(a - o for a, o in zip(closure.anchor, model.link(name).origin))
+        turned = rotate_by_quaternion(after[name]["xquat"], local)
+        points.append(tuple(p + q for p, q in zip(after[name]["xpos"], turned)))
+    return math.dist(*points)
+
+
+@pytest.fixture(scope="module")
+def four_bar_export(tmp_path_factory):
+    out = tmp_path_factory.mktemp("four_bar")
+    _, found = joints.joints_in_shapes(four_bar(), ground="Ground")
+    model, _ = mechanism_export.export_mechanism(found.assembly, found, urdf_dir=str(out),
+                                                 mjcf_path=str(out / "four_bar.xml"), name="four_bar")
+    return found, model, out
+
+
+def test_four_bar_loop_closure_is_named_and_left_out_of_the_urdf_tree(four_bar_export):
+    # Four single-body groups, four revolute pair joints about y, DOF 1 (Gruebler in the plane:
+    # 3 (4 - 1) - 2 * 4 = 1). The tree: Ground -> Crank, Ground -> Rocker (their motions about P1,
+    # P4), Crank -> Coupler (the pin at P2); the pin at P3 (Rocker - Coupler) closes the loop.
+    found, model, out = four_bar_export
+    assert found.mobility.dof == 1
+    assert sorted(g["type"] for g in found.mobility.group_joints) == ["revolute"] * 3 + ["rigid"]
+    assert [(j.parent, j.child, j.type) for j in model.joints] == [
+        ("Ground", "Crank", "revolute"), ("Ground", "Rocker", "revolute"), ("Crank", "Coupler", "revolute")]
+    (closure,) = model.closures
+    assert (closure.name, closure.link_a, closure.link_b, closure.type, closure.equality) == \
+        ("Rocker__Coupler", "Rocker", "Coupler", "revolute", "connect")
+    assert closure.bodies == ("Rocker", "Coupler")
+    assert [abs(v) for v in closure.axis] == [0, 1, 0]
+    assert (closure.anchor[0], closure.anchor[2]) == pytest.approx((0.065, -0.045), abs=1e-12)  # P3
+    (note,) = model.notes
+    assert note.startswith("loop closed by joint Rocker__Coupler (revolute about (0, ")
+    assert "left out of the URDF (a tree); MJCF closes it with an <equality> connect" in note
+    text = (out / "four_bar.urdf").read_text()
+    assert "<!-- loop closed by joint Rocker__Coupler (revolute" in text
+    assert 'name="Rocker__Coupler"' not in text
+    done = subprocess.run([check_urdf_tool(), str(out / "four_bar.urdf")], capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    tree = [line.strip() for line in done.stdout.splitlines() if "child(" in line or "root Link" in line]
+    assert tree == ["root Link: world has 1 child(ren)", "child(1):  Ground", "child(1):  Crank",
+                    "child(1):  Coupler", "child(2):  Rocker"]
+    # The command line's messages name it too (the export's table, and "closures" in --json).
+    from contactwb.cli.export_mechanism import export_table
+    summary = dict(model.to_json(), files=[])
+    assert f"  note: {note}" in export_table(summary).splitlines()
+    assert summary["closures"] == [{"name": "Rocker__Coupler", "type": "revolute", "links": ["Rocker", "Coupler"],
+                                    "bodies": ["Rocker", "Coupler"], "anchor": list(closure.anchor),
+                                    "axis": list(closure.axis), "equality": "connect", "kept_by_tree": False}]
+
+
+def test_four_bar_mjcf_equality_keeps_the_loop_closed_in_mujoco(four_bar_export):
+    # Gravity on, no force: the four-bar swings from its start. The point P3 carried by the rocker
+    # and by the coupler stays one point (the connect constraint, made stiff: MuJoCo's are soft)
+    # to 1e-6 m after N steps, while the linkage has turned; the same model with its <equality>
+    # removed falls apart (the coupler swings on the crank alone): the constraint is what holds it.
+    _, model, out = four_bar_export
+    (closure,) = model.closures
+    text = (out / "four_bar.xml").read_text()
+    assert ('<connect name="Rocker__Coupler" body1="Rocker" body2="Coupler" solref="0.004 1" '
+            'solimp="0.9999 0.9999 0.001" anchor="0.005 0.0025 -0.045"/>') in text  # P3 - P4: the rocker's frame on P4
+    tool = mujoco_tool()
+    for steps in (100, 500, 1000):
+        result = step(tool, str(out / "four_bar.xml"), steps)
+        assert (result["nq"], result["njnt"]) == (3, 3)
+        assert closure_gap(result, model, closure) <= 1e-6, steps
+    swung = {j["name"]: j["qpos"][0] for j in step(tool, str(out / "four_bar.xml"), 100)["after"]["joints"]}
+    assert abs(swung["Ground__Crank"]) > 0.05 and abs(swung["Ground__Rocker"]) > 0.05
+    import re
+    (out / "open.xml").write_text(re.sub(r"  <equality>.*?</equality>\n", "", text, flags=re.S))
+    opened = step(tool, str(out / "open.xml"), 100)
+    assert closure_gap(opened, model, closure) > 1e-2

@@ -241,6 +241,7 @@ def main():
         "nested_200000": ('{"hand": ' + "[" * 200000 + "]" * 200000 + "}", "nested deeper than 16 levels"),
         "translate_nan": ('{"hand": [{"t": 0, "translate": [0, NaN, 0]}]}', "NaN is not a number"),
         "decreasing": ('{"hand": [{"t": 1}, {"t": 0.5}]}', "must be >= 0 and not decrease"),
+        "time_1e300": ('{"hand": [{"t": 0}, {"t": 1e300}]}', "the script lasts at most 600 s"),
     }
     for name, (text, expect) in scripts.items():
         case(f"trial script {name}", ["trial", MOTOR, "--part", "Axis", "--script", write(f"{name}.json", text)], 3,
@@ -269,8 +270,19 @@ def main():
                  ["trial", missing, "--part", "Axis", "--script", os.path.join(REPO, "Resources", "trials",
                                                                                  "motor_axis_insertion.json")]):
         case(f"missing file: {' '.join(a for a in argv if a != missing)}", argv, 3, "no such file", refusal=True)
+    for option, target in (("--export-urdf", path("urdf_out")), ("--export-mjcf", path("mjcf_out.xml"))):
+        case(f"missing file: {option}", [missing, option, target], 3, "no such file", refusal=True)
     case("interlocked parts", [os.path.join(SAMPLES, "cases", "ball_bearing.step"), "--disassembly"], 4,
          "Stopped: no part or group")
+    # Outputs never created in /dev, /proc or /sys (as root they would be): usage errors.
+    taper_step = os.path.join(SAMPLES, "cases", "taper_pin.step")
+    for option, target in (("--graph", "/dev/contacts_graph.svg"), ("--export-mjcf", "/dev/contacts_model.xml"),
+                           ("--export-urdf", "/proc/contacts_urdf")):
+        case(f"{option} in a system folder", [taper_step, option, target], 2, "is in the system folder", refusal=True)
+    case("trial --record in /dev", ["trial", MOTOR, "--part", "Axis", "--script",
+                                    os.path.join(REPO, "Resources", "trials", "motor_axis_insertion.json"),
+                                    "--record", "/dev/contacts_record.json"], 2, "is in the system folder",
+         refusal=True)
     taper = open(os.path.join(SAMPLES, "cases", "taper_pin.step"), "rb").read()
     odd_name = os.path.join(os.fsencode(out), b"taper_\xff\xfe.step")
     with open(odd_name, "wb") as stream:

@@ -6,12 +6,14 @@ fits and bonds the CAD model cannot show. A file is a JSON list of
 "a" and "b" name two bodies (either order); "type" (optional) a contact
 type (PLF, CLJ, ...) or a point/line contact type (sphere_on_plane, ...):
 without it the entry covers every contact of the pair; "intent" is one of
-clearance, transition, interference, bonded, ignored; "fit" (optional) an
+clearance, transition, interference, bonded, ignored, threaded (a screw
+tightened in its thread: rigid like a bond, but undone by the disassembly,
+where a bond never is); "fit" (optional) an
 ISO 286 fit code such as H7/g6: evaluated at each cylindrical contact's
 (CLJ) diameter (contactwb.core.iso286), its class must agree with a
 clearance, transition or interference intent; "note" (optional) free text.
-Interference, transition and bonded contacts make their pair rigid in the
-joints; ignored ones are left out."""
+Interference, transition, bonded and threaded contacts make their pair rigid
+in the joints; ignored ones are left out."""
 import json
 import os
 import re
@@ -19,7 +21,7 @@ import re
 from contactwb import core
 from contactwb.core import iso286
 
-INTENTS = ("clearance", "transition", "interference", "bonded", "ignored")
+INTENTS = ("clearance", "transition", "interference", "bonded", "ignored", "threaded")
 _KEYS = {"a", "b", "type", "intent", "fit", "note"}
 # ISO 286: hole letters (upper case) and grade / shaft letters (lower case) and grade.
 _FIT = re.compile(r"^(A|B|C|CD|D|E|EF|F|FG|G|H|JS|J|K|M|N|P|R|S|T|U|V|X|Y|Z|ZA|ZB|ZC)(0[01]?|[1-9]|1[0-8])/"
@@ -63,8 +65,9 @@ def parse(entries, source="annotations"):
         fit = entry.get("fit")
         if fit is not None and not _FIT.match(fit):
             raise core.ArgumentError(f"{where}: '{fit}' is not an ISO 286 fit code such as H7/g6 or H7/p6")
-        if fit is not None and entry["intent"] == "ignored":
-            raise core.ArgumentError(f"{where}: an ignored contact has no fit ('{fit}')")
+        if fit is not None and entry["intent"] in ("ignored", "threaded"):
+            raise core.ArgumentError(f"{where}: {'an' if entry['intent'] == 'ignored' else 'a'} {entry['intent']} "
+                                     f"contact has no fit ('{fit}')")
         out.append(Annotation(entry["a"], entry["b"], entry["intent"], entry.get("type"), fit, entry.get("note"),
                               where=f"{where}"))
     return out

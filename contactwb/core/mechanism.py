@@ -56,6 +56,24 @@ class Joint:
 
 
 @dataclass
+class Closure:
+    """A pair joint that closes a loop of the groups' graph (docs/mechanism.md, "Loops"): left out of
+    the tree (URDF is a tree), held in MJCF by an equality constraint where MuJoCo has one:
+    "connect" (a point of link_a kept on the same point of link_b: a revolute or spherical
+    closure), "weld" (a rigid one), else None (only named in the notes)."""
+    name: str
+    link_a: str            # MJCF body1: the anchor is given in its frame
+    link_b: str
+    type: str              # the pair joint's motion (revolute, spherical, cylindrical, ...)
+    bodies: tuple          # the two bodies whose contacts make the closing pair joint
+    anchor: tuple          # metres, assembly frame: the revolute axis' point or the sphere's centre
+    axis: Optional[tuple]  # the revolute or cylindrical axis (unit), else None
+    equality: Optional[str]
+    kept_by_tree: bool = False  # both links turn and slide on the closure's own axis from one parent:
+                                # the tree allows them nothing the closing joint forbids
+
+
+@dataclass
 class Model:
     name: str
     ground: str            # the fixed link
@@ -63,6 +81,7 @@ class Model:
     joints: List[Joint]
     density: float
     notes: List[str] = field(default_factory=list)
+    closures: List[Closure] = field(default_factory=list)
 
     def link(self, name):
         return next(link for link in self.links if link.name == name)
@@ -78,6 +97,9 @@ class Model:
                                       "lower": e.lower, "upper": e.upper} for e in j.elements],
                         **({"note": j.note} if j.note else {})} for j in self.joints],
             "notes": self.notes,
+            "closures": [{"name": c.name, "type": c.type, "links": [c.link_a, c.link_b], "bodies": list(c.bodies),
+                          "anchor": list(c.anchor), "axis": list(c.axis) if c.axis else None,
+                          "equality": c.equality, "kept_by_tree": c.kept_by_tree} for c in self.closures],
         }
 
 
@@ -298,11 +320,17 @@ def build_model(assembly, found, density=DEFAULT_DENSITY, ground=None, name="mec
             joints_out.append(Joint(f"{link_names[parent]}__{link_names[child]}", link_names[parent],
                                     link_names[child], type_name, elements, note))
             links[child].origin = elements[-1].origin if elements else links[child].centre
+    closures = []
     for (ga, gb), connecting in sorted(between.items()):
         pair = {ga, gb}
-        if not any({link_names.index(j.parent), link_names.index(j.child)} == pair for j in joints_out):
-            notes.append(f"loop not exported (URDF and a MJCF body tree are trees): {link_names[ga]} - "
-                         f"{link_names[gb]} ({', '.join(sorted({j.type for j in connecting}))})")
+        if any({link_names.index(j.parent), link_names.index(j.child)} == pair for j in joints_out):
+            continue
+        closure = _closure(connecting, link_names[ga], link_names[gb], names)
+        if _kept_by_the_tree(closure, joints_out):
+            closure.equality = None
+            closure.kept_by_tree = True
+        closures.append(closure)
+        notes.append(_closure_note(closure, connecting))
     for g in range(len(groups)):
         if g not in seen:
             order.append(g)
@@ -311,4 +339,73 @@ def build_model(assembly, found, density=DEFAULT_DENSITY, ground=None, name="mec
                                     "touches nothing: a free body"))
             notes.append(f"{link_names[g]} touches no other group: exported as a free (floating) body")
     return Model(name=safe_name(name), ground=link_names[ground_group], links=[links[g] for g in order],
-                 joints=joints_out, density=density, notes=notes)
+                 joints=joints_out, density=density, notes=notes, closures=closures)
+
+
+# MuJoCo's equality constraints for a closing pair joint: a point held (connect) or the whole pose (weld).
+EQUALITY_OF_CLOSURE = {"revolute": "connect", "spherical": "connect", "rigid": "weld"}
+
+
+def _closure(connecting, name_a, name_b, names):
+    """The Closure of the pair joints `connecting` between two groups already joined in the tree:
+    the one allowing least (as the tree's choice)."""
+    joint = min(connecting, key=lambda j: j.dof)
+    kind = "rigid" if joint.dof == 0 else joint.type
+    anchor, axis = (0.0, 0.0, 0.0), None
+    if joint.rotations:
+        anchor = clean_vector(p * MM for p in joint.rotations[0][0])
+        if kind in ("revolute", "cylindrical"):
+            axis = clean_vector(joint.rotations[0][1])
+    equality = EQUALITY_OF_CLOSURE.get(kind)
+    if kind in ("revolute", "spherical") and not joint.rotations:
+        equality = None
+    return Closure(f"{name_a}__{name_b}", name_a, name_b, kind, (names[joint.body_a], names[joint.body_b]),
+                   anchor, axis, equality)
+
+
+def _on_line(element, closure):
+    """True when a chain element moves along or about the closure's axis line (m, 1e-9)."""
+    if abs(abs(vec_dot(element.axis, closure.axis)) - 1) > 1e-9:
+        return False
+    if element.kind == "prismatic":
+        return True
+    offset = vec_sub(element.origin, closure.anchor)
+    along = vec_dot(offset, closure.axis)
+    rest = vec_sub(offset, vec_scale(closure.axis, along))
+    return vec_dot(rest, rest) < 1e-18
+
+
+def _kept_by_the_tree(closure, tree_joints):
+    """True when the closing joint (revolute or cylindrical) needs no constraint: its two links hang
+    from one parent by joints that only turn about, or slide along, its own axis (their relative
+    motion is then one the closing joint allows: revolute closures need turns only)."""
+    if closure.axis is None or closure.type not in ("revolute", "cylindrical"):
+        return False
+    by_child = {j.child: j for j in tree_joints}
+    a, b = by_child.get(closure.link_a), by_child.get(closure.link_b)
+    if a is None or b is None or a.parent != b.parent:
+        return False
+    for joint in (a, b):
+        for element in joint.elements:
+            if not _on_line(element, closure) or (closure.type == "revolute" and element.kind == "prismatic"):
+                return False
+    return True
+
+
+def _closure_note(closure, connecting):
+    where = ""
+    if closure.axis is not None:
+        where = (f" about ({', '.join(f'{v:.4g}' for v in closure.axis)}) through "
+                 f"({', '.join(f'{v:.4g}' for v in closure.anchor)}) m")
+    elif closure.type == "spherical":
+        where = f" about ({', '.join(f'{v:.4g}' for v in closure.anchor)}) m"
+    if closure.kept_by_tree:
+        mjcf = ("nothing to hold in MJCF either: both links move only on its axis from the same parent, "
+                "which it allows")
+    elif closure.equality:
+        mjcf = f"MJCF closes it with an <equality> {closure.equality}"
+    else:
+        mjcf = f"MJCF has no equality constraint for a {closure.type} closure: left out there too"
+    others = f" ({len(connecting)} pair joints, the one allowing least)" if len(connecting) > 1 else ""
+    return (f"loop closed by joint {closure.name} ({closure.type}{where}, {closure.bodies[0]}-{closure.bodies[1]}"
+            f"{others}): left out of the URDF (a tree); {mjcf}")

@@ -193,8 +193,8 @@ def disassemble(assembly, deflection=0.1, angle=0.5, tolerance=0.0, linear=None,
     blocked (two tessellations of one surface cross by up to their deflection); refused
     (ArgumentError) unless below half the thinnest part's thickness. `annotations` (a JSON file's
     path, a list of dicts or of contactwb.core.annotations.Annotation): parts joined by fits and
-    bonds come out as one sub-assembly; a bonded cylindrical contact (a thread) is released
-    (unscrewed) when nothing else can leave. The result keeps the contacts used as `.contacts`
+    bonds (and threads) come out as one sub-assembly; a threaded cylindrical contact (a screw in
+    its thread) is released (unscrewed) when nothing else can leave, a bonded one never. The result keeps the contacts used as `.contacts`
     (a DisassemblyResult attribute set here)."""
     options = core.contactcore.MeshOptions(deflection, angle, 0.0, _max_triangles(max_triangles))
     notes = _annotations(annotations)
@@ -252,7 +252,7 @@ def disassembly_json(assembly, result=None):
             c = contacts.contacts[k] if contacts is not None else None
             if c is not None:
                 released.append({"a": names[c.body_a], "b": names[c.body_b], "type": c.type_name,
-                                 "intent": result.intents[k] if result.intents else "bonded"})
+                                 "intent": result.intents[k] if result.intents else "threaded"})
         if released:
             entry["released"] = released
         entry["why_free"] = _why_free(entry, direction)

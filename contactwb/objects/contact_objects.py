@@ -171,7 +171,7 @@ def _contact_properties(obj):
 
 
 # The designer's intent of a contact (docs/joints.md, "Annotations"); "none": not annotated.
-INTENT_CHOICES = ["none", "clearance", "transition", "interference", "bonded", "ignored"]
+INTENT_CHOICES = ["none", "clearance", "transition", "interference", "bonded", "ignored", "threaded"]
 
 
 def _annotation_properties(obj):
@@ -181,11 +181,17 @@ def _annotation_properties(obj):
     fresh = "Intent" not in obj.PropertiesList
     add_property(obj, "App::PropertyEnumeration", "Intent", "Annotation",
                  "The designer's intent: a fit (clearance, transition, interference), bonded (glued, welded, "
-                 "staked) or ignored; interference, transition and bonded make the pair rigid in the joints, "
-                 "ignored leaves the contact out")
+                 "staked), threaded (a screw tightened in its thread: undone by the disassembly, a bond never "
+                 "is) or ignored; interference, transition, bonded and threaded make the pair rigid in the "
+                 "joints, ignored leaves the contact out")
     if fresh:
         obj.Intent = INTENT_CHOICES
         obj.Intent = "none"
+    elif list(obj.getEnumerationsOfProperty("Intent")) != INTENT_CHOICES:
+        # A document saved before an intent was added: the new choices, the contact's own kept.
+        current = obj.Intent
+        obj.Intent = INTENT_CHOICES
+        obj.Intent = current
     add_property(obj, "App::PropertyString", "Fit", "Annotation",
                  "ISO 286 fit code such as H7/g6 (cylindrical contacts), its class checked against the intent")
     add_property(obj, "App::PropertyString", "FitClass", "Annotation",
@@ -209,8 +215,9 @@ def check_annotation(obj, intent=None, fit=None):
     if not fit:
         return None
     where = f"contact '{obj.Label}'"
-    if intent == "ignored":
-        raise core.ArgumentError(f"{where}: an ignored contact has no fit ('{fit}')")
+    if intent in ("ignored", "threaded"):
+        raise core.ArgumentError(f"{where}: {'an' if intent == 'ignored' else 'a'} {intent} contact has no "
+                                 f"fit ('{fit}')")
     if obj.ContactType not in annotations.FIT_TYPES:
         raise core.ArgumentError(f"{where}: fit {fit} needs a cylindrical contact "
                                  f"({', '.join(annotations.FIT_TYPES)}) to give its diameter, not "

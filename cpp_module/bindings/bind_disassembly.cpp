@@ -11,7 +11,7 @@ void bind_disassembly(py::module_& m) {
       .def_readonly("blocked_before", &DisassemblyStep::blocked_before,
                     "parts that blocked it along its direction at first, all removed before it")
       .def_readonly("released", &DisassemblyStep::released,
-                    "indices of the bonded cylindrical contacts released (unscrewed) for this step");
+                    "indices of the threaded cylindrical contacts released (unscrewed) for this step");
 
   py::class_<DisassemblyResult>(m, "DisassemblyResult", "Removal order, blocking graphs, or why none exists")
       .def_readonly("steps", &DisassemblyResult::steps, "[DisassemblyStep] in removal order (the base is not a step)")
@@ -60,7 +60,8 @@ void bind_disassembly(py::module_& m) {
       py::arg("contact_intents") = std::vector<std::string>{}, py::arg("sample_free_cones") = true,
       "Contacts (or `contacts`, found already with the same tolerances), joints, meshes, then blocking and the "
       "removal sequence (see disassembly.h). `contact_intents`: one per contact of `contacts` (\"\" none, "
-      "clearance, transition, interference, bonded, ignored): fitted and bonded parts come out together.");
+      "clearance, transition, interference, bonded, ignored, threaded): fitted, bonded and threaded parts come out "
+      "together; threads are undone (unscrewed) when nothing else can leave, bonds never.");
 }
 
 }  // namespace contactcore::bindings

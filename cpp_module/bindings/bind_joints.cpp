@@ -124,7 +124,7 @@ void bind_joints(py::module_& m) {
               raise_if_failed(Status::failure(StatusCode::InvalidArgument,
                                               std::string("unknown intent '") + texts[i] + "' for " + what + " " +
                                                   std::to_string(i) +
-                                                  ": use clearance, transition, interference, bonded or ignored"));
+                                                  ": use clearance, transition, interference, bonded, ignored or threaded"));
             out.push_back(intent);
           }
         };
@@ -141,8 +141,8 @@ void bind_joints(py::module_& m) {
       py::arg("contact_intents") = std::vector<std::string>{},
       py::arg("higher_pair_intents") = std::vector<std::string>{},
       "The joint of every body pair in contact (b relative to a). `contact_intents`: the designer's intent "
-      "per contact (\"clearance\", \"transition\", \"interference\", \"bonded\", \"ignored\" or \"\"): "
-      "interference, transition and bonded make the pair rigid, ignored contacts are left out.");
+      "per contact (\"clearance\", \"transition\", \"interference\", \"bonded\", \"ignored\", \"threaded\" or \"\"): "
+      "interference, transition, bonded and threaded make the pair rigid, ignored contacts are left out.");
 
   m.def(
       "body_free_directions",

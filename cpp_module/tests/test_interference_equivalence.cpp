@@ -16,7 +16,9 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
@@ -28,6 +30,7 @@
 
 #include "contactcore/bodies/bodies.h"
 #include "contactcore/contacts/contacts.h"
+#include "contacts/coaxial_overlap.h"
 #include "contacts/interferences.h"
 #include "test_helpers.h"
 
@@ -151,6 +154,76 @@ TEST(InterferenceEquivalence, PressFits) {
   ASSERT_EQ(found.size(), 2u);
   EXPECT_NEAR(found.at({0, 1}), M_PI * (5.05 * 5.05 - 25) * 10, 1e-6);
   EXPECT_NEAR(found.at({2, 3}), M_PI * (4.1 * 4.1 - 16) * 6, 1e-6);
+}
+
+namespace {
+
+// A plate 10 thick with a bore r 5 whose mouth at z = 10 has a 1 mm 45 degree
+// chamfer (r 5 at z = 9 to r 6 at z = 10), and a shaft r 5.05 from z = 2 to 30
+// whose bottom end has a 0.5 mm 45 degree chamfer (r 4.55 at z = 2 to 5.05 at
+// z = 2.5). Moved by `motion`.
+std::pair<TopoDS_Shape, TopoDS_Shape> chamfered_press_fit(const gp_Trsf& motion) {
+  const TopoDS_Shape mouth = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 9), gp::DZ()), 5, 6, 1).Shape();
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(plate_with_bore(5), mouth).Shape();
+  const TopoDS_Shape tip = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 2), gp::DZ()), 4.55, 5.05, 0.5).Shape();
+  const TopoDS_Shape shaft = BRepAlgoAPI_Fuse(cylinder(5.05, 27.5, gp_Pnt(0, 0, 2.5)), tip).Shape();
+  return {BRepBuilderAPI_Transform(plate, motion, Standard_True).Shape(),
+          BRepBuilderAPI_Transform(shaft, motion, Standard_True).Shape()};
+}
+
+}  // namespace
+
+TEST(InterferenceEquivalence, ChamferedPressFitMeasuredExactly) {
+  // By hand, in slices of z: the shaft's chamfer r = z + 2.55 passes the bore
+  // r 5 at z = 2.45: pi (10 u + u^2) over u in [0, 0.05]; the full ring
+  // pi (5.05^2 - 25) over z in [2.5, 9]; the bore's chamfer r = z - 4 under
+  // the shaft up to z = 9.05: pi (5.05^2 - (5 + u)^2) over u in [0, 0.05].
+  // The u^3/3 terms cancel: pi (0.0125 + 0.5025 * 6.5 + 0.025125 - 0.0125)
+  // = 3.291375 pi, where the ring between the cylinders (3.26625 pi) is
+  // 0.76 % short. Along z and along a tilted axis (the same by rigid motion).
+  const double expected = 3.291375 * M_PI;
+  gp_Trsf tilt;
+  tilt.SetRotation(gp_Ax1(gp_Pnt(3, -2, 1), gp_Dir(1, 2, 0.5)), 0.7);
+  tilt.SetTranslationPart(gp_Vec(12.5, -7, 3));
+  for (const gp_Trsf& motion : {gp_Trsf(), tilt}) {
+    const auto [plate, shaft] = chamfered_press_fit(motion);
+    const Assembly assembly = make_assembly({{"plate", plate}, {"shaft", shaft}});
+    const Found found = expect_equivalent(assembly, "chamfered press fit");
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_NEAR(found.begin()->second, expected, 1e-6 * expected);
+    // Sliced about the axis, not by a Boolean: the slicing alone gives it.
+    const ContactsResult result = contacts_of(assembly);
+    const std::optional<double> sliced =
+        coaxial_common_volume(result.partitions[0], plate, result.partitions[1], shaft,
+                              gp_Ax1(gp::Origin(), gp::DZ()).Transformed(motion),
+                              pair_tolerances(result.partitions[0], result.partitions[1]));
+    ASSERT_TRUE(sliced.has_value());
+    EXPECT_NEAR(*sliced, expected, 1e-9 * expected);
+  }
+  // Every face a B-spline (recognised as planes, cylinders and cones).
+  const auto [plate, shaft] = chamfered_press_fit(gp_Trsf());
+  const Found bsplines = expect_equivalent(make_assembly({{"plate", as_bsplines(plate)}, {"shaft", as_bsplines(shaft)}}),
+                                           "chamfered press fit, B-spline faces");
+  ASSERT_EQ(bsplines.size(), 1u);
+  EXPECT_NEAR(bsplines.begin()->second, expected, kRelative * expected);
+}
+
+TEST(InterferenceEquivalence, PressFitBesideACrossHole) {
+  // A cross hole r 2 along x at z = 5 through the plate and its bore: a face
+  // about another axis within the shaft's reach, so no slicing; the volume
+  // still matches the whole-solid Boolean (the region Boolean measures it).
+  const TopoDS_Shape cross = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-30, 0, 5), gp::DX()), 2, 60).Shape();
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(plate_with_bore(5), cross).Shape();
+  const Found found = expect_equivalent(make_assembly({{"plate", plate}, {"shaft", cylinder(5.05, 30, gp_Pnt(0, 0, -10))}}),
+                                        "press fit beside a cross hole");
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_LT(found.begin()->second, M_PI * (5.05 * 5.05 - 25) * 10);
+  const Assembly assembly = make_assembly({{"plate", plate}, {"shaft", cylinder(5.05, 30, gp_Pnt(0, 0, -10))}});
+  const ContactsResult result = contacts_of(assembly);
+  EXPECT_FALSE(coaxial_common_volume(result.partitions[0], assembly.bodies[0].shape, result.partitions[1],
+                                     assembly.bodies[1].shape, gp_Ax1(gp::Origin(), gp::DZ()),
+                                     pair_tolerances(result.partitions[0], result.partitions[1]))
+                   .has_value());
 }
 
 TEST(InterferenceEquivalence, PinCrossingAThinPlateBetweenItsSamples) {

@@ -404,10 +404,10 @@ const std::vector<Note> kMotorNotes = {
     {"Axis", "Bearing-back", "CLJ", ContactIntent::Clearance},
     {"Axis", "Seal", "CLJ", ContactIntent::Clearance},
     {"Stator", "Body", "CLJ", ContactIntent::Bonded},
-    {"Screw-1", "Back-cover", "CLJ", ContactIntent::Bonded},
-    {"Screw-2", "Back-cover", "CLJ", ContactIntent::Bonded},
-    {"Screw-3", "Back-cover", "CLJ", ContactIntent::Bonded},
-    {"Screw-4", "Back-cover", "CLJ", ContactIntent::Bonded},
+    {"Screw-1", "Back-cover", "CLJ", ContactIntent::Threaded},
+    {"Screw-2", "Back-cover", "CLJ", ContactIntent::Threaded},
+    {"Screw-3", "Back-cover", "CLJ", ContactIntent::Threaded},
+    {"Screw-4", "Back-cover", "CLJ", ContactIntent::Threaded},
 };
 
 }  // namespace

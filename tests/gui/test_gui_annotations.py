@@ -30,11 +30,11 @@ def test_unannotated_motor_is_26_dof(report):
 
 def test_annotated_through_the_commands_is_two_groups_one_dof(report):
     annotated = report["annotated"]
-    # the file's 17 entries cover 17 contacts (tests/test_mechanism.py), in 6 (intent, fit) steps
+    # the file's 17 entries cover 17 contacts (tests/test_mechanism.py), in 7 (intent, fit) steps
     assert annotated["marked"] == 17 and annotated["contacts"] == MOTOR_CONTACTS
     assert [(s["intent"], s["fit"], s["contacts"]) for s in annotated["steps"]] == [
-        ("interference", "H7/p6", 2), ("bonded", "", 9), ("interference", "N6/h5", 2),
-        ("interference", "H8/s7", 1), ("clearance", "H7/g6", 2), ("clearance", "", 1)]
+        ("interference", "H7/p6", 2), ("bonded", "", 5), ("interference", "N6/h5", 2),
+        ("interference", "H8/s7", 1), ("clearance", "H7/g6", 2), ("clearance", "", 1), ("threaded", "", 4)]
     assert {s["how"] for s in annotated["steps"]} == {"tree", "context menu", "table"}
     for s in annotated["steps"]:
         assert s["undo"] == "Annotate contact"
@@ -42,7 +42,7 @@ def test_annotated_through_the_commands_is_two_groups_one_dof(report):
         assert s["seen"]["ok_enabled"]
         if s["how"] == "table":
             assert len(s["seen"]["table_selected"]) == s["contacts"]
-    assert annotated["undo_names"][:6] == ["Annotate contact"] * 6
+    assert annotated["undo_names"][:7] == ["Annotate contact"] * 7
     assert annotated["dof"] == [1, 2]
     assert "Rigid group 2: Axis, Rotor-front, Rotor-back, Magnet-1, Magnet-2, Magnet-3, Magnet-4 (revolute, " \
            "1 DOF)" in annotated["mobility"] or any(

@@ -57,7 +57,7 @@ class AnnotateDialog(QtWidgets.QDialog):
         try:
             if cylinder is None:
                 raise core.ArgumentError(f"fit {fit} needs a cylindrical contact (CLJ) to give its diameter")
-            if intent in ("none", "ignored"):
+            if intent in ("none", "ignored", "threaded"):
                 raise core.ArgumentError(f"a fit needs an intent other than {intent}")
             found = check_annotation(cylinder, intent, fit)
         except core.ArgumentError as error:

@@ -6,7 +6,9 @@
 
 #include <vector>
 
-#include <BRepClass_FaceClassifier.hxx>
+#include <memory>
+
+#include <BRepTopAdaptor_FClass2d.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
@@ -45,13 +47,19 @@ class FaceProbe {
       : face_(info.face), surface_(BRep_Tool::Surface(info.face)), analysis_(surface_) {
     BRepTools::UVBounds(face_, u_min_, u_max_, v_min_, v_max_);
   }
+  // Probes come in runs of nearby points (samples along a line, bisections):
+  // the projection starts from the previous one's parameters (Newton; the
+  // global search over the surface only when that misses: on a B-spline face
+  // it costs a grid of distances per point), and the face's 2D classifier is
+  // built once (BRepClass_FaceClassifier rebuilt it per point).
   bool contains(const gp_Pnt& p, double tol) {
-    const gp_Pnt2d uv = analysis_.ValueOfUV(p, tol);
+    const gp_Pnt2d uv = has_last_ ? analysis_.NextValueOfUV(last_uv_, p, tol, tol) : analysis_.ValueOfUV(p, tol);
     if (analysis_.Gap() > tol) return false;
+    last_uv_ = uv, has_last_ = true;
     const double u = into_range(uv.X(), u_min_, u_max_, surface_->IsUPeriodic() ? surface_->UPeriod() : 0);
     const double v = into_range(uv.Y(), v_min_, v_max_, surface_->IsVPeriodic() ? surface_->VPeriod() : 0);
-    BRepClass_FaceClassifier classifier(face_, gp_Pnt2d(u, v), Precision::PConfusion());
-    const TopAbs_State state = classifier.State();
+    if (!classifier_) classifier_ = std::make_unique<BRepTopAdaptor_FClass2d>(face_, Precision::PConfusion());
+    const TopAbs_State state = classifier_->Perform(gp_Pnt2d(u, v));
     return state == TopAbs_IN || state == TopAbs_ON;
   }
 
@@ -67,6 +75,9 @@ class FaceProbe {
   TopoDS_Face face_;
   Handle(Geom_Surface) surface_;
   ShapeAnalysis_Surface analysis_;
+  std::unique_ptr<BRepTopAdaptor_FClass2d> classifier_;
+  gp_Pnt2d last_uv_;
+  bool has_last_ = false;
   double u_min_ = 0, u_max_ = 0, v_min_ = 0, v_max_ = 0;
 };
 

@@ -25,6 +25,7 @@
 #include <gp_Ax1.hxx>
 
 #include "contacts/boundary_crossing.h"
+#include "contacts/coaxial_overlap.h"
 #include "contactcore/common/angles.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/parallel.h"
@@ -100,7 +101,8 @@ std::vector<AngularInterval> bore_angles_in(const BodyPartitions& bore_body, con
 // angle. The material they share is the ring between the two radii over that
 // range: 1/2 span (r_s^2 - r_b^2) L, exact for coaxial cylinder faces (no
 // solid Boolean). Adds the volumes found to `volume`.
-bool press_fits(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol, double& volume) {
+bool press_fits(const BodyPartitions& a, const BodyPartitions& b, const Tolerances& tol, double& volume,
+                std::vector<gp_Ax1>* axes = nullptr) {
   bool found = false;
   for (const Partition& shaft : a.partitions) {
     if (shaft.params.kind != SurfaceKind::Cylinder || shaft.side != MaterialSide::Convex) continue;
@@ -127,6 +129,7 @@ bool press_fits(const BodyPartitions& a, const BodyPartitions& b, const Toleranc
       if (span <= tol.angular) continue;
       const double rs = shaft.params.radius, rb = bore.params.radius;
       volume += 0.5 * span * (rs * rs - rb * rb) * (high - low);
+      if (axes) axes->push_back(axis);
       found = true;
     }
   }
@@ -310,18 +313,28 @@ PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, in
   const Tolerances tol = pair_tolerances(pa, pb);
   PairOutcome out;
   double volume = 0;
-  const bool shaft_in_b = press_fits(pa, pb, tol, volume);
-  const bool shaft_in_a = press_fits(pb, pa, tol, volume);
+  std::vector<gp_Ax1> axes;
+  const bool shaft_in_b = press_fits(pa, pb, tol, volume, &axes);
+  const bool shaft_in_a = press_fits(pb, pa, tol, volume, &axes);
   if (shaft_in_b || shaft_in_a) {
-    // The ring proves the overlap and bounds its volume from below; what the
+    // The ring proves the overlap (its volume is an estimate); what the
     // bodies share beyond the cylinders (a chamfer or counterbore at the
     // bore's mouth around the shaft: R08's 4848 mm3 ring is 5 % short of the
-    // 5105 mm3 both solids share) is measured by the region Boolean. A failed
-    // or short Boolean (never below the ring it contains) leaves the ring.
+    // 5105 mm3 both solids share) is measured from the faces about the press
+    // fit's axis when one body is a solid of revolution about it and the
+    // other is one within its reach (coaxial_overlap.h, exact, no Boolean);
+    // otherwise by the region Boolean. A failed Boolean leaves the ring (not a
+    // bound either way: a cross hole through the bore takes material out of it).
     out.kind = PairOutcome::PressFit;
+    for (const gp_Ax1& axis : axes)
+      if (const std::optional<double> exact = coaxial_common_volume(pa, assembly.bodies[a].shape, pb,
+                                                                    assembly.bodies[b].shape, axis, tol)) {
+        out.volume = *exact;
+        return out;
+      }
     const double common = region_common_volume(assembly.bodies[a].shape, pa.box, assembly.bodies[b].shape, pb.box,
                                                tol.linear);
-    out.volume = std::max(volume, common);
+    out.volume = common >= 0 ? common : volume;
     return out;
   }
   // Instances hold no outlines of their own: their source's, same frames.

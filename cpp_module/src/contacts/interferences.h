@@ -17,12 +17,13 @@ namespace contactcore {
 // shoulder on its seat); the interference is reported beside them. Only pairs whose boxes overlap deeper than the tolerance are looked
 // at, on `threads` threads (0: all cores; the result is the same), each by:
 //  1. the same solid twice at one place: its volume;
-//  2. a coaxial press fit (a shaft larger than its bore by at most 5 % of the
+//  2. a coaxial press fit (a shaft larger than its bore by at most 50 % of the
 //     bore's radius, over a common axial range): proven by the ring between
-//     the radii, measured from the partitions (press_fit_volume), a lower
-//     bound of the volume; the volume itself by the region Boolean of step 4
-//     (chamfers and counterbores around the shaft share material too), the
-//     ring when that Boolean fails;
+//     the radii, measured from the partitions (press_fit_volume); the volume
+//     (chamfers and counterbores around the shaft share material too) sliced
+//     exactly about the fit's axis when one body is a solid of revolution
+//     about it and the other one within its reach (coaxial_overlap.h),
+//     otherwise by the region Boolean of step 4, the ring when that fails;
 //  3. a proof from the partitions that they share no material (separation.h):
 //     the common case, touching bodies, ends here;
 //  4. otherwise vertices, edge midpoints and face points of each body

@@ -167,7 +167,7 @@ int RealtimeContacts::near_bodies(const Pose& pose, int* out, int capacity) cons
 }
 
 bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, const Pose& pose, const SurfaceProxy& o,
-                             LiveContact& c) const noexcept {
+                             LiveContact& c, double lead_in) const noexcept {
   const double cos_tol = std::cos(tolerances_.angle);
   switch (m.kind) {
     case SurfaceKind::Cylinder: {
@@ -184,7 +184,11 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, c
       if (d > tolerances_.distance + clearance) return false;
       const double s1 = (p1 - o.location).dot(o.axis), s2 = (p2 - o.location).dot(o.axis);
       const double lo = std::max(std::min(s1, s2), o.axial_min), hi = std::min(std::max(s1, s2), o.axial_max);
-      if (hi - lo < 1e-3) return false;
+      // Sharing an axial band, or (lead-in) about to: the shaft's end
+      // outside the bore's mouth by at most `lead_in`.
+      const bool inside = hi - lo >= 1e-3;
+      if (!inside && (lead_in <= 0 || lo - hi > lead_in)) return false;
+      c.mouth_gap = inside ? 0.0 : std::max(lo - hi, 1e-9);
       c.type = ContactType::CLJ;
       c.distance = d;
       c.angle = std::acos(std::min(1.0, dot));
@@ -235,7 +239,7 @@ bool RealtimeContacts::match(const SurfaceProxy& m, const SurfaceProxy& local, c
   }
 }
 
-int RealtimeContacts::update(const Pose& pose, LiveContact* out, int capacity) const noexcept {
+int RealtimeContacts::update(const Pose& pose, LiveContact* out, int capacity, double lead_in) const noexcept {
   int near[kMaxLive];
   const int near_count = near_bodies(pose, near, kMaxLive);
   int n = 0;
@@ -272,7 +276,7 @@ int RealtimeContacts::update(const Pose& pose, LiveContact* out, int capacity) c
         const SurfaceProxy& o = body.surfaces[*it];
         if (m.kind != SurfaceKind::Plane && m.kind != SurfaceKind::Cone && o.radius > m.radius + slack) break;
         LiveContact c;
-        if (!match(m, local, pose, o, c)) continue;
+        if (!match(m, local, pose, o, c, lead_in)) continue;
         if (n >= capacity) return n;
         c.body = near[k];
         c.moving_partition = local.partition;
@@ -293,17 +297,23 @@ ContactJointFinder::ContactJointFinder(const RealtimeContacts& contacts, std::ve
     : contacts_(contacts), groups_(std::move(partition_groups)), centre_(centre), live_(kMaxLive) {}
 
 bool ContactJointFinder::capture(const Pose& pose, JointState& joint) noexcept {
-  const int n = contacts_.update(pose, live_.data(), kMaxLive);
-  // The nearest contact of a type.
+  const int n = contacts_.update(pose, live_.data(), kMaxLive, contacts_.tolerances().distance);
+  // The nearest contact of a type (a shaft inside its bore before one at a mouth).
   auto nearest = [&](ContactType type) -> const LiveContact* {
     const LiveContact* best = nullptr;
-    for (int i = 0; i < n; ++i)
-      if (live_[i].type == type && (!best || live_[i].distance < best->distance)) best = &live_[i];
+    for (int i = 0; i < n; ++i) {
+      const LiveContact& c = live_[i];
+      if (c.type != type) continue;
+      if (!best || (c.mouth_gap > 0) < (best->mouth_gap > 0) ||
+          ((c.mouth_gap > 0) == (best->mouth_gap > 0) && c.distance < best->distance))
+        best = &c;
+    }
     return best;
   };
   // What fixes more first: a shaft in a bore, a cone in its seat, a ball in a cup, a face on a plane.
   if (const LiveContact* clj = nearest(ContactType::CLJ)) {
     fill_axial(*clj, n, joint);
+    joint.at_mouth = clj->mouth_gap > 0;
     add_stops(pose, joint);
     return true;
   }
@@ -339,6 +349,7 @@ void ContactJointFinder::fill_axial(const LiveContact& best, int n, JointState& 
   for (int i = 0; i < n; ++i) {
     const LiveContact& c = live_[i];
     if (c.type != best.type) continue;
+    if (c.mouth_gap > 0 && best.mouth_gap == 0) continue;  // not entered yet: not a body it is in
     const SurfaceProxy& oc = contacts_.surfaces(c.body)[c.other_index];
     const bool same = joint.kind == JointKind::Spherical
                           ? (oc.location - o.location).norm() < contacts_.tolerances().distance
@@ -475,20 +486,29 @@ void ContactJointFinder::add_stops(const Pose& pose, JointState& joint) const no
   }
 }
 
-bool ContactJointFinder::still_engaged(const Pose& pose, const JointState& joint) noexcept {
+bool ContactJointFinder::still_engaged(const Pose& pose, const JointState& joint, bool* entered) noexcept {
   const double cos_tol = std::cos(contacts_.tolerances().angle);
+  if (entered) *entered = true;
   if (joint.contact_type == static_cast<int>(ContactType::CJU)) {
     JointState again;
     return cone_seat(pose, again, &joint);
   }
-  const int n = contacts_.update(pose, live_.data(), kMaxLive);
+  // With the capture's lead-in: a shaft captured at its bore's mouth stays
+  // held there, and a shaft pulled out is let go only beyond the capture
+  // distance, where it could not be captured again (no capture, release,
+  // capture again at each tick).
+  const int n = contacts_.update(pose, live_.data(), kMaxLive, contacts_.tolerances().distance);
+  bool held = false, inside = false;
   for (int i = 0; i < n; ++i) {
     const LiveContact& c = live_[i];
     const SurfaceProxy& o = contacts_.surfaces(c.body)[c.other_index];
     if (joint.kind == JointKind::Cylindrical && c.type == ContactType::CLJ &&
         std::abs(o.axis.dot(joint.axis)) > cos_tol &&
-        line_distance(o.location, joint.point, joint.axis) < contacts_.tolerances().distance)
-      return true;
+        line_distance(o.location, joint.point, joint.axis) < contacts_.tolerances().distance) {
+      held = true;
+      inside = inside || c.mouth_gap == 0;
+      continue;
+    }
     if (joint.kind == JointKind::Spherical && c.type == ContactType::SPF &&
         (o.location - joint.point).norm() < contacts_.tolerances().distance)
       return true;
@@ -497,7 +517,8 @@ bool ContactJointFinder::still_engaged(const Pose& pose, const JointState& joint
         std::abs((o.location - joint.point).dot(joint.axis)) < contacts_.tolerances().radius * 10)
       return true;
   }
-  return false;
+  if (entered) *entered = inside;
+  return held;
 }
 
 CollisionGroups collision_groups(const RealtimeContacts& contacts) {

@@ -292,13 +292,14 @@ void ServoLoop::carry_contacts(const Pose& measured_at) {
   carried_count_ = count;
 }
 
-Pose ServoLoop::move_proxy(const Pose& target, double dt) {
+Pose ServoLoop::move_proxy(const Pose& target, double dt, double spent_lin, double spent_ang) {
   const Vec3 c = config_.centre;
   const Vec3 c0 = proxy_ * c;
   Vec6 xi = twist_between(proxy_, target, c);
   // Speed limits keep each tick's motion small (the swept check below, capture).
   const double lin = xi.head<3>().norm(), ang = xi.tail<3>().norm();
-  const double max_lin = config_.max_speed * dt, max_ang = config_.max_angular_speed * dt;
+  const double max_lin = std::max(0.0, config_.max_speed * dt - spent_lin);
+  const double max_ang = std::max(0.0, config_.max_angular_speed * dt - spent_ang);
   if (lin > max_lin) xi.head<3>() *= max_lin / lin;
   if (ang > max_ang) xi.tail<3>() *= max_ang / ang;
 
@@ -360,7 +361,16 @@ Pose ServoLoop::move_proxy(const Pose& target, double dt) {
   for (int round = 0; round < 4; ++round) {
     const ProxyStep step = solve_proxy_step(xi, metric, basis, free, rows.data(), row_count);
     last_.blocked = last_.blocked || step.active > 0;
-    candidate = apply_twist(proxy_, step.twist, c);
+    // The nearest twist in the mass metric can move the centre a hair more
+    // than the limit asked (rotation and translation are coupled in the
+    // metric; a centre off the joint's axis turns with the part): scaled back
+    // (a scaled feasible step stays feasible), so the speed bound holds exactly.
+    Vec6 twist = step.twist;
+    const double step_lin = twist.head<3>().norm(), step_ang = twist.tail<3>().norm();
+    const double scale = std::min({1.0, step_lin > max_lin ? max_lin / step_lin : 1.0,
+                                   step_ang > max_ang ? max_ang / step_ang : 1.0});
+    twist *= scale;
+    candidate = apply_twist(proxy_, twist, c);
     if (engaged_) candidate = snap_to_joint(joint_, candidate);
     for (int i = 0; i < joint_.stop_count && engaged_; ++i) {
       const Stop& stop = joint_.stops[i];
@@ -454,6 +464,7 @@ void ServoLoop::tick(double now, bool wall_clock) {
 
     // Engagement: capture near a joint (once re-armed after a break-away),
     // probed where the part is (the proxy), never where the hand is.
+    double snap_lin = 0, snap_ang = 0;
     if (finder_ && !engaged_) {
       JointState found;
       if (finder_->capture(proxy_, found)) {
@@ -462,11 +473,25 @@ void ServoLoop::tick(double now, bool wall_clock) {
           // when it leaves the part no deeper in any other body (the joint's
           // own surfaces off; touching a coplanar face is no overlap).
           const Pose snapped = snap_to_joint(found, proxy_);
-          const double before = depth_at(proxy_, &found);
-          if (depth_at(snapped, &found) <= std::max(config_.penetration_tolerance, before)) {
-            engage(found);
-            engaged_at_ = now;
-            proxy_ = snapped;
+          // A shaft at its bore's mouth is held by nothing yet: its snap is
+          // this tick's motion, within the proxy's speed limits (no jump),
+          // checked halfway as well as at its end; the step below gets what
+          // is left of the limits. Further off, the hand brings it closer.
+          const Vec6 jump = twist_between(proxy_, snapped, c);
+          const bool within = !found.at_mouth || (jump.head<3>().norm() <= config_.max_speed * dt &&
+                                                  jump.tail<3>().norm() <= config_.max_angular_speed * dt);
+          if (within) {
+            const double before = std::max(config_.penetration_tolerance, depth_at(proxy_, &found));
+            if (depth_at(snapped, &found) <= before &&
+                (!found.at_mouth || depth_at(interpolate(proxy_, snapped, 0.5), &found) <= before)) {
+              engage(found);
+              engaged_at_ = now;
+              proxy_ = snapped;
+              if (found.at_mouth) {
+                snap_lin = jump.head<3>().norm();
+                snap_ang = jump.tail<3>().norm();
+              }
+            }
           }
         }
       } else {
@@ -474,7 +499,7 @@ void ServoLoop::tick(double now, bool wall_clock) {
       }
     }
 
-    const Pose next = move_proxy(target, dt);
+    const Pose next = move_proxy(target, dt, snap_lin, snap_ang);
     proxy_velocity_ = twist_between(proxy_, next, c) / dt;
     proxy_ = next;
 
@@ -496,13 +521,16 @@ void ServoLoop::tick(double now, bool wall_clock) {
         across = (tilt - tilt.dot(joint_.axis) * joint_.axis) / config_.length_scale;
       }
       // A shaft inside its bore cannot leave it sideways: a bore joint ends
-      // only when the part has left the bore (still_engaged below).
+      // only when the part has left the bore (still_engaged below). At the
+      // bore's mouth (not entered yet) nothing holds it: it breaks away.
+      bool entered = true;
+      const bool kept = !finder_ || finder_->still_engaged(proxy_, joint_, &entered);
       const bool in_bore = joint_.contact_type == static_cast<int>(ContactType::CLJ) &&
-                           (joint_.kind == JointKind::Cylindrical || joint_.kind == JointKind::Revolute);
+                           (joint_.kind == JointKind::Cylindrical || joint_.kind == JointKind::Revolute) && entered;
       if (!in_bore && across.norm() > config_.breakaway_force) {
         engaged_ = false;
         rearm_ = false;
-      } else if (finder_ && !finder_->still_engaged(proxy_, joint_)) {
+      } else if (!kept) {
         engaged_ = false;
       }
     }

@@ -22,13 +22,14 @@ const char* to_string(ContactIntent intent) {
     case ContactIntent::Interference: return "interference";
     case ContactIntent::Bonded: return "bonded";
     case ContactIntent::Ignored: return "ignored";
+    case ContactIntent::Threaded: return "threaded";
   }
   return "";
 }
 
 bool parse_intent(const std::string& text, ContactIntent& intent) {
   for (ContactIntent candidate : {ContactIntent::Clearance, ContactIntent::Transition, ContactIntent::Interference,
-                                  ContactIntent::Bonded, ContactIntent::Ignored})
+                                  ContactIntent::Bonded, ContactIntent::Ignored, ContactIntent::Threaded})
     if (text == to_string(candidate)) {
       intent = candidate;
       return true;

@@ -495,13 +495,15 @@ DisassemblyResult plan_disassembly(const std::vector<DisassemblyPart>& parts, co
     }
     std::vector<int> released_now;
     if (!best) {
-      // Nothing can leave: undo one bond a mechanic can undo, a bonded cylindrical contact (a
-      // screw in its thread drawn as a plain bore), the smallest part first, if that lets a group
-      // out. The part it held is the one on its own after the release (else the smaller).
+      // Nothing can leave: undo one fastening a mechanic can undo, a threaded cylindrical contact
+      // (a screw in its thread, often drawn as a plain bore), the smallest part first, if that
+      // lets a group out. The part it held is the one on its own after the release (else the
+      // smaller). Bonded contacts (glued, welded, staked) are never undone: their parts come out
+      // as one sub-assembly or stay with the base.
       std::vector<int> bonds;
       for (std::size_t k = 0; k < contacts.size(); ++k) {
         const Contact& c = contacts[k];
-        if (!released[k] && intent_of(k) == ContactIntent::Bonded && c.type == ContactType::CLJ &&
+        if (!released[k] && intent_of(k) == ContactIntent::Threaded && c.type == ContactType::CLJ &&
             remaining[c.body_a] && remaining[c.body_b])
           bonds.push_back(static_cast<int>(k));
       }
@@ -603,6 +605,14 @@ DisassemblyResult disassemble(const Assembly& assembly, const ContactOptions& co
     for (const FaceFailure& failed : meshed.failed_faces)
       result.messages.push_back("body '" + body.name + "': Face" + std::to_string(failed.face) +
                                 " not meshed (" + failed.message + "): its collision model has a hole there");
+    if (meshed.status.ok() && meshed.mesh.triangles.empty() && !meshed.failed_faces.empty())
+      // OCCT's mesher failed on every face. Its per-face catch also swallows out-of-memory
+      // (Standard_OutOfMemory): under a 120 MB limit the motor's front cover came back empty and was
+      // then refused as "an empty mesh" (exit 3, as if the file were bad). Say what happened.
+      meshed.status = Status::failure(StatusCode::GeometryError,
+                                      "OCCT could not tessellate any of the body's " +
+                                          std::to_string(meshed.failed_faces.size()) +
+                                          " faces (its mesher fails so when memory runs out too)");
     if (!meshed.status.ok()) {
       result.status = meshed.status;
       result.status.body = body.name;

@@ -44,6 +44,9 @@ struct JointState {
   std::array<int, kMaxJointBodies> bodies{};
   int body_count = 0;
   int contact_type = 0;  // contactcore::ContactType as int
+  // A shaft captured at its bore's mouth (the lead-in: coaxial, its end
+  // within the capture distance outside the bore), not yet inside it.
+  bool at_mouth = false;
 
   bool add_stop(const Vec3& normal, double limit) {
     if (stop_count >= kMaxStops) return false;
@@ -73,8 +76,10 @@ class JointFinder {
   virtual ~JointFinder() = default;
   // True and `joint` filled when a joint captures the part at `pose`.
   virtual bool capture(const Pose& pose, JointState& joint) noexcept = 0;
-  // False once the part has left the joint (no common extent left).
-  virtual bool still_engaged(const Pose& pose, const JointState& joint) noexcept = 0;
+  // False once the part has left the joint (no common extent left). For a
+  // shaft in a bore, `entered` (when given) says whether it shares an axial
+  // band with a bore on the joint's axis (false: only at a bore's mouth).
+  virtual bool still_engaged(const Pose& pose, const JointState& joint, bool* entered) noexcept = 0;
 };
 
 // One contact of the part with another body, as the proxy's solver uses it:

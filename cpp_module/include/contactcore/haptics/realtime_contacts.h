@@ -47,6 +47,9 @@ struct LiveContact {
   int moving_index = 0;         // into moving_surfaces()
   double distance = 0, angle = 0;
   double clearance = 0;         // CLJ: bore radius - shaft radius (0 for a line-to-line fit)
+  // CLJ: mm from the shaft's end to its bore's mouth along the axis when
+  // matched by the lead-in only (no axial band in common yet); 0 inside.
+  double mouth_gap = 0;
 };
 
 class RealtimeContacts {
@@ -56,7 +59,9 @@ class RealtimeContacts {
                    const CaptureTolerances& tolerances);
   // The contacts of the moving part at `pose` (its displacement from the
   // assembled placement), at most `capacity`, written to `out`. Allocation-free.
-  int update(const Pose& pose, LiveContact* out, int capacity) const noexcept;
+  // `lead_in` (mm, engagement only): a coaxial shaft whose end is up to this
+  // far outside its bore's mouth counts as a CLJ contact (`mouth_gap` > 0).
+  int update(const Pose& pose, LiveContact* out, int capacity, double lead_in = 0) const noexcept;
   // Bodies whose box meets the moving part's box at `pose` (inflated by the
   // capture distance); returns how many were written.
   int near_bodies(const Pose& pose, int* out, int capacity) const noexcept;
@@ -77,14 +82,18 @@ class RealtimeContacts {
   // `m` is the moving partition at `pose` (no outline); `local` the same at
   // its assembled placement (with its outline, for planes).
   bool match(const SurfaceProxy& m, const SurfaceProxy& local, const Pose& pose, const SurfaceProxy& o,
-             LiveContact& c) const noexcept;
+             LiveContact& c, double lead_in) const noexcept;
   std::vector<BodySurfaces> bodies_;
   int moving_ = 0;
   CaptureTolerances tolerances_;
 };
 
 // Engagement from the real-time contacts, in this order: a shaft-in-bore (CLJ)
-// contact within capture captures the part on the bore's axis (Cylindrical); a
+// contact within capture captures the part on the bore's axis (Cylindrical),
+// a shaft inside its bore first, else one coaxial at its bore's mouth (its end
+// within the capture distance outside: a line-to-line shaft's tessellation
+// would catch on the mouth's rim before it could enter; the joint then holds
+// while the end stays within that distance, so capture and release agree); a
 // cone in a cone of the same angle (a conical seat: axes within the capture
 // angle and distance, the part's cone inside the other's axial range, not past
 // its apex) on the common axis, with a one-sided stop where the apexes meet
@@ -100,7 +109,7 @@ class ContactJointFinder : public JointFinder {
   ContactJointFinder(const RealtimeContacts& contacts, std::vector<int> partition_groups,
                      const Vec3& centre);
   bool capture(const Pose& pose, JointState& joint) noexcept override;
-  bool still_engaged(const Pose& pose, const JointState& joint) noexcept override;
+  bool still_engaged(const Pose& pose, const JointState& joint, bool* entered) noexcept override;
 
  private:
   void add_stops(const Pose& pose, JointState& joint) const noexcept;

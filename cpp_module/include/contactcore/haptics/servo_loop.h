@@ -189,7 +189,9 @@ class ServoLoop {
   void note_period(double now);
   void engage(const JointState& joint);
   Pose interpolate(const Pose& a, const Pose& b, double s) const;
-  Pose move_proxy(const Pose& target, double dt);
+  // `spent` (mm of the centre, rad): motion this tick already made (a snap at
+  // a bore's mouth), taken off the speed limits.
+  Pose move_proxy(const Pose& target, double dt, double spent_lin = 0, double spent_ang = 0);
   // The contact set at `pose` (reach mm) merged with the last ticks' contacts
   // carried on the part; returns the deepest overlap (mm, >= 0).
   double gather_contacts(const Pose& pose, double reach);

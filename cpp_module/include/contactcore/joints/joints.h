@@ -87,14 +87,17 @@ struct PairJoint {
 // show: parts drawn at nominal size read as sliding fits). Interference,
 // transition and bonded contacts hold their pair rigid; ignored ones are
 // left out; clearance (and unspecified) ones are what the surfaces allow.
-enum class ContactIntent { Unspecified, Clearance, Transition, Interference, Bonded, Ignored };
-// "", "clearance", "transition", "interference", "bonded", "ignored".
+// Threaded: a screw tightened in its thread (often drawn as a plain bore): rigid like a bond in the
+// joints, but a fastener a mechanic undoes (the disassembly unscrews it); a bonded contact (glued,
+// welded, staked) is never undone: its parts come out together or stay together.
+enum class ContactIntent { Unspecified, Clearance, Transition, Interference, Bonded, Ignored, Threaded };
+// "", "clearance", "transition", "interference", "bonded", "ignored", "threaded".
 const char* to_string(ContactIntent intent);
 // The intent named `text` (one of the strings above but ""); false when unknown.
 bool parse_intent(const std::string& text, ContactIntent& intent);
 inline bool holds_rigid(ContactIntent intent) {
   return intent == ContactIntent::Interference || intent == ContactIntent::Transition ||
-         intent == ContactIntent::Bonded;
+         intent == ContactIntent::Bonded || intent == ContactIntent::Threaded;
 }
 
 struct JointOptions {

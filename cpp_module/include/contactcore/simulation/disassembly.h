@@ -39,9 +39,10 @@ struct DisassemblyOptions {
   // 0: twice the mesh deflection (disassemble); plan_disassembly needs it positive.
   double tolerance = 0;
   // The designer's intents, per contact (as the contacts given): parts joined by interference or
-  // transition fits or bonds come out as one sub-assembly. When nothing can leave, a bonded
-  // cylindrical contact (a screw's thread drawn as a plain bore) is released: the part it held
-  // leaves along its axis (unscrewed), the part it was bonded to stays blocked by it until then.
+  // transition fits, bonds or threads come out as one sub-assembly. When nothing can leave, a
+  // threaded cylindrical contact (a screw's thread, often drawn as a plain bore) is released: the
+  // part it held leaves along its axis (unscrewed), the part it was screwed into stays blocked by
+  // it until then. Bonded contacts (glued, welded, staked) are never released.
   std::vector<ContactIntent> contact_intents;
   // disassemble: directions sampled inside each part's cone of free directions
   // (body_free_directions: the cone's generators, the sums of two and the sum of all, the cone's
@@ -55,7 +56,7 @@ struct DisassemblyStep {
   // Parts outside the step that blocked its parts along `direction` in the assembly as it was
   // first (all removed before this step: why it is free now), ascending.
   std::vector<int> blocked_before;
-  // Bonded cylindrical contacts released for this step (indices of the contacts given).
+  // Threaded cylindrical contacts released (unscrewed) for this step (indices of the contacts given).
   std::vector<int> released;
 };
 
