@@ -5,6 +5,10 @@ bench/gui_bench_session.py, which times, until the paint is drawn:
 
 - Find contacts on the motor in the task panel (target <= 1 s),
 - the recompute after moving one motor part (target <= 0.5 s),
+- the haptic panel on the motor with its analysis present: the 3D view's
+  render rate while the simulated hand moves the Axis (issue 20 item 6,
+  target >= 30 Hz), and what touched the contact results meanwhile (target:
+  nothing: no property change, no view-provider update, no paint rebuild),
 - Find contacts on two ball bearings: ../shared/data's R06 STEP imported
   twice (skipped with a message when absent; target <= 2 s).
 
@@ -30,7 +34,11 @@ TITLES = {"motor_find_contacts_panel": "Find contacts, motor (18 bodies), task p
           "bearings_find_contacts_panel": "Find contacts, two R06 bearings, task panel"}
 
 
-def run_session(build_dir, repeat, profile):
+RATE_TARGETS = {"motor_panel_view_rate_hz": 30.0}
+RATE_TITLES = {"motor_panel_view_rate_hz": "Haptic panel on the motor's Axis, analysis present: 3D view renders/s"}
+
+
+def run_session(build_dir, repeat, profile, panel_seconds=5.0):
     if not shutil.which("xvfb-run") or not shutil.which("freecad"):
         sys.exit("xvfb-run or freecad missing (make deps-test)")
     with tempfile.TemporaryDirectory() as home:
@@ -40,7 +48,7 @@ def run_session(build_dir, repeat, profile):
         result = os.path.join(home, "bench_gui.json")
         env = dict(os.environ, HOME=home, QTWEBENGINE_DISABLE_SANDBOX="1", CONTACTS_GUI_RESULT=result,
                    CONTACTS_SHARED_STEP=SHARED_STEP, CONTACTS_BENCH_REPEAT=str(repeat),
-                   CONTACTS_BENCH_PROFILE="1" if profile else "0")
+                   CONTACTS_BENCH_PROFILE="1" if profile else "0", CONTACTS_BENCH_PANEL_SECONDS=str(panel_seconds))
         env.pop("CONTACTS_PYTHON_DIR", None)  # the installed extension
         proc = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1400x1050x24", "freecad",
                                os.path.join(REPO, "bench", "gui_bench_session.py")],
@@ -66,6 +74,24 @@ def table(report, load):
             continue
         lines.append(f"| {TITLES[name]} | {min(times):.2f} | {max(times):.2f} | {target:g} | "
                      f"{'yes' if min(times) <= target else '**no**'} |")
+    for name, target in RATE_TARGETS.items():
+        rates = report["times"].get(name)
+        if not rates:
+            lines.append(f"| {RATE_TITLES[name]} | – | – | ≥ {target:g} Hz | not run |")
+            continue
+        lines.append(f"| {RATE_TITLES[name]} | {max(rates):.1f} Hz | {min(rates):.1f} Hz | ≥ {target:g} Hz | "
+                     f"{'yes' if max(rates) >= target else '**no**'} |")
+    panel = report.get("panel")
+    if panel:
+        lines.append("")
+        lines.append(f"Haptic panel: {panel['renders']} renders of the 3D view in {panel['seconds']} s while the "
+                     f"simulated hand's Z slider moved the Axis 0–10 mm and back ({panel['slider_moves']} slider "
+                     f"moves; the Axis {panel['axis_moved_mm']} mm out at the end), {panel['panel_updates']} panel "
+                     f"updates ({panel['panel_rate_hz']} Hz, {panel['update_ms_mean']} ms each), render gaps "
+                     f"p50 {panel['render_gap_ms_p50']} ms, max {panel['render_gap_ms_max']} ms; the "
+                     f"{report.get('panel_contacts')} contacts touched meanwhile: {panel['result_changes']} property "
+                     f"changes of the workbench's objects, {panel['provider_calls']} view-provider "
+                     f"updateData/onChanged calls, {panel['paint_builds']} paint rebuilds.")
     lines.append("")
     lines.append(f"Motor: {report.get('motor_contacts')} contacts, {report.get('motor_core_painted')} painted "
                  f"from the core's regions; Back-cover has {report.get('motor_cover_contacts')} contacts; "
@@ -83,10 +109,11 @@ def main():
     parser.add_argument("--build-dir", default=os.path.join(REPO, "build"))
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--profile", action="store_true", help="print each step's cProfile top functions")
+    parser.add_argument("--panel-seconds", type=float, default=5.0, help="length of the haptic panel trial")
     parser.add_argument("--write", metavar="FILE", help="write the table into FILE's `gui` section")
     args = parser.parse_args()
     load = os.getloadavg()
-    report = run_session(os.path.abspath(args.build_dir), args.repeat, args.profile)
+    report = run_session(os.path.abspath(args.build_dir), args.repeat, args.profile, args.panel_seconds)
     text = table(report, load)
     print(text)
     if args.profile:

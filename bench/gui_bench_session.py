@@ -6,7 +6,14 @@ issue 21's GUI targets, timed as the designer meets them.
 2. Recompute after moving one motor part (Back-cover 40 mm, then back, then
    again: three recomputes), until the paint is drawn; the number of common
    regions the core computed each time.
-3. Find contacts on two ball bearings (../shared/data's R06 STEP imported
+3. The haptic trial panel on the motor with its contact analysis present
+   (issue 20 item 6): the simulated hand's Z slider moved back and forth for
+   PANEL_SECONDS, the Axis following along its bores; the 3D view's renders
+   counted by a SoCallback first in its scene graph (every SoGLRenderAction),
+   the panel's own updates, and what touched the contact results meanwhile:
+   property changes of the workbench's objects (a document observer), calls
+   of their view providers' updateData/onChanged, rebuilds of the paint.
+4. Find contacts on two ball bearings (../shared/data's R06 STEP imported
    twice, the copy moved beside the first) in the panel.
 
 "Drawn" is: the command returned, the deferred paint ran (Qt events
@@ -30,6 +37,7 @@ report = {"errors": {}, "times": {}, "profiles": {}, "regions": {}}
 PROFILE = os.environ.get("CONTACTS_BENCH_PROFILE") == "1"
 SHARED_STEP = os.environ.get("CONTACTS_SHARED_STEP", "")
 REPEAT = int(os.environ.get("CONTACTS_BENCH_REPEAT", "3"))
+PANEL_SECONDS = float(os.environ.get("CONTACTS_BENCH_PANEL_SECONDS", "5"))
 
 
 def analyses(doc):
@@ -91,6 +99,7 @@ def motor():
     settle()
     doc = FreeCAD.ActiveDocument
     doc.UndoMode = 1
+    report["motor_document"] = doc.Name
     for _ in range(REPEAT):
         timed("motor_find_contacts_panel", find_in_panel, doc)
     (group,) = analyses(doc)
@@ -114,6 +123,139 @@ def motor():
             FreeCADGui.runCommand("Std_Refresh")
         timed("motor_recompute_after_move", recompute, doc)
         report["regions"].setdefault("motor_recompute_after_move", []).append(regions.cache_of(group).computed)
+    doc.openTransaction("Move Back-cover")
+    cover.Placement = home
+    doc.commitTransaction()
+    FreeCADGui.runCommand("Std_Refresh")
+    drawn(doc)
+
+
+class RenderCounter:
+    """Counts the 3D view's renders: a SoCallback first in its scene graph,
+    called by every SoGLRenderAction."""
+
+    def __init__(self, view):
+        from pivy import coin
+        self.times = []
+        self.root = view.getSceneGraph()
+        self.node = coin.SoCallback()
+        self.node.setCallback(self._called)
+        self.root.insertChild(self.node, 0)
+        self.render_type = coin.SoGLRenderAction.getClassTypeId()
+
+    def _called(self, _, action):
+        if action.isOfType(self.render_type):
+            self.times.append(time.perf_counter())
+
+    def remove(self):
+        self.root.removeChild(self.node)
+
+
+class ResultTouches:
+    """What touches the contact results while the part moves: property
+    changes of the workbench's objects (analyses, contacts, joints,
+    interferences), calls of their view providers' updateData and onChanged,
+    rebuilds of the analyses' paint."""
+
+    def __init__(self, doc):
+        from contactwb.document.identify import is_workbench_result
+        self.is_result = is_workbench_result
+        self.changes, self.provider_calls, self.paint_builds = [], 0, 0
+        self.wrapped = []
+        for obj in doc.Objects:
+            proxy = getattr(getattr(obj, "ViewObject", None), "Proxy", None)
+            if not is_workbench_result(obj) or proxy is None:
+                continue
+            for name in ("updateData", "onChanged"):
+                if hasattr(proxy, name):
+                    self._wrap(proxy, name)
+            if hasattr(proxy, "overlay"):
+                self._wrap(proxy.overlay, "build", builds=True)
+        FreeCAD.addDocumentObserver(self)
+
+    def _wrap(self, owner, name, builds=False):
+        original = getattr(owner, name)
+
+        def counting(*args, **kwargs):
+            if builds:
+                self.paint_builds += 1
+            else:
+                self.provider_calls += 1
+            return original(*args, **kwargs)
+        setattr(owner, name, counting)  # an instance attribute: FreeCAD looks the method up on the proxy
+        self.wrapped.append((owner, name))
+
+    def slotChangedObject(self, obj, prop):
+        if self.is_result(obj):
+            self.changes.append(f"{obj.Name}.{prop}")
+
+    def stop(self):
+        FreeCAD.removeDocumentObserver(self)
+        for owner, name in self.wrapped:
+            delattr(owner, name)
+
+
+def haptic_panel_rate():
+    """The haptic panel on the motor's Axis, its contact analysis present and
+    drawn: the 3D view's render rate while the simulated hand moves the part
+    (issue 20 item 6: >= 30 Hz, no contact repaint per tick)."""
+    import math
+    from contactwb.gui.panels import haptic_panel
+    doc = FreeCAD.getDocument(report["motor_document"])
+    FreeCADGui.getDocument(doc.Name)  # its view active
+    FreeCAD.setActiveDocument(doc.Name)
+    FreeCADGui.activeDocument().activeView().viewIsometric()
+    FreeCADGui.SendMsgToActiveView("ViewFit")
+    drawn(doc)
+    (group,) = analyses(doc)
+    report["panel_contacts"] = sum(1 for c in group.Group if hasattr(c, "ContactType"))
+    axis = doc.getObjectsByLabel("Axis")[0]
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(axis)
+    FreeCADGui.runCommand("Contacts_HapticTrial")
+    settle()
+    FreeCADGui.Selection.clearSelection()
+    panel = haptic_panel.active_panel
+    if panel is None:
+        raise RuntimeError("the haptic panel did not open on the Axis")
+    app = QtWidgets.QApplication.instance()
+    wait_until = time.perf_counter() + 0.5
+    while time.perf_counter() < wait_until:
+        app.processEvents()
+    touches = ResultTouches(doc)
+    counter = RenderCounter(FreeCADGui.activeDocument().activeView())
+    frames_before = len(panel.frame_times)
+    start = time.perf_counter()
+    end = start + PANEL_SECONDS
+    moves = 0
+    while True:
+        now = time.perf_counter()
+        if now >= end:
+            break
+        # the hand pulls the axis out 10 mm and back, every 2 s (a designer's slider drag)
+        z = 5.0 * (1.0 - math.cos(math.pi * (now - start)))
+        panel.hand_sliders["z"].setValue(int(round(z * haptic_panel.SLIDER_STEPS_PER_UNIT)))
+        moves += 1
+        app.processEvents()
+        time.sleep(0.005)
+    seconds = time.perf_counter() - start
+    counter.remove()
+    touches.stop()
+    frames = len(panel.frame_times) - frames_before
+    costs = panel.update_seconds[-frames:] if frames else [0.0]
+    renders = [t for t in counter.times if t >= start]
+    gaps = sorted(b - a for a, b in zip(renders, renders[1:])) or [0.0]
+    report["times"].setdefault("motor_panel_view_rate_hz", []).append(round(len(renders) / seconds, 1))
+    report["panel"] = {"seconds": round(seconds, 2), "renders": len(renders), "panel_updates": frames,
+                       "panel_rate_hz": round(frames / seconds, 1), "slider_moves": moves,
+                       "update_ms_mean": round(1000 * sum(costs) / len(costs), 3),
+                       "render_gap_ms_p50": round(1000 * gaps[len(gaps) // 2], 1),
+                       "render_gap_ms_max": round(1000 * gaps[-1], 1),
+                       "result_changes": len(touches.changes), "changed": touches.changes[:10],
+                       "provider_calls": touches.provider_calls, "paint_builds": touches.paint_builds,
+                       "axis_moved_mm": round((axis.Placement.Base - panel.original.Base).Length, 3)}
+    panel.reject()
+    settle()
 
 
 def bearings():
@@ -141,7 +283,7 @@ def bearings():
     report["bearing_contacts"] = sum(1 for c in group.Group if hasattr(c, "ContactType"))
 
 
-for step in (motor, bearings):
+for step in (motor, haptic_panel_rate, bearings):
     try:
         step()
     except Exception:

@@ -161,20 +161,25 @@ def test_undo_and_redo_restore_whether_the_analysis_is_current(boxes):
 
 def test_interferences_are_objects_with_their_solid_and_exported(boxes, tmp_path):
     """Issue 21 item 5, headless: a box pushed 2 mm into another gives an
-    Interference child (pair, volume 6 x 4 x 2 = 48 mm3, the common solid as
-    its Shape), counted, exported; moved out again, it goes."""
+    Interferences group under the analysis holding one Interference (pair,
+    volume 6 x 4 x 2 = 48 mm3, the common solid as its Shape, label I1),
+    counted, exported; moved out again, it goes and the group with it."""
     import json
     from contactwb.document import export
-    from contactwb.document.identify import is_interference
+    from contactwb.document.identify import interferences_of, is_interference, is_interference_group
     group = find(boxes)
     top = boxes.getObject("Top")
     top.Placement.Base = FreeCAD.Vector(2, 3, 8)  # 2 mm into Base
     boxes.recompute()
-    (found,) = [o for o in group.Group if is_interference(o)]
+    (holder,) = [o for o in group.Group if is_interference_group(o)]
+    assert not [o for o in group.Group if is_interference(o)]  # in the group, not beside the contacts
+    (found,) = holder.Group
+    assert is_interference(found) and interferences_of(group) == [found]
     assert (found.BodyA, found.BodyB) == ("Base", "Top")
     assert found.Volume.Value == pytest.approx(48.0, rel=1e-6)
     assert found.Shape.Volume == pytest.approx(48.0, rel=1e-6)  # the overlapping solid itself
-    assert found.Label == "Interference 1: Base \u2013 Top" and found.Label2 == "48 mm\u00b3"
+    assert found.Label == "I1: Base \u2013 Top" and found.Label2 == "48 mm\u00b3" and found.Number == 1
+    assert holder.Label == "Interferences" and holder.Count == 1 and holder.TotalVolume.Value == pytest.approx(48.0)
     assert group.InterferenceCount == 1 and group.Interferences == ["Base \u2013 Top: 48 mm\u00b3"]
     path = tmp_path / "boxes.json"
     export.export_contacts(group, str(path))
@@ -185,8 +190,57 @@ def test_interferences_are_objects_with_their_solid_and_exported(boxes, tmp_path
     name = found.Name
     group.touch()
     boxes.recompute()
-    assert [o.Name for o in group.Group if is_interference(o)] == [name]
+    assert [o.Name for o in interferences_of(group)] == [name]
     assert group.BodyCount == 3
+    top.Placement.Base = FreeCAD.Vector(2, 3, 7)  # deeper: same object and number, the new volume
+    boxes.recompute()
+    assert [(o.Name, o.Number) for o in interferences_of(group)] == [(name, 1)]
+    assert interferences_of(group)[0].Volume.Value == pytest.approx(72.0, rel=1e-6)
     top.Placement.Base = FreeCAD.Vector(2, 3, 10)
     boxes.recompute()
-    assert not [o for o in boxes.Objects if is_interference(o)] and group.InterferenceCount == 0
+    assert not [o for o in boxes.Objects if is_interference(o) or is_interference_group(o)]
+    assert group.InterferenceCount == 0 and not [o for o in group.Group if is_interference_group(o)]
+    # found again after it vanished: a new number, never one given before
+    top.Placement.Base = FreeCAD.Vector(2, 3, 9)
+    boxes.recompute()
+    (again,) = interferences_of(group)
+    assert again.Number == 2 and again.Label == "I2: Base \u2013 Top"
+    assert again.Volume.Value == pytest.approx(24.0, rel=1e-6)
+
+
+def test_interferences_saved_and_reopened_and_old_files_migrated(boxes, tmp_path):
+    """The Interferences group and its interference survive a save and a
+    re-open (proxies, numbers, the solid); an interference held directly by
+    the analysis (files saved before the group) moves into the group at the
+    next recompute and gets a number."""
+    from contactwb.document.identify import interferences_of, is_interference, is_interference_group
+    from contactwb.objects.interferences import Interference
+    group = find(boxes)
+    boxes.getObject("Top").Placement.Base = FreeCAD.Vector(2, 3, 8)
+    boxes.recompute()
+    path = str(tmp_path / "boxes.FCStd")
+    boxes.saveAs(path)
+    FreeCAD.closeDocument(boxes.Name)
+    doc = FreeCAD.openDocument(path)
+    try:
+        group = doc.getObject("Contacts")
+        (holder,) = [o for o in group.Group if is_interference_group(o)]
+        (found,) = holder.Group
+        assert is_interference(found) and found.Label == "I1: Base \u2013 Top" and found.Number == 1
+        assert found.Shape.Volume == pytest.approx(48.0, rel=1e-6)
+        # an old file's layout: the interference beside the contacts, without a number
+        old = doc.addObject("Part::FeaturePython", "Interference")
+        Interference(old)
+        old.BodyA, old.BodyB, old.Volume = "Base", "Top", 48.0
+        group.Group = [o for o in group.Group if not is_interference_group(o)] + [old]
+        for obj in list(holder.Group) + [holder]:
+            holder.Group = []
+            doc.removeObject(obj.Name)
+        assert not interferences_of(group)[0].Number
+        group.touch()
+        doc.recompute()
+        (holder,) = [o for o in group.Group if is_interference_group(o)]
+        assert holder.Group == [old] and old.Number == 2 and old.Label == "I2: Base \u2013 Top"
+        assert old.Shape.Volume == pytest.approx(48.0, rel=1e-6)
+    finally:
+        FreeCAD.closeDocument(doc.Name)

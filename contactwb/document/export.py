@@ -12,7 +12,8 @@ from contactwb.core.analysis import Analysis, BodyInfo, ContactRecord, StoredMas
 from contactwb.core.export import (CONTACT_KEYS, CSV_COLUMNS, FORMATS, check_format,  # noqa: F401
                                    write_analysis)
 from contactwb.core.export import contact_records as _records_of_document
-from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_interference  # noqa: F401
+from contactwb.document.identify import (analyses, interferences_of, is_contact, is_contact_analysis,  # noqa: F401
+                                         is_interference)
 
 
 def _face_names(links):
@@ -49,7 +50,7 @@ def as_analysis(group):
                     linear_tolerance=group.LinearTolerance.Value,
                     angular_tolerance=radians(group.AngularTolerance.Value),
                     bodies=bodies, contacts=contacts, messages=list(group.Messages),
-                    interferences=[(o.BodyA, o.BodyB, o.Volume.Value) for o in group.Group if is_interference(o)])
+                    interferences=[(o.BodyA, o.BodyB, o.Volume.Value) for o in interferences_of(group)])
 
 
 def to_json(group):

@@ -8,6 +8,7 @@ CONTACT = "Contact"
 JOINT = "Joint"
 SIMULATION_MODEL = "SimulationModel"
 INTERFERENCE = "Interference"
+INTERFERENCE_GROUP = "InterferenceGroup"
 
 
 def proxy_kind(obj):
@@ -41,10 +42,28 @@ def is_interference(obj):
     return proxy_kind(obj) == INTERFERENCE
 
 
+def is_interference_group(obj):
+    """Whether a document object is the Interferences group of an analysis
+    (its Interference objects, in the tree under the analysis)."""
+    return proxy_kind(obj) == INTERFERENCE_GROUP
+
+
+def interferences_of(analysis):
+    """The Interference objects of an analysis: those of its Interferences
+    group (and any held directly, as files saved before the group did)."""
+    found = []
+    for child in getattr(analysis, "Group", []):
+        if is_interference(child):
+            found.append(child)
+        elif is_interference_group(child):
+            found.extend(o for o in child.Group if is_interference(o))
+    return found
+
+
 def is_workbench_result(obj):
     """The workbench's own results (they link to bodies; an interference's
     solid is a result, never a body to analyse)."""
-    return proxy_kind(obj) in (CONTACT_ANALYSIS, CONTACT, SIMULATION_MODEL, INTERFERENCE)
+    return proxy_kind(obj) in (CONTACT_ANALYSIS, CONTACT, SIMULATION_MODEL, INTERFERENCE, INTERFERENCE_GROUP)
 
 
 def analyses(doc):

@@ -8,6 +8,7 @@ from contactwb.document import bodies
 from contactwb.document.identify import analyses, is_contact, is_contact_analysis
 
 GHOST_TRANSPARENCY = 85
+ISOLATE_OTHERS_TRANSPARENCY = 95  # Isolate: the parts not in the contact, faint context
 
 
 def analysis_of(contact):
@@ -67,28 +68,32 @@ def _body_objects(doc):
     return bodies.document_bodies(doc)
 
 
-_isolated = {}  # document name -> bodies isolate() hid, for show_all()
+_isolated = {}  # document name -> bodies an older isolate() hid (none now: it ghosts), for show_all()
 
 
 def isolate(contact):
-    """Shows only the contact's two parts, ghosted (see-through) so that the
-    contact's paint shows even inside them, and the contact itself."""
+    """Ghosts everything else and shows the contact's faces: every other part
+    faint (ISOLATE_OTHERS_TRANSPARENCY, still there for context, never
+    hidden), the contact's two parts see-through (GHOST_TRANSPARENCY) so that
+    its paint shows even inside them, every other contact's paint hidden.
+    View-only: transparency of the view providers, no undo entry."""
     doc = contact.Document
     keep = contact_bodies(contact)
-    hidden = _isolated.setdefault(doc.Name, [])
-    kept = []
+    kept, others = [], []
     for body in _body_objects(doc):
         if any(body.root is root and body.subname.startswith(path) for root, path in keep):
             kept.append(body)
         else:
-            _set_body_visibility(body, False)
-            hidden.append(body)
-    _ghost(doc, kept)
-    group = analysis_of(contact)
-    if group is not None:
+            others.append(body)
+    _ghost(doc, others, ISOLATE_OTHERS_TRANSPARENCY)
+    _ghost(doc, kept)  # last: a part linked twice (one bearing in two places) keeps the nearer level
+    for group in analyses(doc):
         for other in group.Group:
-            if is_contact(other):
+            if is_contact(other) and other.ViewObject.Visibility != (other is contact):
                 other.ViewObject.Visibility = other is contact
+    group = analysis_of(contact)
+    if group is not None and not group.ViewObject.Visibility:
+        group.ViewObject.Visibility = True  # the contact's paint is drawn under its analysis
 
 
 def _set_body_visibility(body, shown):
@@ -124,7 +129,7 @@ def ghosted_objects(doc):
 _ghosted = {}  # document name -> {object name: transparency before ghosting}
 
 
-def _ghost(doc, bodies_to_ghost):
+def _ghost(doc, bodies_to_ghost, transparency=GHOST_TRANSPARENCY):
     """Makes these bodies see-through, remembering their transparency."""
     saved = _ghosted.setdefault(doc.Name, {})
     for body in bodies_to_ghost:
@@ -132,7 +137,8 @@ def _ghost(doc, bodies_to_ghost):
         if vobj is None or not hasattr(vobj, "Transparency"):
             continue
         saved.setdefault(vobj.Object.Name, vobj.Transparency)
-        vobj.Transparency = GHOST_TRANSPARENCY
+        if vobj.Transparency != transparency:
+            vobj.Transparency = transparency
 
 
 def set_ghosted(doc, ghosted):

@@ -69,3 +69,28 @@ class VersionedProxy:
 
     def loads(self, state):
         self.Type = self.TYPE
+
+
+def _comparable(value):
+    if hasattr(value, "Value") and hasattr(value, "Unit"):  # a Quantity
+        return round(value.Value, 12)
+    if isinstance(value, float):
+        return round(value, 12)
+    if isinstance(value, (list, tuple)):
+        return [_comparable(v) for v in value]
+    if hasattr(value, "Name") and hasattr(value, "Document"):  # a document object
+        return value.Name
+    if hasattr(value, "x") and hasattr(value, "z"):  # a vector
+        return (round(value.x, 12), round(value.y, 12), round(value.z, 12))
+    return value
+
+
+def set_if_changed(obj, name, value, ordered=True):
+    """Assigns only a new value: an unchanged result records nothing in the
+    undo history and touches nothing. ordered=False: a list compared as a
+    set (FreeCAD may reorder a link list's entries)."""
+    old, new = _comparable(getattr(obj, name)), _comparable(value)
+    if not ordered:
+        old, new = sorted(map(repr, old)), sorted(map(repr, new))
+    if old != new:
+        setattr(obj, name, value)

@@ -10,7 +10,8 @@ group's membership), never as FreeCAD's implicit "Delete" of the contacts it
 removed. Undoing that entry also undoes the user's action it followed (the
 move or the deletion that made the analysis out of date), so one Ctrl+Z
 restores the part and its contacts together; redo replays both."""
-from contactwb.document.identify import analyses, is_contact, is_contact_analysis, is_interference, is_joint
+from contactwb.document.identify import (analyses, is_contact, is_contact_analysis, is_interference,
+                                         is_interference_group, is_joint)
 
 RECOMPUTE_TRANSACTION = "Recompute contacts"
 # Entries whose own run updates the analyses: a recompute entry right above
@@ -33,7 +34,7 @@ class BodyWatcher:
     def _touch_dependents(self, obj, deleted=False):
         doc = obj.Document
         if doc.Name not in self.documents or is_contact(obj) or is_contact_analysis(obj) or is_joint(obj) \
-                or is_interference(obj):
+                or is_interference(obj) or is_interference_group(obj):
             return
         if doc.Transacting:
             # an undo or redo: it restores the analyses with their bodies
@@ -135,6 +136,14 @@ class BodyWatcher:
                     group.touch()
                 else:
                     group.purgeTouched()
+                    # its results brought back by the undo are current too (a
+                    # touched one would be saved as needing a recompute)
+                    for child in group.Group:
+                        if "Touched" in child.State:
+                            child.purgeTouched()
+                        for grandchild in getattr(child, "Group", []) if is_interference_group(child) else []:
+                            if "Touched" in grandchild.State:
+                                grandchild.purgeTouched()
         except Exception:
             pass
 

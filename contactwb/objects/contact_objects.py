@@ -20,11 +20,13 @@ from contactwb import core
 from contactwb.core import analysis as contact_analysis
 from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, SCOPES  # noqa: F401  (SCOPES: this module's API)
 from contactwb.document import bodies as document_bodies
-from contactwb.document.identify import is_contact, is_contact_analysis, is_interference, is_joint  # noqa: F401
+from contactwb.document.identify import (is_contact, is_contact_analysis, is_interference,  # noqa: F401
+                                         is_interference_group, is_joint)
 from contactwb.document.shapes import assembly_from_shapes, shape_from_brep
 from contactwb.objects import gui_hooks, regions
 from contactwb.objects.base import (PROXY_VERSION, VersionedProxy, add_property, add_read_only_group,  # noqa: F401
-                                     versioned)
+                                     set_if_changed, versioned)
+from contactwb.objects.interferences import Interference, update_interferences  # noqa: F401  (saved files' name)
 from contactwb.objects.body_watcher import (pending_removal, remove_after_recompute,  # noqa: F401
                                             watch_document)
 
@@ -89,6 +91,8 @@ def _analysis_properties(obj):
                  "Pairs of bodies whose material overlaps", 1)
     add_property(obj, "App::PropertyStringList", "Interferences", "Contacts",
                  "Overlapping pairs with their common volume", 1)
+    add_property(obj, "App::PropertyInteger", "LastInterferenceNumber", "Contacts",
+                 "Highest interference number issued (I1, I2, ...)", 2)
     # the designer's annotations by contact identity, so that a contact lost and found again (a part
     # moved away and back) gets its intent and fit back
     add_property(obj, "App::PropertyString", "Annotations", "Contacts",
@@ -259,22 +263,6 @@ class Joint(VersionedProxy):
     add_properties = staticmethod(_joint_properties)
 
 
-def _interference_properties(obj):
-    add_read_only_group(obj, "Interference", [
-        ("App::PropertyString", "BodyA", "First body"),
-        ("App::PropertyString", "BodyB", "Second body"),
-        ("App::PropertyVolume", "Volume", "Volume of the material both bodies occupy (its solid is the Shape)"),
-    ])
-
-
-class Interference(VersionedProxy):
-    """Two bodies whose material overlaps (a modelling error, not a contact):
-    the pair, the common volume, and the overlapping solid as its Shape (a
-    Part feature, so it shows in the view; the GUI draws it red)."""
-    TYPE = "Interference"
-    add_properties = staticmethod(_interference_properties)
-
-
 # --- the recompute ------------------------------------------------------
 
 EN_DASH = "\u2013"
@@ -410,7 +398,7 @@ def update_contact_analysis(group, progress=None):
                                                          [b.name for b in result.bodies]))
     _update_children(doc, group, records, bodies)
     _update_fit_classes([o for o in group.Group if is_contact(o)])
-    _update_interferences(doc, group, result.interferences, bodies, painted.solids)
+    update_interferences(doc, group, result.interferences, bodies, painted.solids)
     if group.DeriveJoints:
         _update_joints(doc, group, assembly, raw, result, kept, bodies)
     else:
@@ -436,56 +424,6 @@ def compute_regions(group):
     result, assembly, raw = _find(bodies, group.Document.Label, linear, angular, None,
                                   regions.region_bodies(group, bodies, settings))
     return regions.store(group, bodies, settings, assembly, raw, result.contacts, key_of_record)
-
-
-def _same_solid(old, new):
-    """Whether an interference's stored solid is already `new` (unchanged
-    bodies: nothing to record)."""
-    if old.isNull() or new.isNull():
-        return old.isNull() == new.isNull()
-    return abs(old.Volume - new.Volume) <= 1e-9 * max(1.0, abs(new.Volume)) and \
-        (old.BoundBox.Center - new.BoundBox.Center).Length <= 1e-9 and \
-        abs(old.BoundBox.DiagonalLength - new.BoundBox.DiagonalLength) <= 1e-9
-
-
-def _update_interferences(doc, group, interferences, bodies, solids=None):
-    """Interference children, one per overlapping pair (kept by pair across
-    recomputes), after the contacts: the common solid of the two bodies
-    (the core's, `solids` {pair: BRep text}; else their Boolean common, made
-    only for the pairs the core found overlapping) and its volume as the
-    core measured it."""
-    solids = solids or {}
-    by_name = {b.name: b for b in bodies}
-    old = {}
-    for obj in group.Group:
-        if is_interference(obj):
-            old.setdefault((obj.BodyA, obj.BodyB), obj)
-    found = []
-    for index, (a, b, volume) in enumerate(interferences):
-        obj = old.pop((a, b), None)
-        if obj is None:
-            obj = doc.addObject("Part::FeaturePython", "Interference")
-            Interference(obj)
-            gui_hooks.new_object(obj)
-        set_if_changed(obj, "BodyA", a)
-        set_if_changed(obj, "BodyB", b)
-        set_if_changed(obj, "Volume", volume)
-        if (a, b) in solids or (a in by_name and b in by_name):
-            common = shape_from_brep(solids[(a, b)]) if (a, b) in solids else by_name[a].shape.common(by_name[b].shape)
-            if not _same_solid(obj.Shape, common):
-                obj.Shape = common
-        set_if_changed(obj, "Label", f"Interference {index + 1}: {a} {EN_DASH} {b}")
-        set_if_changed(obj, "Label2", f"{volume:.4g} mm\u00b3")
-        found.append(obj)
-    remove_after_recompute(doc, list(old.values()))
-    contacts = [o for o in group.Group if is_contact(o)]
-    others = [o for o in group.Group if not is_contact(o) and not is_interference(o)]
-    set_if_changed(group, "Group", contacts + found + others)
-    set_if_changed(group, "InterferenceCount", len(found))
-    set_if_changed(group, "Interferences", [f"{o.BodyA} {EN_DASH} {o.BodyB}: {o.Volume.Value:.4g} mm\u00b3"
-                                            for o in found])
-    for obj in found:
-        obj.purgeTouched()
 
 
 def _update_joints(doc, group, assembly, raw, result, kept, bodies):
@@ -560,34 +498,9 @@ def _update_joints(doc, group, assembly, raw, result, kept, bodies):
                                      f"{obj.BodyA} {EN_DASH} {obj.BodyB}")
         set_if_changed(obj, "Label2", f"{obj.DOF} DOF")
     remove_after_recompute(doc, list(old.values()))
-    set_if_changed(group, "Group", contacts + [o for o in group.Group if is_interference(o)] + joints)
+    set_if_changed(group, "Group", contacts + [o for o in group.Group if is_interference_group(o)] + joints)
     for obj in joints:
         obj.purgeTouched()
-
-
-def _comparable(value):
-    if hasattr(value, "Value") and hasattr(value, "Unit"):  # a Quantity
-        return round(value.Value, 12)
-    if isinstance(value, float):
-        return round(value, 12)
-    if isinstance(value, (list, tuple)):
-        return [_comparable(v) for v in value]
-    if hasattr(value, "Name") and hasattr(value, "Document"):  # a document object
-        return value.Name
-    if hasattr(value, "x") and hasattr(value, "z"):  # a vector
-        return (round(value.x, 12), round(value.y, 12), round(value.z, 12))
-    return value
-
-
-def set_if_changed(obj, name, value, ordered=True):
-    """Assigns only a new value: an unchanged result records nothing in the
-    undo history and touches nothing. ordered=False: a list compared as a
-    set (FreeCAD may reorder a link list's entries)."""
-    old, new = _comparable(getattr(obj, name)), _comparable(value)
-    if not ordered:
-        old, new = sorted(map(repr, old)), sorted(map(repr, new))
-    if old != new:
-        setattr(obj, name, value)
 
 
 def _key_text(key):

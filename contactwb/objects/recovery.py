@@ -15,14 +15,15 @@ Python observers have no "restore finished" slot, but a document opened is
 activated once it is fully restored."""
 import FreeCAD
 
-from contactwb.objects import contact_objects, gui_hooks, simulation_model
+from contactwb.objects import contact_objects, gui_hooks, interferences, simulation_model
 
 PROXY_CLASSES = {
     "ContactAnalysis": contact_objects.ContactAnalysis,
     "Contact": contact_objects.Contact,
     "Joint": contact_objects.Joint,
     "SimulationModel": simulation_model.SimulationModel,
-    "Interference": contact_objects.Interference,
+    "Interference": interferences.Interference,
+    "InterferenceGroup": interferences.InterferenceGroup,
 }
 # Version 1 files have no ProxyType: the properties only that kind has.
 SIGNATURES = (

@@ -231,7 +231,7 @@ def interferences():
     interferences as objects with their solids (red), in the export and the
     panel's message; one Ctrl+Z removes them with the move."""
     from contactwb.document import export
-    from contactwb.document.identify import is_interference
+    from contactwb.document.identify import interferences_of, is_interference
     doc, group = state["doc"], state["group"]
     screw = doc.getObjectsByLabel("Screw-1")[0]
     placement = FreeCAD.Placement(screw.Placement)
@@ -240,7 +240,7 @@ def interferences():
     doc.commitTransaction()
     with Timer("recompute_with_interferences"):
         run("Std_Refresh")
-    found = [o for o in group.Group if is_interference(o)]
+    found = interferences_of(group)  # under the analysis' Interferences group
     result = {"objects": sorted([o.BodyA, o.BodyB, o.Volume.Value, o.Shape.Volume, o.Label, o.Label2,
                                  list(o.ViewObject.ShapeColor[:3]), o.ViewObject.Visibility] for o in found),
               "count": group.InterferenceCount, "lines": list(group.Interferences),

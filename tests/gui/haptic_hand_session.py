@@ -58,6 +58,42 @@ class RenderCounter:
         self.root.removeChild(self.node)
 
 
+class ResultTouches:
+    """Counts what touches the contact results while the part moves: property
+    changes of the workbench's objects (a document observer) and calls of
+    their view providers' updateData/onChanged (wrapped on each proxy)."""
+
+    def __init__(self, doc):
+        from contactwb.document.identify import is_workbench_result
+        self.is_result = is_workbench_result
+        self.changes, self.provider_calls, self.wrapped = [], [], []
+        for obj in doc.Objects:
+            proxy = getattr(getattr(obj, "ViewObject", None), "Proxy", None)
+            if is_workbench_result(obj) and proxy is not None:
+                for name in ("updateData", "onChanged"):
+                    if hasattr(proxy, name):
+                        self._wrap(proxy, name, obj.Name)
+        FreeCAD.addDocumentObserver(self)
+
+    def _wrap(self, proxy, name, obj_name):
+        original = getattr(proxy, name)
+
+        def counting(*args, **kwargs):
+            self.provider_calls.append(f"{obj_name}.{name}")
+            return original(*args, **kwargs)
+        setattr(proxy, name, counting)
+        self.wrapped.append((proxy, name))
+
+    def slotChangedObject(self, obj, prop):
+        if self.is_result(obj):
+            self.changes.append(f"{obj.Name}.{prop}")
+
+    def stop(self):
+        FreeCAD.removeDocumentObserver(self)
+        for proxy, name in self.wrapped:
+            delattr(proxy, name)
+
+
 def offset(obj, original):
     return list(obj.Placement.Base - original.Base)
 
@@ -119,6 +155,7 @@ def run():
     builds_before = len(builds)
 
     # The user drags the Z slider up 15 mm over 3 s: the hand pulls the axis out along its bores.
+    touches = ResultTouches(doc)
     counter = RenderCounter(FreeCADGui.activeDocument().activeView())
     start = time.monotonic()
     frames_before = len(panel.frame_times)
@@ -136,6 +173,9 @@ def run():
     report["update_ms"] = 1000 * sum(costs) / len(costs)
     report["panel_rate_hz"] = panel.update_rate_hz(3.0)
     report["redraws_while_moving"] = len(builds) - builds_before
+    touches.stop()
+    report["result_changes_while_moving"] = touches.changes[:20]
+    report["provider_calls_while_moving"] = touches.provider_calls[:20]
     report["slider_label"] = panel.hand_values["z"].text()
     report["pulled_offset"] = offset(axis, original)
     report["pulled_snapshot"] = panel.session.snapshot().translate

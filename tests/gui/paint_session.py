@@ -108,7 +108,7 @@ def interferences():
     the tree, the table, the legend, the panel's message and the export,
     their volumes checked against OCCT Booleans of the parts."""
     from contactwb.document import export
-    from contactwb.document.identify import is_interference
+    from contactwb.document.identify import interferences_of, is_interference
     from contactwb.gui.panels import contact_table, task_panel
     doc, group = state["doc"], state["group"]
     screw = doc.getObjectsByLabel("Screw-1")[0]
@@ -125,7 +125,7 @@ def interferences():
     panel.accept()
     message = texts[-1] if texts else ""
     settle()
-    found = [o for o in group.Group if is_interference(o)]
+    found = interferences_of(group)  # under the analysis' Interferences group
     booleans = {}
     for obj in found:
         a, b = (doc.getObjectsByLabel(n)[0] for n in (obj.BodyA, obj.BodyB))

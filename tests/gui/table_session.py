@@ -199,7 +199,8 @@ def zoom_to():
 
 def isolate():
     """Isolate from the table: the two blocks ghosted, everything else
-    hidden, the contact's paint showing through them."""
+    ghosted fainter (never hidden), the contact's paint showing through
+    them, no other contact's paint."""
     from contactwb.gui.overlay.colours import legend_colours
     doc, group, widget = state["doc"], state["group"], state["table"]
     contact = middle_contact("PLF")
@@ -223,7 +224,9 @@ def isolate():
     parts = [o for o in doc.Objects if o.TypeId == "Part::Feature"]
     result["shown"] = sorted(o.Label for o in parts if o.ViewObject.Visibility)
     result["pair"] = sorted((contact.BodyA, contact.BodyB))
-    result["transparency"] = sorted({o.ViewObject.Transparency for o in parts if o.ViewObject.Visibility})
+    result["transparency"] = sorted({o.ViewObject.Transparency for o in parts if o.Label in result["pair"]})
+    result["others_transparency"] = sorted({o.ViewObject.Transparency for o in parts if o.Label not in result["pair"]})
+    result["parts"] = len(parts)
     from contactwb.document.identify import is_contact
     result["contacts_shown"] = [c.Name for c in group.Group if is_contact(c) and c.ViewObject.Visibility]
     result["contact"] = contact.Name

@@ -123,7 +123,7 @@ def test_interferences_are_shown_exported_and_undone(run):
         core_volume, solid, label, label2, colour, shown = objects[pair]
         assert core_volume == pytest.approx(volume, rel=1e-3)
         assert solid == pytest.approx(volume, rel=1e-3)  # the shown solid is the overlap
-        assert label.endswith(f"{pair[0]} \u2013 {pair[1]}") and label.startswith("Interference ")
+        assert label.endswith(f"{pair[0]} \u2013 {pair[1]}") and label.startswith("I") and label[1:label.index(":")].isdigit()
         assert label2.endswith("mm\u00b3")
         assert colour[0] > 0.8 and colour[1] < 0.2 and colour[2] < 0.2 and shown
     assert found["display_modes"] == ["Flat Lines"] * 3  # drawn

@@ -59,12 +59,12 @@ def test_interferences_are_first_class_results(run):
         boolean = found["booleans"][f"{a}|{b}"]  # OCCT's common of the two parts, in the test
         assert boolean == pytest.approx(figure, rel=5e-3)
         assert volume == pytest.approx(boolean, rel=1e-6) and solid == pytest.approx(boolean, rel=1e-6)
-        assert label.startswith("Interference ") and label.endswith(f"{a} \u2013 {b}") and label2.endswith("mm\u00b3")
+        assert label.startswith("I") and label.endswith(f"{a} \u2013 {b}") and label2.endswith("mm\u00b3")
         assert colour[0] > 0.8 and colour[1] < 0.2 and colour[2] < 0.2
     rows = {(r[2], r[3]): r for r in found["rows"]}
     assert sorted(rows) == sorted(SCREW_INTERFERENCES)
     for pair, row in rows.items():
-        assert row[1] == "Interference" and row[0].startswith("I")
+        assert row[1] == "Interference" and row[0] == objects[pair][2].split(":")[0]  # I1: the label's number
         assert row[4] == pytest.approx(objects[pair][0], rel=1e-9)
     assert found["legend"] == 3 and found["count"] == 3
     assert "3 interferences" in found["message"]

@@ -86,11 +86,13 @@ def test_zoom_to_frames_the_contact(run, kind):
     assert zoom["undo"] == ["Find contacts"]  # view only
 
 
-def test_isolate_ghosts_the_two_parts_and_shows_the_contact(run):
+def test_isolate_ghosts_everything_else_and_shows_the_contact(run):
     no_error(run, "isolate")
     isolate = run["isolate"]
-    assert isolate["shown"] == isolate["pair"] == ["Block-07-08", "Block-08-08"]
-    assert isolate["transparency"] == [85]  # both ghosted (actions.GHOST_TRANSPARENCY)
+    assert isolate["pair"] == ["Block-07-08", "Block-08-08"]
+    assert len(isolate["shown"]) == isolate["parts"]  # nothing hidden: everything else ghosted
+    assert isolate["transparency"] == [85]  # the two parts see-through (actions.GHOST_TRANSPARENCY)
+    assert isolate["others_transparency"] == [95]  # the others fainter (actions.ISOLATE_OTHERS_TRANSPARENCY)
     assert isolate["contacts_shown"] == [isolate["contact"]] and isolate["overlay_visible"] is True
     # the paint, hidden inside the opaque blocks before (the legend's text only), shows through the ghosted ones
     assert isolate["before_pixels"] < 0.01 * isolate["image_pixels"], isolate

@@ -110,7 +110,11 @@ def test_contact_table(report):
 def test_isolated_highlighted_contact(report):
     from PIL import Image
     highlight = report["highlight"]
-    assert highlight["shown_parts"] == sorted(highlight["contact"])
+    # Isolate ghosts everything else (nothing hidden) and shows the contact
+    isolated = highlight["isolated"]
+    assert isolated["hidden"] == [] and len(highlight["shown_parts"]) == 18
+    assert isolated["pair_transparency"] == [85] and isolated["others_transparency"] == [95]
+    assert isolated["contacts_shown"] == [isolated["contact"]]
     assert highlight["highlighted"] is True
     image = Image.open(highlight["png"]).convert("RGB")
     assert count_near(image, hex_rgb(highlight["selection_colour"])) > 3000, highlight["png"]
@@ -193,7 +197,9 @@ def test_ghost_and_context_menus(report):
     assert 85 not in ghost["restored"]
     assert report["context_menu"] == ["Annotate (intent, fit)...", "Export contacts...", "Isolate with its parts",
                                       "Select faces", "Zoom to contact"]
-    assert report["context_isolated"] == report["context_contact"]
+    isolated = report["context_isolated"]
+    assert isolated["hidden"] == [] and isolated["contacts_shown"] == [isolated["contact"]]
+    assert isolated["pair_transparency"] == [85] and isolated["others_transparency"] == [95]
     assert "Isolate contact" not in report["isolate_undo"]  # view only (issue 21)
     assert report["analysis_menu"] == ["Contact table", "Export contacts...", "Find contacts again..."]
 

@@ -44,6 +44,9 @@ def test_no_contact_redraw_while_the_part_moves(hand_report):
           f"{hand_report['baseline_rate_hz']:.1f} Hz (update {hand_report['baseline_update_ms']:.2f} ms)")
     assert hand_report["frames"] > 0
     assert hand_report["redraws_while_moving"] == 0
+    # only the moving part's placement changes: no contact, analysis or joint object, nor its view provider
+    assert hand_report["result_changes_while_moving"] == []
+    assert hand_report["provider_calls_while_moving"] == []
     assert hand_report["redraws_while_replaying"] == 0
     # Closing the panel redraws the contacts once, at the committed placement.
     assert 1 <= hand_report["redraws_after_ok"] <= 2

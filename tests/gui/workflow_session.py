@@ -240,12 +240,27 @@ def table():
     report["table"] = result
 
 
+def isolation_state(doc, contact):
+    """What Isolate left: the parts shown, the transparencies of the contact's
+    two parts and of the others, the contacts shown."""
+    from contactwb.document.identify import is_contact
+    parts = [o for o in doc.Objects if o.TypeId == "Part::Feature"]
+    pair = {contact.BodyA, contact.BodyB}
+    return {"hidden": sorted(o.Label for o in parts if not o.ViewObject.Visibility),
+            "pair_transparency": sorted({o.ViewObject.Transparency for o in parts if o.Label in pair}),
+            "others_transparency": sorted({o.ViewObject.Transparency for o in parts if o.Label not in pair}),
+            "contacts_shown": [c.Name for c in doc.Objects if is_contact(c) and c.ViewObject.Visibility],
+            "contact": contact.Name}
+
+
 def highlighted_contact():
     """Isolate a contact from the table, selected: the README's picture."""
     doc, group, widget = state["doc"], state["group"], state["table"]
     contact = next(c for c in group.Group if {c.BodyA, c.BodyB} == {"Axis", "Bearing-front"})
     widget.table.selectRow(widget.row_of(contact.Name))
     widget.isolate()
+    FreeCADGui.updateGui()
+    isolated = isolation_state(doc, contact)
     from contactwb.gui import actions
     actions.set_ghosted(doc, True)  # the contact is inside the bearing: see through it
     FreeCADGui.Selection.clearSelection()
@@ -256,7 +271,7 @@ def highlighted_contact():
     view.viewIsometric()
     actions.zoom_to(contact, margin=3.0)
     from contactwb.gui import view_providers
-    report["highlight"] = {"contact": [contact.BodyA, contact.BodyB], "shown_parts": shown,
+    report["highlight"] = {"contact": [contact.BodyA, contact.BodyB], "shown_parts": shown, "isolated": isolated,
                            "highlighted": sorted(group.ViewObject.Proxy.overlay.highlighted) == [contact.Name],
                            "selection_colour": view_providers.hex_colour(view_providers.selection_colour()),
                            "png": save_view("gui_highlighted_contact.png")}
@@ -464,8 +479,7 @@ def ghost_and_context_menu():
     report["context_menu"] = sorted(actions_by_text)
     actions_by_text["Isolate with its parts"].trigger()
     FreeCADGui.updateGui()
-    report["context_isolated"] = sorted(o.Label for o in doc.Objects
-                                        if o.TypeId == "Part::Feature" and o.ViewObject.Visibility)
+    report["context_isolated"] = isolation_state(doc, contact)
     report["context_contact"] = sorted([contact.BodyA, contact.BodyB])
     report["isolate_undo"] = list(doc.UndoNames[:2])
     FreeCADGui.runCommand("Contacts_ShowAll")

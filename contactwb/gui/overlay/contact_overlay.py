@@ -16,7 +16,7 @@ import numpy
 from pivy import coin
 
 from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, TYPE_NAMES
-from contactwb.document.identify import is_interference
+from contactwb.document.identify import interferences_of
 from contactwb.objects import regions
 from contactwb.gui.overlay.coin_nodes import (legend_node, line_material, material, polygon_offset,
                                               set_stripe_period, stripes, unlit_polyline)
@@ -234,7 +234,7 @@ class ContactOverlay:
         kinds = [k for k in CONTACT_TYPES if any(key[0] == k for key in layers)]
         counts = {k: sum(1 for c in contacts if c.ContactType == k) for k in kinds}
         entries = [(f"{k} {TYPE_NAMES[k]} ({counts[k]})", type_colour(k, False, self.colours)) for k in kinds]
-        self.interferences = sum(1 for child in getattr(group, "Group", []) if is_interference(child))
+        self.interferences = len(interferences_of(group)) if group is not None else 0
         if self.interferences:
             entries.append((f"Interferences ({self.interferences})", INTERFERENCE_COLOUR))
         self.legend = legend_node(entries, stack=(self.doc_name, ("analysis", id(self))))

@@ -9,7 +9,7 @@ from PySide2 import QtCore, QtGui, QtWidgets
 
 from contactwb.core.kinds import CONTACT_TYPES
 from contactwb.document import units
-from contactwb.document.identify import is_contact, is_interference, is_joint
+from contactwb.document.identify import interferences_of, is_contact, is_joint
 from contactwb.gui.overlay.colours import legend_colours
 from contactwb.gui.panels import contact_extent
 
@@ -166,7 +166,7 @@ class ContactTable(QtWidgets.QWidget):
         colours = legend_colours()
         self._syncing = True
         self.table.setSortingEnabled(False)
-        interferences = [i for g in groups for i in g.Group if is_interference(i)]
+        interferences = [i for g in groups for i in interferences_of(g)]
         self.table.setRowCount(len(self.contacts) + len(joints) + len(interferences))
         for row, contact in enumerate(self.contacts):
             group = next((p for p in contact.InList if p in groups), None)
@@ -201,10 +201,11 @@ class ContactTable(QtWidgets.QWidget):
                 item.setData(QtCore.Qt.UserRole, joint.Name)
                 self.table.setItem(row, column, item)
         # overlapping material: its common volume in the area column
+        analysis_of = {o.Name: g for g in groups for o in interferences_of(g)}  # under its Interferences group
         for row, overlap in enumerate(interferences, start=len(self.contacts) + len(joints)):
-            group = next((p for p in overlap.InList if p in groups), None)
+            group = analysis_of.get(overlap.Name)
             volume = overlap.Volume.Value
-            number = overlap.Label.split(":", 1)[0].replace("Interference ", "I")  # "I2"
+            number = f"I{overlap.Number}" if getattr(overlap, "Number", 0) else overlap.Label.split(":", 1)[0]  # "I2"
             type_cell = _cell("Interference", colour=INTERFERENCE_COLOUR)
             type_cell.setData(SORT_KEY, _sort_key("Interference", overlap.BodyA, overlap.BodyB,
                                                   int(number[1:]) if number[1:].isdigit() else 0))

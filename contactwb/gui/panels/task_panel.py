@@ -2,6 +2,7 @@
 the model), contact types, clearance gap; progress and Cancel in the panel.
 Run on an existing analysis (selected, or double-clicked) it updates that one
 in place."""
+import time
 from math import degrees, radians
 
 import FreeCAD
@@ -12,6 +13,8 @@ from contactwb.core.kinds import CONTACT_TYPES, SCOPES, TYPE_NAMES
 from contactwb.document.identify import is_alive, is_contact, is_contact_analysis
 from contactwb.gui import settings
 
+PROGRESS_PERIOD_S = 0.1  # the search's progress shown (and Cancel heard) at most ten times a second,
+PROGRESS_COST_RATIO = 4.0  # and after an update that took t, not before 4 t (at most a fifth of the time)
 SCOPE_TEXTS = {"Document": "Whole document", "Selection": "Selected parts only",
                "PartAgainstRest": "Selected part against the rest"}
 
@@ -198,9 +201,18 @@ class FindContactsPanel:
         self.cancel_requested = True
 
     def progress(self, stage, fraction):
-        self.status.setText(f"{stage.capitalize()}...")
-        self.progress_bar.setValue(int(fraction * 1000))
-        QtWidgets.QApplication.processEvents()
+        """The core's progress: shown, and Cancel heard, at most every
+        PROGRESS_PERIOD_S, and never more than a fifth of the search's time
+        (a QProgressBar repaints at once on each value, and processing the
+        events may draw the window and its 3D view: done at each of the
+        core's calls, on a busy machine, they took most of a search)."""
+        now = time.monotonic()
+        if now >= self._next_progress:
+            self.status.setText(f"{stage.capitalize()}...")
+            self.progress_bar.setValue(int(fraction * 1000))
+            QtWidgets.QApplication.processEvents()
+            done = time.monotonic()
+            self._next_progress = done + max(PROGRESS_PERIOD_S, PROGRESS_COST_RATIO * (done - now))
         return not self.cancel_requested
 
     def run(self):
@@ -216,6 +228,7 @@ class FindContactsPanel:
             self.status.setText("This scope needs parts: select them, then run Find contacts.")
             return False
         self.running, self.cancel_requested = True, False
+        self._next_progress = float("-inf")  # the first call shows
         self.cancel.setEnabled(True)
         # the same scope again: that analysis, updated in place (not a second one)
         target = self.group if is_alive(self.doc, self.group) else analysis_of_scope(self.doc, scope, self.entries)

@@ -5,11 +5,12 @@ the objects of a document restored without them (made headless, or saved
 without the workbench)."""
 import FreeCAD
 
-from contactwb.document.identify import (CONTACT, CONTACT_ANALYSIS, INTERFERENCE, JOINT, SIMULATION_MODEL, is_contact,
-                                         is_contact_analysis, is_joint, is_simulation_model, proxy_kind)
+from contactwb.document.identify import (CONTACT, CONTACT_ANALYSIS, INTERFERENCE, INTERFERENCE_GROUP, JOINT,
+                                         SIMULATION_MODEL, is_contact, is_contact_analysis, is_joint,
+                                         is_simulation_model, proxy_kind)
 from contactwb.gui.viewproviders.contact import ViewProviderContact
 from contactwb.gui.viewproviders.contact_analysis import ViewProviderContactAnalysis
-from contactwb.gui.viewproviders.interference import ViewProviderInterference
+from contactwb.gui.viewproviders.interference import ViewProviderInterference, ViewProviderInterferenceGroup
 from contactwb.gui.viewproviders.joint import ViewProviderJoint
 from contactwb.gui.viewproviders.simulation_model import ViewProviderSimulationModel
 
@@ -19,6 +20,7 @@ VIEW_PROVIDERS = {
     JOINT: ViewProviderJoint,
     SIMULATION_MODEL: ViewProviderSimulationModel,
     INTERFERENCE: ViewProviderInterference,
+    INTERFERENCE_GROUP: ViewProviderInterferenceGroup,
 }
 
 
@@ -73,6 +75,8 @@ def attach_view_providers(doc_name):
                 obj.ViewObject.Proxy.rebuild()
         elif proxy_kind(obj) == INTERFERENCE:
             give_view_provider(obj, ViewProviderInterference)
+        elif proxy_kind(obj) == INTERFERENCE_GROUP:
+            give_view_provider(obj, ViewProviderInterferenceGroup)
         elif is_joint(obj) and give_view_provider(obj, ViewProviderJoint):
             obj.ViewObject.Proxy.redraw()
         elif is_simulation_model(obj) and \

@@ -1,10 +1,13 @@
-"""View provider of an Interference (two bodies' overlapping material): FreeCAD's
-Part view provider draws the overlapping solid (the object's Shape); this one
-colours it red, as interference checkers show overlaps. (A Python Part
-feature's view provider attaches only once it has a Python proxy: without one,
-nothing is drawn.)
+"""View providers of the interferences (two bodies' overlapping material):
+ViewProviderInterference colours an Interference's solid (its Shape, drawn by
+FreeCAD's Part view provider) red, as interference checkers show overlaps (a
+Python Part feature's view provider attaches only once it has a Python
+proxy: without one, nothing is drawn); ViewProviderInterferenceGroup shows
+the analysis' Interferences group with its children in the tree.
 
-Saved files name ViewProviderInterference by this module: a permanent name."""
+Saved files name ViewProviderInterference and ViewProviderInterferenceGroup by
+this module: permanent names."""
+import contactwb
 from contactwb.gui.viewproviders.base import ViewProvider
 
 INTERFERENCE_COLOUR = (0.9, 0.05, 0.05)
@@ -20,5 +23,19 @@ class ViewProviderInterference(ViewProvider):
         vobj.PointColor = INTERFERENCE_COLOUR
         vobj.Transparency = 0
 
+    def getIcon(self):
+        return contactwb.icon_path("Contacts_Interference")
+
     def getDefaultDisplayMode(self):
         return "Flat Lines"
+
+
+class ViewProviderInterferenceGroup(ViewProvider):
+    """The Interferences group: its Interference children in the tree (hiding
+    the group hides their solids, as any group)."""
+
+    def getIcon(self):
+        return contactwb.icon_path("Contacts_Interference")
+
+    def claimChildren(self):
+        return self.Object.Group
