@@ -464,7 +464,8 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
       std::vector<std::vector<HigherPair>> higher(pairs.size());
       std::vector<std::string> higher_failures(pairs.size());
       if (!parallel_for(pairs.size(), threads, progress, "contacts", [&](std::size_t k) {
-            const auto [ia, ib] = pairs[k];
+            // Plain variables: clang 14 cannot capture a structured binding (make fuzz builds with it).
+            const std::size_t ia = pairs[k].first, ib = pairs[k].second;
             run_guarded([&] { higher[k] = find_higher_pairs(ia, result.partitions[ia], ib, result.partitions[ib],
                                                             result.tolerances); },
                         higher_failures[k], "OCCT: ");
