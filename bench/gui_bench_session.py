@@ -26,12 +26,16 @@ import io
 import json
 import os
 import pstats
+import sys
 import time
 import traceback
 
 import FreeCAD
 import FreeCADGui
 from PySide2 import QtWidgets
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "gui"))
+from view_probes import RenderCounter, ResultTouches  # noqa: E402  (shared with the GUI test sessions)
 
 report = {"errors": {}, "times": {}, "profiles": {}, "regions": {}}
 PROFILE = os.environ.get("CONTACTS_BENCH_PROFILE") == "1"
@@ -130,71 +134,6 @@ def motor():
     drawn(doc)
 
 
-class RenderCounter:
-    """Counts the 3D view's renders: a SoCallback first in its scene graph,
-    called by every SoGLRenderAction."""
-
-    def __init__(self, view):
-        from pivy import coin
-        self.times = []
-        self.root = view.getSceneGraph()
-        self.node = coin.SoCallback()
-        self.node.setCallback(self._called)
-        self.root.insertChild(self.node, 0)
-        self.render_type = coin.SoGLRenderAction.getClassTypeId()
-
-    def _called(self, _, action):
-        if action.isOfType(self.render_type):
-            self.times.append(time.perf_counter())
-
-    def remove(self):
-        self.root.removeChild(self.node)
-
-
-class ResultTouches:
-    """What touches the contact results while the part moves: property
-    changes of the workbench's objects (analyses, contacts, joints,
-    interferences), calls of their view providers' updateData and onChanged,
-    rebuilds of the analyses' paint."""
-
-    def __init__(self, doc):
-        from contactwb.document.identify import is_workbench_result
-        self.is_result = is_workbench_result
-        self.changes, self.provider_calls, self.paint_builds = [], 0, 0
-        self.wrapped = []
-        for obj in doc.Objects:
-            proxy = getattr(getattr(obj, "ViewObject", None), "Proxy", None)
-            if not is_workbench_result(obj) or proxy is None:
-                continue
-            for name in ("updateData", "onChanged"):
-                if hasattr(proxy, name):
-                    self._wrap(proxy, name)
-            if hasattr(proxy, "overlay"):
-                self._wrap(proxy.overlay, "build", builds=True)
-        FreeCAD.addDocumentObserver(self)
-
-    def _wrap(self, owner, name, builds=False):
-        original = getattr(owner, name)
-
-        def counting(*args, **kwargs):
-            if builds:
-                self.paint_builds += 1
-            else:
-                self.provider_calls += 1
-            return original(*args, **kwargs)
-        setattr(owner, name, counting)  # an instance attribute: FreeCAD looks the method up on the proxy
-        self.wrapped.append((owner, name))
-
-    def slotChangedObject(self, obj, prop):
-        if self.is_result(obj):
-            self.changes.append(f"{obj.Name}.{prop}")
-
-    def stop(self):
-        FreeCAD.removeDocumentObserver(self)
-        for owner, name in self.wrapped:
-            delattr(owner, name)
-
-
 def haptic_panel_rate():
     """The haptic panel on the motor's Axis, its contact analysis present and
     drawn: the 3D view's render rate while the simulated hand moves the part
@@ -252,7 +191,7 @@ def haptic_panel_rate():
                        "render_gap_ms_p50": round(1000 * gaps[len(gaps) // 2], 1),
                        "render_gap_ms_max": round(1000 * gaps[-1], 1),
                        "result_changes": len(touches.changes), "changed": touches.changes[:10],
-                       "provider_calls": touches.provider_calls, "paint_builds": touches.paint_builds,
+                       "provider_calls": len(touches.provider_calls), "paint_builds": touches.paint_builds,
                        "axis_moved_mm": round((axis.Placement.Base - panel.original.Base).Length, 3)}
     panel.reject()
     settle()

@@ -18,6 +18,7 @@ from PySide2 import QtWidgets
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
 import session_helpers  # noqa: E402
 from session_helpers import wait  # noqa: E402
+from view_probes import RenderCounter, ResultTouches  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
@@ -31,67 +32,6 @@ def progress(label):
 
 def grab_window_with_view(name):
     return session_helpers.grab_window_with_view(out_dir, name)[0]
-
-
-class RenderCounter:
-    """Counts the 3D view's renders (a SoCallback at the top of its scene
-    graph, called by every SoGLRenderAction): the view's own update rate."""
-
-    def __init__(self, view):
-        from pivy import coin
-        self.times = []
-        self.root = view.getSceneGraph()
-        self.node = coin.SoCallback()
-        self.node.setCallback(self._called)
-        self.root.insertChild(self.node, 0)
-        self.render_type = coin.SoGLRenderAction.getClassTypeId()
-
-    def _called(self, _, action):
-        if action.isOfType(self.render_type):
-            self.times.append(time.monotonic())
-
-    def rate(self, since):
-        renders = [t for t in self.times if t >= since]
-        return len(renders) / max(1e-9, time.monotonic() - since), len(renders)
-
-    def remove(self):
-        self.root.removeChild(self.node)
-
-
-class ResultTouches:
-    """Counts what touches the contact results while the part moves: property
-    changes of the workbench's objects (a document observer) and calls of
-    their view providers' updateData/onChanged (wrapped on each proxy)."""
-
-    def __init__(self, doc):
-        from contactwb.document.identify import is_workbench_result
-        self.is_result = is_workbench_result
-        self.changes, self.provider_calls, self.wrapped = [], [], []
-        for obj in doc.Objects:
-            proxy = getattr(getattr(obj, "ViewObject", None), "Proxy", None)
-            if is_workbench_result(obj) and proxy is not None:
-                for name in ("updateData", "onChanged"):
-                    if hasattr(proxy, name):
-                        self._wrap(proxy, name, obj.Name)
-        FreeCAD.addDocumentObserver(self)
-
-    def _wrap(self, proxy, name, obj_name):
-        original = getattr(proxy, name)
-
-        def counting(*args, **kwargs):
-            self.provider_calls.append(f"{obj_name}.{name}")
-            return original(*args, **kwargs)
-        setattr(proxy, name, counting)
-        self.wrapped.append((proxy, name))
-
-    def slotChangedObject(self, obj, prop):
-        if self.is_result(obj):
-            self.changes.append(f"{obj.Name}.{prop}")
-
-    def stop(self):
-        FreeCAD.removeDocumentObserver(self)
-        for proxy, name in self.wrapped:
-            delattr(proxy, name)
 
 
 def offset(obj, original):
@@ -157,13 +97,13 @@ def run():
     # The user drags the Z slider up 15 mm over 3 s: the hand pulls the axis out along its bores.
     touches = ResultTouches(doc)
     counter = RenderCounter(FreeCADGui.activeDocument().activeView())
-    start = time.monotonic()
+    start = time.perf_counter()  # the counter's clock
     frames_before = len(panel.frame_times)
     for i in range(61):
         panel.hand_sliders["z"].setValue(int(round(15.0 * i / 60 * haptic_panel.SLIDER_STEPS_PER_UNIT)))
         wait(0.05)
     wait(1.0)
-    elapsed = time.monotonic() - start
+    elapsed = time.perf_counter() - start
     report["view_rate_hz"], report["view_renders"] = counter.rate(start)
     counter.remove()
     report["frames"] = len(panel.frame_times) - frames_before
