@@ -35,6 +35,7 @@ import FreeCADGui
 from PySide2 import QtWidgets
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "gui"))
+import session_helpers  # noqa: E402
 from view_probes import RenderCounter, ResultTouches  # noqa: E402  (shared with the GUI test sessions)
 
 report = {"errors": {}, "times": {}, "profiles": {}, "regions": {}}
@@ -97,12 +98,7 @@ def settle():
 
 
 def motor():
-    FreeCADGui.getMainWindow().resize(1400, 1000)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
-    FreeCADGui.runCommand("Contacts_OpenSample")
-    settle()
-    doc = FreeCAD.ActiveDocument
-    doc.UndoMode = 1
+    doc = session_helpers.open_contacts_sample()
     report["motor_document"] = doc.Name
     for _ in range(REPEAT):
         timed("motor_find_contacts_panel", find_in_panel, doc)

@@ -14,6 +14,7 @@ import FreeCAD
 import FreeCADGui
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import session_helpers  # noqa: E402
 from session_helpers import grab_window_with_view, run_and_report  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
@@ -75,17 +76,8 @@ def run():
     from contactwb.document import export
     from contactwb.document.identify import analyses
     from contactwb.gui.panels import task_panel
-    FreeCADGui.getMainWindow().resize(1400, 1000)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
-    FreeCADGui.runCommand("Contacts_OpenSample")
-    settle()
-    doc = FreeCAD.ActiveDocument
-    doc.UndoMode = 1
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.runCommand("Contacts_FindContacts")
-    task_panel.current.accept()
-    settle()
-    (analysis,) = analyses(doc)
+    doc = session_helpers.open_contacts_sample()
+    analysis = session_helpers.find_contacts_in_panel(doc)
     report["clean"] = group_state(doc, analysis)
     screw = doc.getObjectsByLabel("Screw-1")[0]
     home = FreeCAD.Placement(screw.Placement)

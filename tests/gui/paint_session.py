@@ -56,19 +56,8 @@ def paint_state(group):
 
 
 def open_and_find():
-    from contactwb.document.identify import analyses
-    from contactwb.gui.panels import task_panel
-    FreeCADGui.getMainWindow().resize(1400, 1000)
-    FreeCADGui.activateWorkbench("ContactsWorkbench")
-    FreeCADGui.runCommand("Contacts_OpenSample")
-    settle()
-    doc = FreeCAD.ActiveDocument
-    doc.UndoMode = 1
-    FreeCADGui.Selection.clearSelection()
-    FreeCADGui.runCommand("Contacts_FindContacts")
-    task_panel.current.accept()
-    settle()
-    (group,) = analyses(doc)
+    doc = session_helpers.open_contacts_sample()
+    group = session_helpers.find_contacts_in_panel(doc)
     state["doc"], state["group"] = doc, group
     report["found"] = paint_state(group)
 

@@ -130,6 +130,31 @@ def open_sample_in_workbench():
     return FreeCAD.openDocument(os.environ["CONTACTS_SAMPLE"])
 
 
+def open_contacts_sample():
+    """The main window at 1400x1000, the workbench active, its bundled motor opened by
+    Contacts_OpenSample with undo on: its document."""
+    import FreeCAD
+    FreeCADGui.getMainWindow().resize(1400, 1000)
+    FreeCADGui.activateWorkbench("ContactsWorkbench")
+    FreeCADGui.runCommand("Contacts_OpenSample")
+    settle()
+    doc = FreeCAD.ActiveDocument
+    doc.UndoMode = 1
+    return doc
+
+
+def find_contacts_in_panel(doc):
+    """Find contacts on the whole document (nothing selected), the task panel accepted: its one analysis."""
+    from contactwb.document.identify import analyses
+    from contactwb.gui.panels import task_panel
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.runCommand("Contacts_FindContacts")
+    task_panel.current.accept()
+    settle()
+    (analysis,) = analyses(doc)
+    return analysis
+
+
 def run_and_report(run, report):
     """Runs the session, keeps its traceback in report["errors"], writes the report to
     $CONTACTS_GUI_RESULT and ends FreeCAD (os._exit: no dialog can hold it open)."""
