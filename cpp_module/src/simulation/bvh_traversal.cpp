@@ -286,50 +286,13 @@ bool Traversal::distance_from_front(const Bvh& a, const std::vector<int>& parent
   return replaced;
 }
 
-bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
-                               std::vector<TriangleHit>& hits) {
+template <class Filter>
+bool Traversal::touching_walk(const Bvh& a, const Bvh& b, const Relative& rel, double touching, Filter& filter) {
   // Pruned by FCL's oriented-box overlap test (a few times cheaper than the RSS distance; its
   // tolerance only ever keeps more pairs), decided by the exact triangle distance.
-  const std::size_t before = hits.size();
-  if (hits.size() >= limit) return false;
   stack_.clear();
   ++bv_tests;
   // A wide threshold (a security margin): disjoint boxes closer than it are opened too.
-  const bool wide = touching > kWideTouching;
-  if (wide) {
-    const BoxSeparation root = bv_separation(a, 0, b, 0, rel);
-    if (root.disjoint && root.margin > touching) return false;
-  } else if (!bv_overlap(a, 0, b, 0, rel)) {
-    return false;
-  }
-  stack_.push_back({0, 0, 0});
-  Vector3d pa, pb;
-  while (!stack_.empty()) {
-    const Entry e = stack_.back();
-    stack_.pop_back();
-    const auto& na = a.getBV(e.a);
-    const auto& nb = b.getBV(e.b);
-    if (na.isLeaf() && nb.isLeaf()) {
-      ++triangle_tests;
-      if (triangle_distance(a, na.primitiveId(), b, nb.primitiveId(), rel, pa, pb) <= touching) {
-        hits.push_back({na.primitiveId(), nb.primitiveId()});
-        if (hits.size() >= limit) break;
-      }
-      continue;
-    }
-    bv_tests += 2;
-    split_by_obb(a, na, e.a, b, nb, e.b, rel, [&](int child_a, int child_b, BoxSeparation separation) {
-      if (!separation.disjoint || (wide && separation.margin <= touching)) stack_.push_back({child_a, child_b, 0});
-    });
-  }
-  return hits.size() > before;
-}
-
-bool Traversal::touching_pairs_filtered(const Bvh& a, const Bvh& b, const Relative& rel, double touching,
-                                        LeafFilter& filter) {
-  // As touching_pairs, each node pair also pruned by the partitions under it.
-  stack_.clear();
-  ++bv_tests;
   const bool wide = touching > kWideTouching;
   if (!filter.open(0, 0)) return false;
   if (wide) {
@@ -363,6 +326,29 @@ bool Traversal::touching_pairs_filtered(const Bvh& a, const Bvh& b, const Relati
     });
   }
   return any;
+}
+
+bool Traversal::touching_pairs(const Bvh& a, const Bvh& b, const Relative& rel, double touching, std::size_t limit,
+                               std::vector<TriangleHit>& hits) {
+  if (hits.size() >= limit) return false;
+  // Every node and leaf pair wanted; hits collected up to the limit.
+  struct Collect {
+    std::vector<TriangleHit>& hits;
+    std::size_t limit;
+    bool open(int, int) const { return true; }
+    bool live(int, int) const { return true; }
+    bool hit(int ta, int tb) {
+      hits.push_back({ta, tb});
+      return hits.size() < limit;
+    }
+  } collect{hits, limit};
+  return touching_walk(a, b, rel, touching, collect);
+}
+
+bool Traversal::touching_pairs_filtered(const Bvh& a, const Bvh& b, const Relative& rel, double touching,
+                                        LeafFilter& filter) {
+  // As touching_pairs, each node pair also pruned by the partitions under it.
+  return touching_walk(a, b, rel, touching, filter);
 }
 
 bool Traversal::touching_pair_from_front(const Bvh& a, const std::vector<int>& parent_a, const Bvh& b,

@@ -146,6 +146,12 @@ class Traversal {
   std::size_t bv_tests = 0, triangle_tests = 0;
 
  private:
+  // The walk both touching_pairs and touching_pairs_filtered make: node pairs opened while
+  // filter.open() allows, leaf pairs measured when filter.live(), each touching one handed to
+  // filter.hit() (false: stop). A template so that the unfiltered walk calls no virtual function.
+  template <class Filter>
+  bool touching_walk(const Bvh& a, const Bvh& b, const Relative& rel, double touching, Filter& filter);
+
   struct Entry {
     int a, b;
     double lower;
