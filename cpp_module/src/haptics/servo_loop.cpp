@@ -250,8 +250,11 @@ double ServoLoop::gather_contacts(const Pose& pose, double reach) {
   int n = collision_->contacts(pose, group, reach, measured_.data(), kMaxContacts);
   const JointState* joint = engaged_ ? &joint_ : nullptr;
   int kept = 0;
-  for (int i = 0; i < n; ++i)
+  guided_count_ = 0;
+  for (int i = 0; i < n; ++i) {
     if (!on_joint_rim(measured_[i], joint)) measured_[kept++] = measured_[i];
+    else guided_bodies_[guided_count_++] = measured_[i].body;  // one answer per body
+  }
   n = kept;
   measured_count_ = n;
   double deepest = 0;
@@ -263,9 +266,16 @@ double ServoLoop::gather_contacts(const Pose& pose, double reach) {
     }
   }
   // The last ticks' contacts, carried on the part: a tilted pin touches a
-  // bore at two points while the query returns one per body.
+  // bore at two points while the query returns one per body. Not those of a
+  // body now answered on the engaged joint's rim: a plane through a point
+  // fixed on the part is a stale linearisation there (Screw-1's 45-degree tip
+  // measured against the cover's hole edge just before its rim reached it held
+  // the screw at the mouth until that contact was 30 ticks old).
   for (int i = 0; i < carried_count_ && constraint_count_ < static_cast<int>(constraint_set_.size()); ++i) {
     const CarriedContact& k = carried_[i];
+    if (std::find(guided_bodies_.begin(), guided_bodies_.begin() + guided_count_, k.body) !=
+        guided_bodies_.begin() + guided_count_)
+      continue;
     ContactPoint c;
     c.point = pose * k.local;
     c.normal = k.normal;

@@ -263,6 +263,10 @@ class ServoLoop {
   int constraint_count_ = 0;
   std::array<ContactPoint, kMaxContacts> probe_{};
   int probe_count_ = 0, deepest_body_ = -1, measured_count_ = 0, carried_used_ = 0;
+  // Bodies the last query answered on the engaged joint's rim only: the joint
+  // guides the part along them, so their carried contacts no longer hold.
+  std::array<int, kMaxContacts> guided_bodies_{};
+  int guided_count_ = 0;
   std::vector<EngagementEvent> events_;  // reserved up front; full: later ones dropped
   ServoSnapshot last_;
   TripleBuffer<ServoSnapshot> snapshots_;
