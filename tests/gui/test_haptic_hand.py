@@ -80,14 +80,15 @@ def test_dragging_the_handle_in_the_3d_view_drives_the_hand(hand_report):
     assert hand_report["handle_released"]
     # The hand went where the mouse went: the height of the view's focal plane under the release pixel
     # less under the press pixel (FreeCAD's own projection, not the dragger's), within two pixels
-    # (one of rounding at the press, one at the release); in the front face's plane, so y stays 0.
+    # (one of rounding at the press, one at the release); in the front face's plane, so y stays 0 to
+    # Coin's single precision (its fields are floats: 1e-5 mm is about 2 units in the last place at 70 mm).
     pixel = hand_report["drag_mm_per_pixel"]
     dz = hand_report["drag_expected_dz"]
     assert dz > 5.0  # about 9 mm: a real pull, not a twitch
     start, hand = hand_report["drag_from_hand"], hand_report["dragged_hand"]
     assert start == pytest.approx([0, 0, 0], abs=1e-9)  # where the replayed script left the hand
     assert hand[2] == pytest.approx(start[2] + dz, abs=2 * pixel)
-    assert hand[0] == pytest.approx(start[0], abs=2 * pixel) and hand[1] == pytest.approx(start[1], abs=1e-9)
+    assert hand[0] == pytest.approx(start[0], abs=2 * pixel) and hand[1] == pytest.approx(start[1], abs=1e-5)
     # The sliders show the hand (0.1 steps).
     assert hand_report["dragged_sliders"] == pytest.approx([hand[0], hand[1], hand[2], 0, 0, 0], abs=0.051)
     # The Axis, seated before the drag, comes out along its bores to the hand: z as the hand's (it

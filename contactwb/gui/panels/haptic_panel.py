@@ -6,8 +6,9 @@ moved), moves the part in the 3D view, shows the
 readouts (the active constraints: the joint held and its stops), records or
 replays the path (or a trial script, or a recording of raw HID reports), and
 commits the final placement as one undoable transaction (or resets it). The
-simulated hand can be driven from the panel, one slider per axis, so a trial
-needs no hardware. While the panel is open, the contact overlays do not redraw
+simulated hand can be driven from the panel, one slider per axis, or by
+dragging its handle in the 3D view (hand_handle.py, polled here each frame),
+so a trial needs no hardware. While the panel is open, the contact overlays do not redraw
 for each move of the part (only its placement changes)."""
 import time
 
