@@ -101,6 +101,25 @@ def drag_the_handle(panel, axis, original, pixels_up=100, steps=20):
     report["dragged_png"] = grab_window_with_view("haptic_hand_dragged.png")
 
 
+def still_readouts(panel, seconds=3.0):
+    """The part and the hand still: how often the panel updated and how often
+    the loop-rate and jitter readouts (which change every tick) were shown
+    (each label repaint composes the whole window with the 3D view)."""
+    texts = {key: [panel.readouts[key].text()] for key in ("rate", "jitter")}
+    frames_before, start = len(panel.frame_times), time.monotonic()
+    while time.monotonic() - start < seconds:
+        QtWidgets.QApplication.processEvents()
+        for key, seen in texts.items():
+            if panel.readouts[key].text() != seen[-1]:
+                seen.append(panel.readouts[key].text())
+        time.sleep(0.002)
+    report["still_seconds"] = time.monotonic() - start
+    from contactwb.gui.panels import haptic_panel
+    report["readout_period_s"] = haptic_panel.READOUT_PERIOD_S
+    report["still_panel_updates"] = len(panel.frame_times) - frames_before
+    report["still_readout_changes"] = {key: len(seen) - 1 for key, seen in texts.items()}
+
+
 def run():
     main = FreeCADGui.getMainWindow()
     doc = session_helpers.open_sample_in_workbench()
@@ -211,6 +230,7 @@ def run():
     report["handle_in_view"] = panel.handle is not None
     drag_the_handle(panel, axis, original)
     progress("handle dragged")
+    still_readouts(panel)
 
     builds_at_ok = len(builds)
     undo_before = list(doc.UndoNames)

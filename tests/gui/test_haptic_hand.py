@@ -104,6 +104,18 @@ def test_dragging_the_handle_in_the_3d_view_drives_the_hand(hand_report):
     assert hand_report["undo_while_dragging"] == []
 
 
+def test_still_part_readouts_refresh_at_2_hz(hand_report):
+    # The loop's rate and jitter change every tick; shown every READOUT_PERIOD_S (0.5 s) while the
+    # part is still, not at each of the panel's updates (each label repaint composes the whole
+    # window with the 3D view's image: a frame's cost with a software renderer).
+    assert hand_report["readout_period_s"] == 0.5
+    seconds = hand_report["still_seconds"]
+    allowed = int(seconds / hand_report["readout_period_s"]) + 1
+    assert hand_report["still_panel_updates"] > allowed  # the panel did update more often than that
+    for key, changes in hand_report["still_readout_changes"].items():
+        assert changes <= allowed, key
+
+
 def test_ok_commits_the_trial(hand_report):
     assert hand_report["panel_closed"]
     # The placement the handle's drag left, as one undoable transaction; the handle gone from the view.
