@@ -9,10 +9,14 @@ issue 21's GUI targets, timed as the designer meets them.
 3. The haptic trial panel on the motor with its contact analysis present
    (issue 20 item 6): the simulated hand's Z slider moved back and forth for
    PANEL_SECONDS, the Axis following along its bores; the 3D view's renders
-   counted by a SoCallback first in its scene graph (every SoGLRenderAction),
+   counted by a SoCallback first in its scene graph (every SoGLRenderAction
+   over the whole graph, not its passes over delayed paths),
    the panel's own updates, and what touched the contact results meanwhile:
    property changes of the workbench's objects (a document observer), calls
    of their view providers' updateData/onChanged, rebuilds of the paint.
+   Before it, the same view rendered back to back with the panel closed
+   (the renderer's rate for that scene), and before everything an empty
+   document's view rendered so (the renderer's floor on this display).
 4. Find contacts on two ball bearings (../shared/data's R06 STEP imported
    twice, the copy moved beside the first) in the panel.
 
@@ -36,7 +40,7 @@ from PySide2 import QtWidgets
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tests", "gui"))
 import session_helpers  # noqa: E402
-from view_probes import RenderCounter, ResultTouches  # noqa: E402  (shared with the GUI test sessions)
+from view_probes import RenderCounter, ResultTouches, forced_render_rate  # noqa: E402  (shared with the GUI test sessions)
 
 report = {"errors": {}, "times": {}, "profiles": {}, "regions": {}}
 PROFILE = os.environ.get("CONTACTS_BENCH_PROFILE") == "1"
@@ -130,6 +134,19 @@ def motor():
     drawn(doc)
 
 
+def empty_view_rate():
+    """The renderer's floor: an empty document's 3D view (FreeCAD's
+    background gradient and navigation cube only) rendered back to back, at
+    the size the motor's view has later."""
+    doc = FreeCAD.newDocument("EmptyView")
+    session_helpers.settle()
+    rate, renders, size = forced_render_rate(3.0)
+    report["times"].setdefault("empty_view_forced_rate_hz", []).append(round(rate, 1))
+    report["empty_view"] = {"renders": renders, "view_pixels": size}
+    FreeCAD.closeDocument(doc.Name)
+    session_helpers.settle()
+
+
 def haptic_panel_rate():
     """The haptic panel on the motor's Axis, its contact analysis present and
     drawn: the 3D view's render rate while the simulated hand moves the part
@@ -144,6 +161,10 @@ def haptic_panel_rate():
     drawn(doc)
     (group,) = analyses(doc)
     report["panel_contacts"] = sum(1 for c in group.Group if hasattr(c, "ContactType"))
+    # What the renderer does for this scene alone (no panel, nothing moving): the ceiling of the panel's rate.
+    rate, renders, size = forced_render_rate(3.0)
+    report["times"].setdefault("motor_forced_rate_hz", []).append(round(rate, 1))
+    report["motor_view"] = {"renders": renders, "view_pixels": size}
     axis = doc.getObjectsByLabel("Axis")[0]
     FreeCADGui.Selection.clearSelection()
     FreeCADGui.Selection.addSelection(axis)
@@ -218,7 +239,7 @@ def bearings():
     report["bearing_contacts"] = sum(1 for c in group.Group if hasattr(c, "ContactType"))
 
 
-for step in (motor, haptic_panel_rate, bearings):
+for step in (empty_view_rate, motor, haptic_panel_rate, bearings):
     try:
         step()
     except Exception:

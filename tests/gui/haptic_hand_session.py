@@ -18,7 +18,7 @@ from PySide2 import QtWidgets
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
 import session_helpers  # noqa: E402
 from session_helpers import wait  # noqa: E402
-from view_probes import RenderCounter, ResultTouches  # noqa: E402
+from view_probes import RenderCounter, ResultTouches, view_viewport  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
@@ -36,6 +36,88 @@ def grab_window_with_view(name):
 
 def offset(obj, original):
     return list(obj.Placement.Base - original.Base)
+
+
+def send_mouse(widget, kind, pos, buttons):
+    """A Qt mouse event at `pos` (logical pixels of `widget`), sent as a user's would arrive."""
+    from PySide2 import QtCore, QtGui
+    button = QtCore.Qt.NoButton if kind == QtCore.QEvent.MouseMove else QtCore.Qt.LeftButton
+    pos = QtCore.QPointF(pos)
+    event = QtGui.QMouseEvent(kind, pos, QtCore.QPointF(widget.mapToGlobal(pos.toPoint())), button, buttons,
+                              QtCore.Qt.NoModifier)
+    QtWidgets.QApplication.sendEvent(widget, event)
+
+
+def drag_the_handle(panel, axis, original, pixels_up=100, steps=20):
+    """The designer grabs the hand's handle in the 3D view (front view) on its
+    front face near its top, where no other body hides it (Coin picks the
+    nearest surface), and drags it `pixels_up` straight up: Qt mouse events
+    sent to the view's OpenGL widget, a press, moves with the button held, a
+    release. The handle's front face moves in its plane (x, z): the hand
+    follows to where the mouse went, the Axis out along its bores."""
+    from PySide2 import QtCore
+    view = FreeCADGui.activeDocument().activeView()
+    viewport = view_viewport()
+    ratio = viewport.devicePixelRatioF()  # Coin's pixels are the device's, Qt's events logical
+    height = round(viewport.height() * ratio)
+    centre, half = panel.scene.centre, panel.handle.half_size
+    at = FreeCAD.Vector(*centre) + FreeCAD.Vector(*panel.handle.dragger.translation.getValue().getValue())
+    grip = view.getPointOnScreen(at + FreeCAD.Vector(0, -half[1], half[2] - 3.0))
+    report["drag_from_hand"] = list(panel.hand_slider_values()[0])
+    press = QtCore.QPointF(grip[0] / ratio, (height - 1 - grip[1]) / ratio)
+    release = press - QtCore.QPointF(0, pixels_up)
+
+    def world(point):  # the point of the view's focal plane under a logical pixel (independent of the dragger)
+        return view.getPoint(int(round(point.x() * ratio)), int(round(height - 1 - point.y() * ratio)))
+    report["drag_expected_dz"] = world(release).z - world(press).z
+    report["drag_mm_per_pixel"] = report["drag_expected_dz"] / (pixels_up * ratio)
+    undo_before = list(axis.Document.UndoNames)
+    send_mouse(viewport, QtCore.QEvent.MouseMove, press, QtCore.Qt.NoButton)
+    wait(0.2)
+    send_mouse(viewport, QtCore.QEvent.MouseButtonPress, press, QtCore.Qt.LeftButton)
+    wait(0.2)
+    report["handle_grabbed"] = panel.handle.dragging()
+    for i in range(1, steps + 1):
+        send_mouse(viewport, QtCore.QEvent.MouseMove, press - QtCore.QPointF(0, pixels_up * i / steps),
+                   QtCore.Qt.LeftButton)
+        wait(0.1)
+    send_mouse(viewport, QtCore.QEvent.MouseButtonRelease, release, QtCore.Qt.NoButton)
+    wait(0.3)
+    report["handle_released"] = not panel.handle.dragging()
+    translate, rotate = panel.hand_slider_values()
+    report["dragged_sliders"] = translate + rotate
+    report["dragged_hand"] = list(panel.handle.dragger.translation.getValue().getValue())
+    # Real time on a loaded machine: wait until the Axis has come to the hand, 20 s at most.
+    target = report["dragged_hand"][2]
+    for _ in range(200):
+        wait(0.1)
+        if abs(panel.session.snapshot().translate[2] - target) < 0.01:
+            break
+    wait(0.3)
+    report["dragged_snapshot"] = panel.session.snapshot().translate
+    report["dragged_offset"] = offset(axis, original)
+    report["dragged_constraints"] = panel.readouts["constraints"].text()
+    report["undo_while_dragging"] = [n for n in axis.Document.UndoNames if n not in undo_before]
+    report["dragged_png"] = grab_window_with_view("haptic_hand_dragged.png")
+
+
+def still_readouts(panel, seconds=3.0):
+    """The part and the hand still: how often the panel updated and how often
+    the loop-rate and jitter readouts (which change every tick) were shown
+    (each label repaint composes the whole window with the 3D view)."""
+    texts = {key: [panel.readouts[key].text()] for key in ("rate", "jitter")}
+    frames_before, start = len(panel.frame_times), time.monotonic()
+    while time.monotonic() - start < seconds:
+        QtWidgets.QApplication.processEvents()
+        for key, seen in texts.items():
+            if panel.readouts[key].text() != seen[-1]:
+                seen.append(panel.readouts[key].text())
+        time.sleep(0.002)
+    report["still_seconds"] = time.monotonic() - start
+    from contactwb.gui.panels import haptic_panel
+    report["readout_period_s"] = haptic_panel.READOUT_PERIOD_S
+    report["still_panel_updates"] = len(panel.frame_times) - frames_before
+    report["still_readout_changes"] = {key: len(seen) - 1 for key, seen in texts.items()}
 
 
 def run():
@@ -144,6 +226,12 @@ def run():
     report["readouts"] = {k: v.text() for k, v in panel.readouts.items()}
     report["replay_png"] = grab_window_with_view("haptic_hand_replayed.png")
 
+    # The hand's handle in the 3D view, dragged with the mouse (no sliders).
+    report["handle_in_view"] = panel.handle is not None
+    drag_the_handle(panel, axis, original)
+    progress("handle dragged")
+    still_readouts(panel)
+
     builds_at_ok = len(builds)
     undo_before = list(doc.UndoNames)
     panel.accept()
@@ -154,6 +242,12 @@ def run():
     report["final_offset"] = offset(axis, original)
     report["undo_added"] = [n for n in doc.UndoNames if n not in undo_before] or list(doc.UndoNames)[:1]
     report["ok_png"] = grab_window_with_view("haptic_hand_ok.png")
+    from pivy import coin
+    from contactwb.gui.panels import hand_handle
+    search = coin.SoSearchAction()
+    search.setName(hand_handle.NODE_NAME)
+    search.apply(FreeCADGui.activeDocument().activeView().getSceneGraph())
+    report["handle_left_in_view"] = search.getPath() is not None
 
 
 session_helpers.run_and_report(run, report)

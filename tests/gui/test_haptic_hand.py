@@ -2,7 +2,8 @@
 (tests/gui/haptic_hand_session.py): the motor with its contact analysis
 drawn, the simulated hand driven by the panel's sliders, the contact overlay
 not redrawn while the part moves, the active-constraints readout, Replay of
-the bundled trial script, OK committing the placement. The panel's display
+the bundled trial script, the hand's handle in the 3D view dragged with mouse
+events, OK committing the placement. The panel's display
 rate is measured and printed (not asserted: a timing on a shared machine)."""
 import os
 
@@ -72,14 +73,59 @@ def test_replay_of_the_bundled_script_seats_the_axis(hand_report):
     assert set(hand_report["readouts"]) >= {"constraints", "depth", "force", "watchdog"}
 
 
+def test_dragging_the_handle_in_the_3d_view_drives_the_hand(hand_report):
+    # Mouse events on the view's OpenGL widget: pressed on the handle's front face, dragged 100 pixels up.
+    assert hand_report["handle_in_view"]
+    assert hand_report["handle_grabbed"]  # Coin's dragger took the press (it was on the handle)
+    assert hand_report["handle_released"]
+    # The hand went where the mouse went: the height of the view's focal plane under the release pixel
+    # less under the press pixel (FreeCAD's own projection, not the dragger's), within two pixels
+    # (one of rounding at the press, one at the release); in the front face's plane, so y stays 0 to
+    # Coin's single precision (its fields are floats: 1e-5 mm is about 2 units in the last place at 70 mm).
+    pixel = hand_report["drag_mm_per_pixel"]
+    dz = hand_report["drag_expected_dz"]
+    assert dz > 5.0  # about 9 mm: a real pull, not a twitch
+    start, hand = hand_report["drag_from_hand"], hand_report["dragged_hand"]
+    assert start == pytest.approx([0, 0, 0], abs=1e-9)  # where the replayed script left the hand
+    assert hand[2] == pytest.approx(start[2] + dz, abs=2 * pixel)
+    assert hand[0] == pytest.approx(start[0], abs=2 * pixel) and hand[1] == pytest.approx(start[1], abs=1e-5)
+    # The sliders show the hand (0.1 steps).
+    assert hand_report["dragged_sliders"] == pytest.approx([hand[0], hand[1], hand[2], 0, 0, 0], abs=0.051)
+    # The Axis, seated before the drag, comes out along its bores to the hand: z as the hand's (it
+    # slides freely along the joint), x and y on the bores' axis within 0.04 mm (its centre of mass is
+    # 0.018 mm off the axis, the D-flat: a turn about the bore moves it at most twice that); in the
+    # document as in the loop.
+    snapshot = hand_report["dragged_snapshot"]
+    assert snapshot[2] == pytest.approx(hand[2], abs=0.01)
+    assert snapshot[:2] == pytest.approx([0.0, 0.0], abs=0.04)
+    assert hand_report["dragged_offset"] == pytest.approx(snapshot, abs=0.01)
+    assert hand_report["dragged_constraints"].startswith("Cylindrical joint with ")
+    # The handle is a node of the view, not of the document: nothing in the undo stack while dragging.
+    assert hand_report["undo_while_dragging"] == []
+
+
+def test_still_part_readouts_refresh_at_2_hz(hand_report):
+    # The loop's rate and jitter change every tick; shown every READOUT_PERIOD_S (0.5 s) while the
+    # part is still, not at each of the panel's updates (each label repaint composes the whole
+    # window with the 3D view's image: a frame's cost with a software renderer).
+    assert hand_report["readout_period_s"] == 0.5
+    seconds = hand_report["still_seconds"]
+    allowed = int(seconds / hand_report["readout_period_s"]) + 1
+    assert hand_report["still_panel_updates"] > allowed  # the panel did update more often than that
+    for key, changes in hand_report["still_readout_changes"].items():
+        assert changes <= allowed, key
+
+
 def test_ok_commits_the_trial(hand_report):
     assert hand_report["panel_closed"]
-    assert hand_report["final_offset"] == pytest.approx([0, 0, 0], abs=0.05)
+    # The placement the handle's drag left, as one undoable transaction; the handle gone from the view.
+    assert hand_report["final_offset"] == pytest.approx(hand_report["dragged_snapshot"], abs=0.01)
     assert hand_report["undo_added"] == ["Haptic trial"]
+    assert not hand_report["handle_left_in_view"]
 
 
 def test_screenshots_were_taken(hand_report):
     from PIL import Image
-    for key in ("sliders_png", "replay_png", "ok_png"):
+    for key in ("sliders_png", "replay_png", "dragged_png", "ok_png"):
         image = Image.open(hand_report[key]).convert("RGB")
         assert image.width > 300 and len(set(image.getdata())) > 20

@@ -9,7 +9,11 @@ import FreeCAD
 
 class RenderCounter:
     """Counts the 3D view's renders: a SoCallback first in its scene graph,
-    called by every SoGLRenderAction (times on time.perf_counter)."""
+    called by every SoGLRenderAction (times on time.perf_counter). Only the
+    traversal of the whole graph counts: the passes a frame makes afterwards
+    over its delayed paths (annotations such as the contacts' legend,
+    transparent shapes) traverse this node again (it affects the state, so
+    Coin visits it off the path) and would count one frame two or more times."""
 
     def __init__(self, view):
         from pivy import coin
@@ -19,9 +23,10 @@ class RenderCounter:
         self.node.setCallback(self._called)
         self.root.insertChild(self.node, 0)
         self.render_type = coin.SoGLRenderAction.getClassTypeId()
+        self.whole_graph = coin.SoAction.NO_PATH
 
     def _called(self, _, action):
-        if action.isOfType(self.render_type):
+        if action.isOfType(self.render_type) and action.getCurPathCode() == self.whole_graph:
             self.times.append(time.perf_counter())
 
     def rate(self, since):
@@ -81,3 +86,35 @@ class ResultTouches:
                 delattr(owner, name)
             else:
                 setattr(owner, name, own)
+
+
+def view_viewport():
+    """The active 3D view's OpenGL widget (Quarter's viewport in FreeCAD 0.20):
+    what renders, and what gets the mouse."""
+    from PySide2 import QtWidgets
+    import FreeCADGui
+    main = FreeCADGui.getMainWindow()
+    active = main.findChild(QtWidgets.QMdiArea).activeSubWindow()
+    (viewer,) = [w for w in (active or main).findChildren(QtWidgets.QWidget)
+                 if w.metaObject().className() == "SIM::Coin3D::Quarter::QuarterWidget" and w.isVisible()]
+    return viewer.viewport()
+
+
+def forced_render_rate(seconds=3.0):
+    """The active 3D view rendered back to back for `seconds` (each a
+    synchronous repaint of its OpenGL widget: Coin's render, Qt composing the
+    window, the swap): (renders per second, renders, [width, height] of the
+    view in device pixels). What the renderer can do for this scene, with
+    nothing else asking for time."""
+    from PySide2 import QtWidgets
+    import FreeCADGui
+    viewport = view_viewport()
+    QtWidgets.QApplication.processEvents()
+    counter = RenderCounter(FreeCADGui.activeDocument().activeView())
+    start = time.perf_counter()
+    while time.perf_counter() - start < seconds:
+        viewport.repaint()
+    rate, renders = counter.rate(start)
+    counter.remove()
+    ratio = viewport.devicePixelRatioF()
+    return rate, renders, [round(viewport.width() * ratio), round(viewport.height() * ratio)]

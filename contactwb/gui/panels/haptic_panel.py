@@ -6,8 +6,9 @@ moved), moves the part in the 3D view, shows the
 readouts (the active constraints: the joint held and its stops), records or
 replays the path (or a trial script, or a recording of raw HID reports), and
 commits the final placement as one undoable transaction (or resets it). The
-simulated hand can be driven from the panel, one slider per axis, so a trial
-needs no hardware. While the panel is open, the contact overlays do not redraw
+simulated hand can be driven from the panel, one slider per axis, or by
+dragging its handle in the 3D view (hand_handle.py, polled here each frame),
+so a trial needs no hardware. While the panel is open, the contact overlays do not redraw
 for each move of the part (only its placement changes)."""
 import time
 
@@ -25,6 +26,8 @@ active_panel = None  # the open panel (for scripts and tests)
 HAND_AXES = [("x", "X", 100.0, "mm"), ("y", "Y", 100.0, "mm"), ("z", "Z", 100.0, "mm"),
              ("rx", "Rx", 90.0, "deg"), ("ry", "Ry", 90.0, "deg"), ("rz", "Rz", 180.0, "deg")]
 SLIDER_STEPS_PER_UNIT = 10  # 0.1 mm, 0.1 degree
+# The measured readouts (loop rate, jitter, force) while the part is still: 2 Hz.
+READOUT_PERIOD_S = 0.5
 
 
 def _body_to_move(bodies, picked):
@@ -91,8 +94,8 @@ class HapticTrialPanel:
         # The loop moves the part in the global frame; the object's Placement is
         # local to its containers (App::Part, a link's placement): keep both.
         self.obj = body.obj
-        self.global_placement = Part.getShape(body.root, body.subname, needSubElement=False,
-                                              transform=True).Placement
+        shape = Part.getShape(body.root, body.subname, needSubElement=False, transform=True)
+        self.global_placement = shape.Placement
         self.body_name = body.name
         self.trial = trial
         self.scene = trial.make_scene(assembly, body.name)
@@ -107,6 +110,8 @@ class HapticTrialPanel:
         self.shown_matrix = None  # the loop's displacement last shown (the view redraws only on a change)
         self.frame_times = []     # monotonic time of each display update (the panel's rate)
         self.update_seconds = []  # time spent in each update (the panel's own cost per frame)
+        self.numbers_shown_at = -1e9  # monotonic time the measured readouts were last shown
+        self.handle = None  # the hand's handle in the 3D view (hand_handle.py), made once the session runs
         self.form = self._build_form()
         # The overlays must not redraw every contact each time the part moves.
         try:
@@ -115,12 +120,25 @@ class HapticTrialPanel:
         except ImportError:
             pass
         self._start_session(device)
+        self.handle = self._make_handle(shape.BoundBox)
         from PySide2 import QtCore
         self.timer = QtCore.QTimer()
         self.timer.setTimerType(QtCore.Qt.PreciseTimer)
         self.timer.timeout.connect(self.update)
         self.timer.start(DISPLAY_PERIOD_MS)
         active_panel = self
+
+    def _make_handle(self, box):
+        """The simulated hand's handle on the part in the document's 3D view (None: no 3D view)."""
+        from contactwb.gui.panels.hand_handle import HandHandle
+        view = FreeCADGui.getDocument(self.obj.Document.Name).activeView()
+        if not hasattr(view, "getSceneGraph"):
+            return None
+        handle = HandHandle(view, self.scene.centre, box)
+        translate, rotate = self.hand_slider_values()
+        handle.set(translate, rotate)
+        handle.show(self.hand_box.isEnabled())
+        return handle
 
     # ---- form
     def _build_form(self):
@@ -256,6 +274,8 @@ class HapticTrialPanel:
         self.device_message.setText(self.session.message)
         # The sliders drive the simulated hand (none with hardware), from where the part starts.
         self.hand_box.setEnabled(caps.name == h.simulated_capabilities().name)
+        if self.handle is not None:
+            self.handle.show(self.hand_box.isEnabled())
         self.set_hand_sliders(list(translate) + list(rotate_deg), drive=False)
         # Gains within what the device renders (a rate device renders none: keep the defaults).
         k_max = caps.max_stiffness or 5.0
@@ -296,15 +316,17 @@ class HapticTrialPanel:
         values = [self.hand_sliders[key].value() / SLIDER_STEPS_PER_UNIT for key, *_ in HAND_AXES]
         return values[:3], values[3:]
 
-    def set_hand_sliders(self, values, drive=True):
+    def set_hand_sliders(self, values, drive=True, show_handle=True):
         """Moves the sliders (six values, mm and degrees) as the user would;
-        `drive`: the hand follows."""
+        `drive`: the hand follows; `show_handle`: the 3D view's handle too."""
         for (key, _, _, unit), v in zip(HAND_AXES, values):
             slider = self.hand_sliders[key]
             slider.blockSignals(True)
             slider.setValue(int(round(v * SLIDER_STEPS_PER_UNIT)))
             slider.blockSignals(False)
             self.hand_values[key].setText(f"{slider.value() / SLIDER_STEPS_PER_UNIT:.1f} {unit}")
+        if show_handle and self.handle is not None:
+            self.handle.set(values[:3], values[3:])
         if drive:
             self._hand_moved()
 
@@ -312,9 +334,24 @@ class HapticTrialPanel:
         translate, rotate = self.hand_slider_values()
         for (key, _, _, unit), v in zip(HAND_AXES, translate + rotate):
             self.hand_values[key].setText(f"{v:.1f} {unit}")
+        if self.handle is not None:
+            self.handle.set(translate, rotate)
         if self.session is not None:
             self.script = None  # the user takes over from a playing script
             self.session.set_hand_target(translate, rotate)
+
+    def _poll_handle(self):
+        """The hand follows the 3D view's handle when the designer dragged it
+        (read each frame: no callback from Coin), the sliders show where."""
+        if self.handle is None or not self.hand_box.isEnabled():
+            return
+        dragged = self.handle.poll()
+        if dragged is None:
+            return
+        translate, rotate = dragged
+        self.script = None  # the user takes over from a playing script
+        self.session.set_hand_target(translate, rotate)
+        self.set_hand_sliders(translate + rotate, drive=False, show_handle=False)
 
     def _device_changed(self, index):
         self._start_session(self.DEVICES[index][1])
@@ -330,6 +367,7 @@ class HapticTrialPanel:
     def update(self):
         if self.session is None:
             return
+        self._poll_handle()
         if self.script is not None:
             self._drive_script()
         began = time.monotonic()
@@ -340,10 +378,27 @@ class HapticTrialPanel:
             del self.frame_times[:1000]
             del self.update_seconds[:1000]
         matrix = [list(row) for row in s.matrix]
-        if matrix != self.shown_matrix:  # a Placement set, even unchanged, redraws the whole view
+        moved = matrix != self.shown_matrix
+        if moved:  # a Placement set, even unchanged, redraws the whole view
             self.shown_matrix = matrix
             self._show_placement(s.matrix)
-        self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s.axes))
+        # Any label repainted makes Qt compose the whole window again with the
+        # 3D view's image (a QOpenGLWidget): with a software renderer that is a
+        # frame's cost. The numbers that flicker while the part is still (loop
+        # rate, jitter, force) are shown at READOUT_PERIOD_S; with a move they
+        # go with the view's own frame. The joint and constraints when they change.
+        numbers = moved or began - self.numbers_shown_at >= READOUT_PERIOD_S
+        self._show_readouts(s, numbers)
+        if numbers:
+            self.numbers_shown_at = began
+        self.update_seconds.append(time.monotonic() - began)
+        if self.recording is not None:
+            self.recording.append({"t": s.time, "translate": s.translate, "rotate_deg": s.rotate_deg,
+                                   "force": s.force, "engaged": s.engaged, "penetration": s.penetration})
+
+    def _show_readouts(self, s, numbers):
+        """The readouts of snapshot s; `numbers`: the measured figures too
+        (QLabel.setText does nothing when the text is unchanged)."""
         if s.engaged:
             how = "chosen" if s.held else "found"
             self.joint_label.setText(f"{s.joint} with {', '.join(s.joint_with)} ({how})")
@@ -351,6 +406,9 @@ class HapticTrialPanel:
             self.joint_label.setText("free (stopped only by collisions)")
         r = self.readouts
         r["constraints"].setText(self.constraints_text(s))
+        if not numbers:
+            return
+        self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s.axes))
         r["depth"].setText(f"{s.insertion_depth:.3f} mm" if s.engaged else "-")
         r["force"].setText(f"{s.force_n:.2f} N")
         r["offset"].setText("[" + ", ".join(f"{v:.3f}" for v in s.translate) + "] mm")
@@ -358,10 +416,6 @@ class HapticTrialPanel:
         r["rate"].setText(f"{s.rate_hz:.0f} Hz")
         r["jitter"].setText(f"{s.jitter_us:.0f} us")
         r["watchdog"].setText(s.watchdog if s.watchdog != "none" else "ok")
-        self.update_seconds.append(time.monotonic() - began)
-        if self.recording is not None:
-            self.recording.append({"t": s.time, "translate": s.translate, "rotate_deg": s.rotate_deg,
-                                   "force": s.force, "engaged": s.engaged, "penetration": s.penetration})
 
     @staticmethod
     def constraints_text(s):
@@ -433,6 +487,8 @@ class HapticTrialPanel:
         s = 0.0 if b["t"] <= a["t"] else (t - a["t"]) / (b["t"] - a["t"])
         mix = [[x + s * (y - x) for x, y in zip(a[field], b[field])] for field in ("translate", "rotate_deg")]
         self.session.set_hand_target(*mix)
+        if self.handle is not None:
+            self.handle.set(*mix)
 
     def start_recording(self):
         self.recording = []
@@ -507,6 +563,9 @@ class HapticTrialPanel:
     def _close(self):
         global active_panel
         self.timer.stop()
+        if self.handle is not None:
+            self.handle.remove()
+            self.handle = None
         if self.session is not None:
             self.session.stop()
             self.session = None
