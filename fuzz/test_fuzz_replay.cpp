@@ -489,3 +489,30 @@ TEST(FuzzRegressions, BrepHangBisectedToTheBallsWireRecord) {
   EXPECT_EQ(analysed.contacts.size(), 1u);
   EXPECT_TRUE(analysed.skipped.empty());
 }
+
+// make fuzz, fuzz_brep (timeout, 42 s under ASan, in partition_shape): the
+// ball's degenerate pole edge with a pcurve range of 0 to 6838351.2 (the
+// seed's 6.28...) gave its sphere face a u range of a million turns, and the
+// face's swept box stepped through every half turn. A range of a turn or
+// more now boxes the whole circle at once: the ball's Face1, a sphere of
+// radius 2 about the origin, gets the box of its whole zone.
+TEST(FuzzRegressions, BrepSphereFaceOfAMillionTurnsIsBoxedAtOnce) {
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/sphere_pcurve_range_6e6_swept_box_timeout.brep");
+  TopoDS_Shape shape;
+  ASSERT_TRUE(contactcore::shape_from_brep(std::string(data.begin(), data.end()), shape).ok());
+  Bnd_Box box;
+  BRepBndLib::Add(shape, box);
+  const contactcore::BodyPartitions body = contactcore::partition_shape(shape, contactcore::default_tolerances(box));
+  ASSERT_FALSE(body.faces.empty());
+  const contactcore::FaceInfo& ball = body.faces.front();
+  ASSERT_EQ(ball.index, 1);
+  EXPECT_EQ(ball.params.kind, contactcore::SurfaceKind::Sphere);
+  double x0, y0, z0, x1, y1, z1;
+  ball.box.Get(x0, y0, z0, x1, y1, z1);
+  EXPECT_TRUE(body.status.ok()) << body.status.describe();
+  // The whole sphere (the face spans pole to pole), grown only by the
+  // meridian samples' bulge (2.0024 here): never the 1e6-turn walk's result.
+  for (const double low : {x0, y0, z0}) EXPECT_TRUE(low <= -2.0 && low > -2.003) << low;
+  for (const double high : {x1, y1, z1}) EXPECT_TRUE(high >= 2.0 && high < 2.003) << high;
+}
