@@ -97,6 +97,11 @@ def load_assembly(path, max_bodies=None):
         from contactwb.document import bodies as document_bodies
         from contactwb.document import freecad_setup
         doc = freecad_setup.open_document(os.path.abspath(path))
-        assembly, _ = document_bodies.assembly_from_document(doc, None, [])
+        try:
+            assembly, _ = document_bodies.assembly_from_document(doc, None, [])
+        except core.InputError as error:  # a body's error (the core names body and face): the file too
+            if os.path.basename(path) in str(error):
+                raise
+            raise core.InputError(f"{error} (file '{path}')") from error
         return assembly
     return meshes.read_step_assembly(path, max_bodies)

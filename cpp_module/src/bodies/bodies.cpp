@@ -3,6 +3,7 @@
 #include "contactcore/common/out_of_memory.h"
 #include "bodies/step_check.h"
 #include "bodies/solid_harvest.h"
+#include "bodies/open_wires.h"
 #include "bodies/step_products.h"
 
 #include "contactcore/bodies/instances.h"
@@ -610,6 +611,19 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
         result.status = Status::failure(StatusCode::InvalidInput,
                                         "coordinates that are not finite numbers (a NaN or infinite placement?)");
         result.status.body = name;
+        return result;
+      }
+      // A face whose boundary does not close (a damaged wire record that lost
+      // edges) makes OCCT's face-face intersection run forever, polling no
+      // progress (make fuzz): refused here, before any Boolean meets it.
+      const OpenWire open = find_open_wire(children[i]);
+      if (open.face) {
+        result.status = Status::failure(
+            StatusCode::InvalidInput,
+            "damaged topology: the face's boundary does not close (wire " + std::to_string(open.wire) + " has " +
+                std::to_string(open.loose_ends) + " loose end(s)); OCCT's Booleans may never return on such a face");
+        result.status.body = name;
+        result.status.face = open.face;
         return result;
       }
     }

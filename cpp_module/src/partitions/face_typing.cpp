@@ -277,9 +277,15 @@ Bnd_Box swept_box(const std::vector<gp_XYZ>& meridian, const gp_Ax1& axis, doubl
     for (int k = 0; k < 3; ++k) {
       const double a = radial.Coord(k + 1), b = turned.Coord(k + 1);
       auto value = [&](double u) { return centre.Coord(k + 1) + a * std::cos(u) + b * std::sin(u); };
+      if (!(u2 - u1 < 2 * kPi)) {  // a whole turn or more (a damaged range of 6.8e6 rad: make fuzz), NaN too
+        const double reach = std::hypot(a, b);
+        lo[k] = centre.Coord(k + 1) - reach;
+        hi[k] = centre.Coord(k + 1) + reach;
+        continue;
+      }
       lo[k] = std::min(value(u1), value(u2));
       hi[k] = std::max(value(u1), value(u2));
-      const double phi = std::atan2(b, a);
+      const double phi = std::atan2(b, a);  // at most three extremes below: the range is under a turn
       for (double u = phi + kPi * std::ceil((u1 - phi) / kPi); u <= u2; u += kPi) {
         lo[k] = std::min(lo[k], value(u));
         hi[k] = std::max(hi[k], value(u));
