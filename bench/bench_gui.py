@@ -117,8 +117,9 @@ def main():
     text = table(report, load)
     print(text)
     if args.profile:
-        for name, profile in report["profiles"].items():
-            print(f"\n--- {name}\n{profile}")
+        for name, profiles in report["profiles"].items():
+            for repeat, profile in enumerate(profiles, 1):
+                print(f"\n--- {name}, repeat {repeat}\n{profile}")
     if args.write:
         write_section(args.write, "gui", "## The GUI (issue 21)\n\n" + text)
 

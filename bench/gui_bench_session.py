@@ -79,8 +79,10 @@ def timed(name, action, doc):
     report["times"].setdefault(name, []).append(round(seconds, 3))
     if profiler:
         text = io.StringIO()
-        pstats.Stats(profiler, stream=text).sort_stats("cumulative").print_stats(25)
-        report["profiles"].setdefault(name, text.getvalue()[-6000:])
+        stats = pstats.Stats(profiler, stream=text)
+        stats.sort_stats("cumulative").print_stats(40)
+        stats.sort_stats("tottime").print_stats(25)  # where the time itself goes (C++ calls included)
+        report["profiles"].setdefault(name, []).append(text.getvalue()[-16000:])  # each repeat's
     return seconds
 
 
