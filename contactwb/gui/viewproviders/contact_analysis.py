@@ -75,10 +75,13 @@ class ViewProviderContactAnalysis(ViewProvider):
         if overlay is None or self.is_stale():
             return
         from contactwb.objects import regions
+        from contactwb.gui.overlay.contact_overlay import drawing_settings
         try:
             changed = regions.generation(self.Object) not in (None, overlay.region_generation)
         except Exception:  # the group deleted
             return
+        # the preferences' paint style or colours changed since it was drawn
+        changed = changed or overlay.drawn_with != drawing_settings()
         if self._stale or changed:
             self.schedule_rebuild()
 
