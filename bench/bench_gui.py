@@ -12,8 +12,13 @@ bench/gui_bench_session.py, which times, until the paint is drawn:
 - Find contacts on two ball bearings: ../shared/data's R06 STEP imported
   twice (skipped with a message when absent; target <= 2 s).
 
-Prints a Markdown table (best and worst of the repeats, with the machine's
-load); --write FILE puts it in FILE's `gui` section (docs/benchmarks.md)."""
+Prints a Markdown table (best, median and worst of the repeats, the FreeCAD
+process' CPU time, the machine's load); --write FILE puts it in FILE's `gui`
+section (docs/benchmarks.md). --baseline-sources DIR (another checkout, e.g.
+main's) times that workbench too, with the same extension and harness, in
+sessions alternating with this tree's, and adds the ratios: before and after
+in the same conditions on a shared machine. --profile prints each repeat's
+cProfile (cumulative and own time)."""
 import argparse
 import json
 import os

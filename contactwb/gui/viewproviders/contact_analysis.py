@@ -65,6 +65,22 @@ class ViewProviderContactAnalysis(ViewProvider):
         shown = self.Object.ViewObject.Visibility and not self.is_stale()
         switch.whichChild.setValue(coin.SO_SWITCH_ALL if shown else coin.SO_SWITCH_NONE)
 
+    def drawing_out_of_date(self):
+        """Whether the drawing shown is not that of the group as it is: other
+        contacts, other regions (contactwb.objects.regions), another count of
+        interferences in the legend, other preferences, or a rebuild asked for."""
+        from contactwb.document.identify import interferences_of
+        from contactwb.gui.overlay.contact_overlay import drawing_settings
+        from contactwb.objects import regions
+        overlay = getattr(self, "overlay", None)
+        if overlay is None or self._stale:
+            return True
+        group = self.Object
+        contacts = tuple(c.Name for c in group.Group if is_contact(c) and c.FacesA and c.FacesB)
+        return (contacts != overlay.names or regions.generation(group) != overlay.region_generation
+                or len(interferences_of(group)) != overlay.interferences
+                or overlay.drawn_with != drawing_settings())
+
     def after_recompute(self):
         """After a recompute, an undo or a redo: the paint shown while the
         analysis is current, and drawn again if the core's regions changed
