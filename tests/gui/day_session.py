@@ -176,9 +176,13 @@ def find_contacts_twice():
     (group,) = analyses(doc)
     state["group"] = group
     first = snapshot(doc, group)
+    from view_probes import ResultTouches
+    touches = ResultTouches(doc)  # counts the paint's rebuilds
     with Timer("find_contacts_again_panel"):
         again = run_panel()
+    touches.stop()
     report["find_twice"] = {"accepted": [accepted, again], "first": first, "second": snapshot(doc, group),
+                            "paint_builds_again": touches.paint_builds,
                             "labels": sorted(o.Label for o in doc.Objects if o.TypeId == "App::DocumentObjectGroupPython")}
     # the picture (item 5): one analysis in the tree, selected (its 35 contacts in the property view)
     show_in_tree(group)

@@ -45,6 +45,8 @@ def test_find_contacts_twice_updates_the_analysis_in_place(run):
     assert sorted(n for n, *_ in twice["first"]["contacts"].values()) == list(range(1, MOTOR_CONTACTS + 1))
     assert twice["second"]["undo"] == ["Find contacts", "Find contacts"]
     assert twice["png"][1]  # the window's picture, the 3D view's render pasted in
+    # nothing changed: the same contacts and regions, the paint shown is kept (not rebuilt)
+    assert twice["paint_builds_again"] == 0
 
 
 def test_delete_recompute_undo_derive_joints(run):

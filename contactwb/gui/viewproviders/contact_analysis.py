@@ -77,7 +77,8 @@ class ViewProviderContactAnalysis(ViewProvider):
             return True
         group = self.Object
         contacts = tuple(c.Name for c in group.Group if is_contact(c) and c.FacesA and c.FacesB)
-        return (contacts != overlay.names or regions.generation(group) != overlay.region_generation
+        # (no regions cached: an undo dropped them; the bodies' own moves redraw then)
+        return (contacts != overlay.names or regions.generation(group) not in (None, overlay.region_generation)
                 or len(interferences_of(group)) != overlay.interferences
                 or overlay.drawn_with != drawing_settings())
 
@@ -90,25 +91,24 @@ class ViewProviderContactAnalysis(ViewProvider):
         overlay = getattr(self, "overlay", None)
         if overlay is None or self.is_stale():
             return
-        from contactwb.objects import regions
-        from contactwb.gui.overlay.contact_overlay import drawing_settings
         try:
-            changed = regions.generation(self.Object) not in (None, overlay.region_generation)
+            # other regions, contacts or interferences, or the preferences' paint style or colours
+            changed = self.drawing_out_of_date()
         except Exception:  # the group deleted
             return
-        # the preferences' paint style or colours changed since it was drawn
-        changed = changed or overlay.drawn_with != drawing_settings()
-        if self._stale or changed:
+        if changed:
             self.schedule_rebuild()
 
     def updateData(self, obj, prop):
         # Contacts deleted, added or found again (Bodies is set by every run):
-        # redraw. (Group alone is also announced after every attach.)
+        # redraw, unless the drawing is of the very same contacts and regions
+        # (a Find contacts again that changed nothing). (Group alone is also
+        # announced after every attach.)
         overlay = getattr(self, "overlay", None)
         if overlay is None:
             return
-        if prop == "Bodies" or (prop == "Group" and
-                                tuple(c.Name for c in obj.Group if is_contact(c)) != overlay.names):
+        if (prop == "Bodies" and self.drawing_out_of_date()) or (
+                prop == "Group" and tuple(c.Name for c in obj.Group if is_contact(c)) != overlay.names):
             self.schedule_rebuild()
 
     def schedule_rebuild(self):
