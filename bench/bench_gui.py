@@ -14,8 +14,13 @@ bench/gui_bench_session.py, which times, until the paint is drawn:
 - Find contacts on two ball bearings: ../shared/data's R06 STEP imported
   twice (skipped with a message when absent; target <= 2 s).
 
-Prints a Markdown table (best and worst of the repeats, with the machine's
-load); --write FILE puts it in FILE's `gui` section (docs/benchmarks.md)."""
+Prints a Markdown table (best, median and worst of the repeats, the FreeCAD
+process' CPU time, the machine's load); --write FILE puts it in FILE's `gui`
+section (docs/benchmarks.md). --baseline-sources DIR (another checkout, e.g.
+main's) times that workbench too, with the same extension and harness, in
+sessions alternating with this tree's, and adds the ratios: before and after
+in the same conditions on a shared machine. --profile prints each repeat's
+cProfile (cumulative and own time)."""
 import argparse
 import json
 import os
@@ -24,6 +29,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from statistics import median
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from markdown_sections import write_section  # noqa: E402
@@ -43,11 +49,14 @@ RATE_TITLES = {"empty_view_forced_rate_hz": "Empty document, its 3D view rendere
                "motor_panel_view_rate_hz": "Haptic panel on the motor's Axis, analysis present: 3D view renders/s"}
 
 
-def run_session(build_dir, repeat, profile, panel_seconds=5.0):
+def run_session(build_dir, repeat, profile, panel_seconds=5.0, sources=REPO):
+    """One FreeCAD session of gui_bench_session.py with the workbench of
+    `sources` (a checkout: its tools/install_workbench.py, contactwb and
+    Resources) and the extension of `build_dir` installed: its report."""
     if not shutil.which("xvfb-run") or not shutil.which("freecad"):
         sys.exit("xvfb-run or freecad missing (make deps-test)")
     with tempfile.TemporaryDirectory() as home:
-        subprocess.run([sys.executable, os.path.join(REPO, "tools", "install_workbench.py"), "--build-dir", build_dir,
+        subprocess.run([sys.executable, os.path.join(sources, "tools", "install_workbench.py"), "--build-dir", build_dir,
                         "--mod-dir", os.path.join(home, ".local/share/FreeCAD/Mod/Contacts"),
                         "--bin-dir", os.path.join(home, "bin")], check=True, capture_output=True)
         result = os.path.join(home, "bench_gui.json")
@@ -69,23 +78,27 @@ def table(report, load):
              f"{load[0]:.1f} / {load[1]:.1f} before the run (the machine is shared: other engineers' "
              f"builds and tests run beside it). Wall clock in the FreeCAD process, from the command "
              f"to the paint drawn (the deferred rebuild done, the view rendered once), "
-             f"{len(report['times'].get('motor_find_contacts_panel', []))} repeats.",
-             "", "| step | best s | worst s | target | met (best) |", "|---|---:|---:|---:|---|"]
+             f"{len(report['times'].get('motor_find_contacts_panel', []))} repeats; *CPU s*: the FreeCAD "
+             f"process' CPU time over the same span (all its threads, Mesa's software rendering included), "
+             f"less changed by the load than the wall clock.",
+             "", "| step | best s | median s | worst s | CPU s (best, median) | target | met (best) |",
+             "|---|---:|---:|---:|---:|---:|---|"]
     for name, target in TARGETS.items():
         times = report["times"].get(name)
         if not times:
             reason = report.get("bearings_skipped", "not run") if name.startswith("bearings") else "not run"
-            lines.append(f"| {TITLES[name]} | – | – | {target:g} | skipped: {reason} |")
+            lines.append(f"| {TITLES[name]} | – | – | – | – | {target:g} | skipped: {reason} |")
             continue
-        lines.append(f"| {TITLES[name]} | {min(times):.2f} | {max(times):.2f} | {target:g} | "
-                     f"{'yes' if min(times) <= target else '**no**'} |")
+        cpu = sorted(report.get("cpu", {}).get(name) or [float("nan")])
+        lines.append(f"| {TITLES[name]} | {min(times):.2f} | {median(times):.2f} | {max(times):.2f} | "
+                     f"{cpu[0]:.2f}, {median(cpu):.2f} | {target:g} | {'yes' if min(times) <= target else '**no**'} |")
     for name, target in RATE_TARGETS.items():
         rates = report["times"].get(name)
         if not rates:
-            lines.append(f"| {RATE_TITLES[name]} | – | – | ≥ {target:g} Hz | not run |")
+            lines.append(f"| {RATE_TITLES[name]} | – | – | – | – | ≥ {target:g} Hz | not run |")
             continue
-        lines.append(f"| {RATE_TITLES[name]} | {max(rates):.1f} Hz | {min(rates):.1f} Hz | ≥ {target:g} Hz | "
-                     f"{'yes' if max(rates) >= target else '**no**'} |")
+        lines.append(f"| {RATE_TITLES[name]} | {max(rates):.1f} Hz | {median(rates):.1f} Hz | {min(rates):.1f} Hz | "
+                     f"– | ≥ {target:g} Hz | {'yes' if max(rates) >= target else '**no**'} |")
     if report.get("empty_view") and report.get("motor_view"):
         lines.append("")
         lines.append(f"Rendered back to back: synchronous repaints of the 3D view's OpenGL widget for 3 s "
@@ -116,6 +129,33 @@ def table(report, load):
     return "\n".join(lines)
 
 
+def merged(reports):
+    """The reports of several sessions of the same workbench as one: every
+    repeat's times (profiles and the rest from the first)."""
+    total = dict(reports[0], times={}, cpu={})
+    for report in reports:
+        for kind in ("times", "cpu"):
+            for name, values in report.get(kind, {}).items():
+                total[kind].setdefault(name, []).extend(values)
+        total["errors"] = dict(total.get("errors", {}), **report.get("errors", {}))
+    return total
+
+
+def comparison(baseline, ours, baseline_label):
+    """Baseline against ours, step by step: medians of the wall clock and of
+    the CPU time, and their ratios (ours / baseline)."""
+    lines = [f"| step | {baseline_label}: median s (CPU s) | this tree: median s (CPU s) | ratio wall | ratio CPU |",
+             "|---|---:|---:|---:|---:|"]
+    for name in TARGETS:
+        a, b = baseline["times"].get(name), ours["times"].get(name)
+        if not a or not b:
+            continue
+        ca, cb = baseline["cpu"].get(name) or [float("nan")], ours["cpu"].get(name) or [float("nan")]
+        lines.append(f"| {TITLES[name]} | {median(a):.2f} ({median(ca):.2f}) | {median(b):.2f} ({median(cb):.2f}) | "
+                     f"{median(b) / median(a):.2f} | {median(cb) / median(ca):.2f} |")
+    return "\n".join(lines)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--build-dir", default=os.path.join(REPO, "build"))
@@ -123,16 +163,42 @@ def main():
     parser.add_argument("--profile", action="store_true", help="print each step's cProfile top functions")
     parser.add_argument("--panel-seconds", type=float, default=5.0, help="length of the haptic panel trial")
     parser.add_argument("--write", metavar="FILE", help="write the table into FILE's `gui` section")
+    parser.add_argument("--baseline-sources", metavar="DIR",
+                        help="also time the workbench of this checkout (e.g. `git worktree add /tmp/base main`), "
+                             "with the same extension, in sessions alternating with this tree's (--rounds each): "
+                             "before and after in the same conditions")
+    parser.add_argument("--rounds", type=int, default=2, help="sessions of each workbench with --baseline-sources")
+    parser.add_argument("--baseline-label", default="baseline", help="what the baseline is (e.g. 'main c8fa765')")
     args = parser.parse_args()
     load = os.getloadavg()
-    report = run_session(os.path.abspath(args.build_dir), args.repeat, args.profile, args.panel_seconds)
+    build_dir = os.path.abspath(args.build_dir)
+    before = ""
+    if args.baseline_sources:
+        baseline, ours = [], []
+        for _ in range(args.rounds):
+            baseline.append(run_session(build_dir, args.repeat, False, args.panel_seconds,
+                                        os.path.abspath(args.baseline_sources)))
+            ours.append(run_session(build_dir, args.repeat, args.profile, args.panel_seconds))
+        end_load = os.getloadavg()
+        baseline, report = merged(baseline), merged(ours)
+        before = (f"### Before and after, in the same conditions\n\nThe baseline's workbench ({args.baseline_label}, "
+                  f"`--baseline-sources`, the same extension and harness) and this tree's, in "
+                  f"{args.rounds} sessions each of {args.repeat} repeats, alternating (baseline, this tree, "
+                  f"baseline, ...); load average {load[0]:.1f} before, {end_load[0]:.1f} after. "
+                  f"Ratios of the medians (this tree / baseline):\n\n"
+                  + comparison(baseline, report, args.baseline_label) + "\n\nThe baseline alone:\n\n"
+                  + table(baseline, load) + "\n\n### This tree\n\n")
+        print(before)
+    else:
+        report = run_session(build_dir, args.repeat, args.profile, args.panel_seconds)
     text = table(report, load)
     print(text)
     if args.profile:
-        for name, profile in report["profiles"].items():
-            print(f"\n--- {name}\n{profile}")
+        for name, profiles in report["profiles"].items():
+            for repeat, profile in enumerate(profiles, 1):
+                print(f"\n--- {name}, repeat {repeat}\n{profile}")
     if args.write:
-        write_section(args.write, "gui", "## The GUI (issue 21)\n\n" + text)
+        write_section(args.write, "gui", "## The GUI (issue 21)\n\n" + before + text)
 
 
 if __name__ == "__main__":

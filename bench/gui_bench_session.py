@@ -23,7 +23,7 @@ issue 21's GUI targets, timed as the designer meets them.
 "Drawn" is: the command returned, the deferred paint ran (Qt events
 processed until the analysis' view provider has nothing scheduled), and the
 3D view rendered once. Wall clock (time.perf_counter) in this FreeCAD
-process. With CONTACTS_BENCH_PROFILE=1 each step's cProfile top functions
+process, and its CPU time (time.process_time, all threads). With CONTACTS_BENCH_PROFILE=1 each step's cProfile top functions
 are reported too. Writes JSON to $CONTACTS_GUI_RESULT."""
 import cProfile
 import io
@@ -42,7 +42,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(
 import session_helpers  # noqa: E402
 from view_probes import RenderCounter, ResultTouches, forced_render_rate  # noqa: E402  (shared with the GUI test sessions)
 
-report = {"errors": {}, "times": {}, "profiles": {}, "regions": {}}
+report = {"errors": {}, "times": {}, "cpu": {}, "profiles": {}, "regions": {}}
 PROFILE = os.environ.get("CONTACTS_BENCH_PROFILE") == "1"
 SHARED_STEP = os.environ.get("CONTACTS_SHARED_STEP", "")
 REPEAT = int(os.environ.get("CONTACTS_BENCH_REPEAT", "3"))
@@ -72,7 +72,7 @@ def drawn(doc):
 def timed(name, action, doc):
     """Seconds from the action to the paint drawn (profiled on request)."""
     profiler = cProfile.Profile() if PROFILE else None
-    start = time.perf_counter()
+    start, cpu_start = time.perf_counter(), time.process_time()
     if profiler:
         profiler.enable()
     action()
@@ -81,10 +81,15 @@ def timed(name, action, doc):
         profiler.disable()
     seconds = time.perf_counter() - start
     report["times"].setdefault(name, []).append(round(seconds, 3))
+    # CPU time of this process, all its threads (Mesa's software rendering included): what the step
+    # costs, less changed than the wall clock by the other processes sharing the cores
+    report["cpu"].setdefault(name, []).append(round(time.process_time() - cpu_start, 3))
     if profiler:
         text = io.StringIO()
-        pstats.Stats(profiler, stream=text).sort_stats("cumulative").print_stats(25)
-        report["profiles"].setdefault(name, text.getvalue()[-6000:])
+        stats = pstats.Stats(profiler, stream=text)
+        stats.sort_stats("cumulative").print_stats(40)
+        stats.sort_stats("tottime").print_stats(25)  # where the time itself goes (C++ calls included)
+        report["profiles"].setdefault(name, []).append(text.getvalue()[-16000:])  # each repeat's
     return seconds
 
 

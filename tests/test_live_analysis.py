@@ -239,3 +239,62 @@ def test_analysis_saved_by_the_first_version_reopens_live(boxes, tmp_path):
         assert [c.HalfAngle.Value for c in group.Group] == [0.0]
     finally:
         FreeCAD.closeDocument(doc.Name)
+
+
+def test_a_recompute_keeps_the_unchanged_bodies_masses_and_gives_the_same_figures(boxes):
+    """The volumes and centres of the bodies that did not change are kept from
+    the last recompute (contactwb.objects.regions.reuse_masses); a changed
+    body without instances is computed alone, a body sharing its geometry
+    with another (an instance) makes every body computed at once as before.
+    Each time the BodyTable is the one a fresh analysis computes from
+    nothing, to the last bit."""
+    from contactwb.objects import regions
+    # Copy: a Part::Feature holding Base's own geometry (an instance: the same OCCT shape), further along x
+    copy = boxes.addObject("Part::Feature", "Copy")
+    copy.Shape = boxes.getObject("Base").Shape
+    copy.Placement = FreeCAD.Placement(FreeCAD.Vector(40, 0, 0), FreeCAD.Rotation())
+    boxes.recompute()
+    assert copy.Shape.isPartner(boxes.getObject("Base").Shape)
+    group = make_contact_analysis(boxes)
+    cache = regions.cache_of(group)
+
+    def fresh_table():
+        """The BodyTable of a new analysis of the same bodies (its own cache, empty)."""
+        other = make_contact_analysis(boxes)
+        table = json.loads(other.BodyTable)
+        regions.forget(other)
+        for child in other.Group:
+            boxes.removeObject(child.Name)
+        boxes.removeObject(other.Name)
+        return table
+
+    top, side = boxes.getObject("Top"), boxes.getObject("Side")
+    assert cache.masses[0] == ["Base", "Top", "Side", "Copy"] and cache.masses[2] == [False, True, True, False]
+    # Top moved (no instance): Top alone computed again, the others' figures kept (the same objects)
+    before = cache.masses[3]
+    top.Placement = FreeCAD.Placement(FreeCAD.Vector(1, 2, 10), FreeCAD.Rotation(FreeCAD.Vector(0, 0, 1), 30))
+    boxes.recompute()
+    after = cache.masses[3]
+    assert [a is b for a, b in zip(before, after)] == [True, False, True, True]
+    assert json.loads(group.BodyTable) == fresh_table()
+    # Side's shape changed (no instance): Side alone
+    before = after
+    side.Length = 12
+    boxes.recompute()
+    after = cache.masses[3]
+    assert [a is b for a, b in zip(before, after)] == [True, True, False, True]
+    assert json.loads(group.BodyTable) == fresh_table()
+    assert json.loads(group.BodyTable)[2]["volume"] == pytest.approx(1200.0)
+    # Copy (an instance of Base) moved: every body computed at once, as a fresh analysis does
+    before = after
+    copy.Placement = FreeCAD.Placement(FreeCAD.Vector(40, 5, 0), FreeCAD.Rotation(FreeCAD.Vector(1, 0, 0), 90))
+    boxes.recompute()
+    after = cache.masses[3]
+    assert not any(a is b for a, b in zip(before, after))
+    table = json.loads(group.BodyTable)
+    assert table == fresh_table()
+    assert table[3]["center"] == pytest.approx([45.0, 0.0, 5.0])
+    # nothing changed (Find contacts again in place): every figure kept
+    before = after
+    update_contact_analysis(group)
+    assert all(a is b for a, b in zip(before, cache.masses[3]))

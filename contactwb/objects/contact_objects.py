@@ -376,6 +376,7 @@ def update_contact_analysis(group, progress=None):
     result, assembly, raw = _find(bodies, doc.Label, linear, angular, progress,
                                   regions.region_bodies(group, bodies, settings))
     painted = regions.store(group, bodies, settings, assembly, raw, result.contacts, key_of_record)
+    regions.reuse_masses(group, bodies, assembly, result)  # the unchanged bodies' volumes and centres kept
     result.messages.extend(messages)
     wanted = set(group.ContactTypes) or set(CONTACT_TYPES)
     kept = [index for index, r in enumerate(result.contacts) if r.type in wanted and

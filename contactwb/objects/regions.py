@@ -3,8 +3,8 @@ its interferences, as the core computes them (contactcore.find_contacts
 with `regions`, Contact.region_mesh, Interference.solid_brep), cached with
 the analysis for the paint (contactwb.gui.overlay).
 
-Each body the analysis ran on has a fingerprint (its path, placement, box,
-area and face count): a recompute asks the core for the regions of the
+Each body the analysis ran on has a fingerprint (ShapeStamp: its path, its
+OCCT shape and its placement): a recompute asks the core for the regions of the
 bodies whose fingerprint changed only (a moved part: its contacts), and
 keeps the others' from the cache. The cache lives with the session, not in
 the file: after opening a file the first paint asks the core for all of them
@@ -29,14 +29,36 @@ def body_deflection(shape, deviation=DEFAULT_DEVIATION):
     return max(size / 300.0 * deviation, 1e-4)
 
 
+class ShapeStamp:
+    """Where a body is and what it is, in a few calls: its path in the
+    document, its placed shape and that shape's placement. Equal to another
+    when the path is, the shape is the same OCCT shape (isPartner: the same
+    geometry object; a recomputed feature gets a new one) and the placement
+    is (a move). The shape is held, so that its geometry stays alive and a
+    new shape can never take its place in memory. Replaces a fingerprint of
+    the box and the area (OCCT's surface integration of every face: most of
+    the cost of looking, at each recompute)."""
+    __slots__ = ("path", "shape", "placement")
+
+    def __init__(self, body):
+        shape = body.shape
+        self.path = (body.root.Name, body.subname, body.name)
+        self.shape = shape
+        self.placement = tuple(shape.Placement.toMatrix().A)
+
+    def __eq__(self, other):
+        return (isinstance(other, ShapeStamp) and self.path == other.path and self.placement == other.placement
+                and self.shape.isPartner(other.shape))
+
+    def __ne__(self, other):
+        return not self.__eq__(other)
+
+    __hash__ = None
+
+
 def fingerprint(body):
-    """Where a body is and what it is, cheaply: a move or a change of shape
-    changes it."""
-    shape = body.shape
-    box = shape.BoundBox
-    return (body.root.Name, body.subname, tuple(round(v, 9) for v in shape.Placement.toMatrix().A),
-            tuple(round(v, 9) for v in (box.XMin, box.YMin, box.ZMin, box.XMax, box.YMax, box.ZMax)),
-            round(shape.Area, 9), len(shape.Faces))
+    """The body's ShapeStamp: a move or a change of shape changes it."""
+    return ShapeStamp(body)
 
 
 class RegionCache:
@@ -53,6 +75,7 @@ class RegionCache:
         self.computed = 0
         self.pending = {}  # the fingerprints of the bodies of the recompute under way
         self.generation = 0  # stored results so far: a paint built from an older one is redrawn
+        self.masses = None  # (body names, their stamps, lone flags, (volume, centre) each): reuse_masses
 
     def changed_bodies(self, bodies, settings):
         """Indices of the bodies whose regions must be computed again (every
@@ -122,11 +145,17 @@ def store(group, bodies, settings, assembly, raw, records, contact_key):
             solids[pair] = overlap.solid_brep
         elif pair in cache.solids and pair[0] not in changed and pair[1] not in changed:
             solids[pair] = cache.solids[pair]
+    # The same regions as before (nothing computed, every contact's meshes and
+    # every solid the ones already held): the paint drawn from them still is
+    # right, and is not drawn again (a Find contacts again with nothing changed).
+    same = (computed == 0 and settings == cache.settings and kept.keys() == cache.meshes.keys()
+            and all(kept[key] is cache.meshes[key] for key in kept) and solids == cache.solids)
     cache.meshes, cache.solids = kept, solids
     cache.fingerprints, cache.pending = now, {}
     cache.settings = settings
     cache.computed = computed
-    cache.generation += 1
+    if not same:
+        cache.generation += 1
     return cache
 
 
@@ -145,3 +174,55 @@ def generation(group):
 def has_regions(group):
     cache = _caches.get((group.Document.Name, group.Name))
     return cache is not None and cache.settings is not None
+
+
+def _lone_bodies(bodies):
+    """For each body whether no other body shares its OCCT geometry (an
+    instance, as the core finds them: isPartner, whatever the placement).
+    Compared within groups of equal face counts only."""
+    buckets = {}
+    for index, body in enumerate(bodies):
+        buckets.setdefault(len(body.shape.Faces), []).append(index)
+    lone = [True] * len(bodies)
+    for members in buckets.values():
+        for k, i in enumerate(members):
+            for j in members[k + 1:]:
+                if bodies[i].shape.isPartner(bodies[j].shape):
+                    lone[i] = lone[j] = False
+    return lone
+
+
+def reuse_masses(group, bodies, assembly, result):
+    """Sets the volume and centre of each of `result`'s bodies (an Analysis
+    found on `bodies` and `assembly`, after store()) without asking the core
+    again for the bodies that did not change since the last recompute: the
+    values it gave then. A changed body is computed alone (contactcore's
+    Body.volume, the computation compute_mass_properties makes for a body
+    that is nobody's instance, so the figures are the same to the last bit)
+    when it has no instance (no other body sharing its geometry) now or
+    before; else, or when the bodies are not the same list, every body is
+    computed as before (compute_mass_properties: instances' centres moved
+    from their first's)."""
+    from contactwb.core.analysis import StoredMass
+    cache = cache_of(group)
+    names = [b.name for b in bodies]
+    if [b.name for b in result.bodies] != names:  # a body the core skipped (no solid): as before
+        cache.masses = None
+        return
+    stamps = [cache.fingerprints.get(name) or fingerprint(b) for name, b in zip(names, bodies)]
+    lone = _lone_bodies(bodies)
+    values = None
+    if cache.masses is not None and cache.masses[0] == names:
+        _, old_stamps, old_lone, old_values = cache.masses
+        changed = [i for i in range(len(bodies)) if old_stamps[i] != stamps[i]]
+        if all(lone[i] and old_lone[i] for i in changed):
+            values = list(old_values)
+            core_bodies = assembly.bodies if changed else []
+            for i in changed:
+                values[i] = (core_bodies[i].volume, core_bodies[i].center)
+    if values is None:
+        values = [(b.volume, b.center) for b in result.bodies]  # the core, every body at once
+    stored = StoredMass(values)
+    for body in result.bodies:
+        body._mass = stored
+    cache.masses = (names, stamps, lone, values)

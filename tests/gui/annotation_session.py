@@ -151,9 +151,12 @@ def annotate_as_the_file():
     view.viewIsometric()
     view.fitAll()
     FreeCADGui.updateGui()
-    path = os.path.join(out_dir, "annotated_motor.png")
-    FreeCADGui.getMainWindow().grab().save(path)
+    # the window with the 3D view's own render pasted in (a plain grab leaves the OpenGL area blank)
+    path, pasted = session_helpers.grab_window_with_view(out_dir, "annotated_motor.png")
     report["annotated"]["png"] = path
+    report["annotated"]["view_pasted"] = pasted
+    from contactwb.gui.overlay.colours import selection_colour
+    report["annotated"]["view_area"] = session_helpers.view_area_colours(path, selection_colour())
     report["annotated"]["dialog_png"] = state.get("png")
 
 

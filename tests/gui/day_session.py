@@ -48,6 +48,43 @@ def save_view(name, width=900, height=650):
     return session_helpers.save_view(out_dir, name, width, height)
 
 
+def show_in_tree(obj):
+    """Selects `obj` (the tree expands to it and the property view shows it)."""
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(obj)
+    settle()
+
+
+def grab_window(name, undo_list=False):
+    """The main window as shown (the 3D view's render pasted in); with
+    undo_list, the Undo toolbar button's list of undo entries (FreeCAD's
+    UndoDialog menu, filled as when it drops down) drawn under the button.
+    Returns (path, whether the view was pasted, the list's entries or None)."""
+    from PySide2 import QtGui
+    settle()
+    path, pasted = session_helpers.grab_window_with_view(out_dir, name)
+    if not undo_list:
+        return path, pasted, None
+    main = FreeCADGui.getMainWindow()
+    # the toolbar's Undo button: its action's menu is FreeCAD's UndoDialog
+    buttons = [b for b in main.findChildren(QtWidgets.QToolButton) if b.isVisible() and b.defaultAction() is not None
+               and b.defaultAction().menu() is not None
+               and b.defaultAction().menu().metaObject().className() == "Gui::Dialog::UndoDialog"]
+    if not buttons:
+        return path, pasted, None
+    button = buttons[0]
+    menu = button.defaultAction().menu()
+    menu.aboutToShow.emit()  # FreeCAD fills the list when it drops down
+    menu.adjustSize()
+    entries = [action.text() for action in menu.actions()]
+    image = QtGui.QImage(path)
+    painter = QtGui.QPainter(image)
+    painter.drawPixmap(button.mapTo(main, QtCore.QPoint(0, button.height())), menu.grab())
+    painter.end()
+    image.save(path)
+    return path, pasted, entries
+
+
 report_view_text = session_helpers.report_view_text
 
 
@@ -139,10 +176,17 @@ def find_contacts_twice():
     (group,) = analyses(doc)
     state["group"] = group
     first = snapshot(doc, group)
+    from view_probes import ResultTouches
+    touches = ResultTouches(doc)  # counts the paint's rebuilds
     with Timer("find_contacts_again_panel"):
         again = run_panel()
+    touches.stop()
     report["find_twice"] = {"accepted": [accepted, again], "first": first, "second": snapshot(doc, group),
+                            "paint_builds_again": touches.paint_builds,
                             "labels": sorted(o.Label for o in doc.Objects if o.TypeId == "App::DocumentObjectGroupPython")}
+    # the picture (item 5): one analysis in the tree, selected (its 35 contacts in the property view)
+    show_in_tree(group)
+    report["find_twice"]["png"] = grab_window("gui_day_find_twice.png")[:2]
 
 
 def delete_recompute_undo_derive():
@@ -216,10 +260,23 @@ def move_recompute_undo():
         run("Std_Refresh")
     result["after_recompute"] = snapshot(doc, group)
     result["png_moved"] = save_view("day_cover_moved.png")
+    # the picture (items 4 and 6): the tree's contacts keep their numbers (the cover's are gone), the
+    # undo list holds the move and one "Recompute contacts"; the contact shown is the last one
+    last = max(contacts_of(group), key=lambda c: c.Number)
+    show_in_tree(last)
+    path, pasted, entries = grab_window("gui_day_move_recomputed.png", undo_list=True)
+    result["png_window"] = [path, pasted]
+    result["undo_list_shown"] = entries
+    result["shown_contact"] = [last.Name, last.Label]
+    FreeCADGui.Selection.clearSelection()
     with Timer("undo_move"):
         run("Std_Undo")
     result["placement_restored"] = cover.Placement.multiply(placement.inverse()).isIdentity()
     result["after_undo"] = snapshot(doc, group)
+    # after one Ctrl+Z: the cover back with its contacts, in their group, under the same numbers
+    show_in_tree(last)
+    result["png_undone"] = grab_window("gui_day_move_undone.png")[:2]
+    FreeCADGui.Selection.clearSelection()
     with Timer("recompute_after_undo"):
         doc.recompute()
     result["after_undo_recompute"] = snapshot(doc, group)

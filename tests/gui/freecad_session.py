@@ -11,7 +11,9 @@ import pytest
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 BUILD_DIR = os.environ.get("CONTACTS_BUILD_DIR", os.path.join(REPO, "build"))
-OUT_DIR = os.path.join(BUILD_DIR, "gui-tests")  # screenshots and reports, kept to look at
+# screenshots and reports, kept to look at (CONTACTS_GUI_OUT_DIR: elsewhere than the build, e.g. when
+# several worktrees run their tests against one build)
+OUT_DIR = os.environ.get("CONTACTS_GUI_OUT_DIR") or os.path.join(BUILD_DIR, "gui-tests")
 
 
 def run_session(tmp_path_factory, script, report_name, env_extra=None, screen="1280x1024x24", timeout=300,

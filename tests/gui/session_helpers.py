@@ -54,30 +54,66 @@ def contacts_of(group):
     return [c for c in group.Group if is_contact(c)]
 
 
-def grab_window_with_view(out_dir, name):
-    """The main window as shown, saved as out_dir/name: its grab with the 3D
-    view's own render pasted in place (grabbing a window leaves its OpenGL area
-    blank). Returns (path, whether a view was pasted)."""
-    from PySide2 import QtCore, QtGui
+def active_view_area():
+    """The active 3D view's OpenGL area (the widget Coin draws in) and its
+    top-left corner in the main window, or (None, None) when no view shows."""
+    from PySide2 import QtCore
     main = FreeCADGui.getMainWindow()
-    QtWidgets.QApplication.processEvents()
-    path = os.path.join(out_dir, name)
-    pixmap = main.grab()
     # The active 3D view's widget: Quarter's (FreeCAD 0.20), an OpenGL viewport,
     # in the active window of the MDI area (other documents' views are hidden tabs).
     mdi = main.findChild(QtWidgets.QMdiArea)
     active = mdi.activeSubWindow() if mdi is not None else None
     viewers = [w for w in (active or main).findChildren(QtWidgets.QWidget)
                if w.metaObject().className() == "SIM::Coin3D::Quarter::QuarterWidget" and w.isVisible()]
-    if viewers:
-        area = viewers[0].viewport() if hasattr(viewers[0], "viewport") else viewers[0]
+    if not viewers:
+        return None, None
+    area = viewers[0].viewport() if hasattr(viewers[0], "viewport") else viewers[0]
+    return area, area.mapTo(main, QtCore.QPoint(0, 0))
+
+
+def grab_window_with_view(out_dir, name):
+    """The main window as shown, saved as out_dir/name: its grab with the 3D
+    view's own render pasted in place (grabbing a window leaves its OpenGL area
+    blank). Returns (path, whether a view was pasted)."""
+    from PySide2 import QtGui
+    main = FreeCADGui.getMainWindow()
+    QtWidgets.QApplication.processEvents()
+    path = os.path.join(out_dir, name)
+    pixmap = main.grab()
+    area, corner = active_view_area()
+    if area is not None:
         rendered = os.path.join(out_dir, "view_" + name)
         FreeCADGui.activeDocument().activeView().saveImage(rendered, area.width(), area.height(), "Current")
         painter = QtGui.QPainter(pixmap)
-        painter.drawImage(area.mapTo(main, QtCore.QPoint(0, 0)), QtGui.QImage(rendered))
+        painter.drawImage(corner, QtGui.QImage(rendered))
         painter.end()
     pixmap.save(path)
-    return path, bool(viewers)
+    return path, area is not None
+
+
+def view_area_colours(path, colour=None, within=40):
+    """What the 3D view's area of a saved window picture shows: {"colours":
+    distinct colours, "background": the share of its most common colour (a
+    blank OpenGL area is one colour), "near": the share within `within`
+    (0-255, each channel) of `colour` (0-1 floats)}; None when no view shows.
+    Every other row and column is read: enough to tell."""
+    from PySide2 import QtGui
+    area, corner = active_view_area()
+    if area is None:
+        return None
+    image = QtGui.QImage(path).copy(corner.x(), corner.y(), area.width(), area.height())
+    image = image.convertToFormat(QtGui.QImage.Format_RGB32)
+    target = [round(c * 255) for c in colour] if colour else None
+    counts, near = {}, 0
+    for y in range(0, image.height(), 2):
+        for x in range(0, image.width(), 2):
+            rgb = image.pixel(x, y) & 0xFFFFFF
+            counts[rgb] = counts.get(rgb, 0) + 1
+            if target and max(abs((rgb >> 16) - target[0]), abs(((rgb >> 8) & 0xFF) - target[1]),
+                              abs((rgb & 0xFF) - target[2])) <= within:
+                near += 1
+    total = sum(counts.values()) or 1
+    return {"colours": len(counts), "background": max(counts.values(), default=0) / total, "near": near / total}
 
 
 def grab_window(out_dir, name):

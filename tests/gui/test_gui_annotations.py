@@ -59,6 +59,17 @@ def test_annotated_through_the_commands_is_two_groups_one_dof(report):
         "interference at diameter 8 mm: clearance -24 to 0 \u00b5m"]
 
 
+def test_the_annotated_motor_screenshot_shows_the_model(report):
+    # The window grab leaves the OpenGL area blank (one colour); the 3D view's own render pasted
+    # in shows the motor, with the selected pressed contact (Axis - Rotor-front) in the selection
+    # colour.
+    annotated = report["annotated"]
+    assert annotated["view_pasted"]
+    area = annotated["view_area"]
+    assert area["colours"] > 200 and area["background"] < 0.9, area
+    assert area["near"] > 0.0005, area
+
+
 def test_a_fit_contradicting_the_intent_is_refused_in_the_dialog(report):
     refused = report["refused"]
     assert not refused["seen"]["ok_enabled"] and refused["unchanged"]

@@ -45,6 +45,9 @@ def test_find_contacts_twice_updates_the_analysis_in_place(run):
     assert twice["second"]["contacts"] == twice["first"]["contacts"]  # names, numbers, labels, bodies
     assert sorted(n for n, *_ in twice["first"]["contacts"].values()) == list(range(1, MOTOR_CONTACTS + 1))
     assert twice["second"]["undo"] == ["Find contacts", "Find contacts"]
+    assert twice["png"][1]  # the window's picture, the 3D view's render pasted in
+    # nothing changed: the same contacts and regions, the paint shown is kept (not rebuilt)
+    assert twice["paint_builds_again"] == 0
 
 
 def test_delete_recompute_undo_derive_joints(run):
@@ -94,6 +97,11 @@ def test_one_undo_restores_a_moved_part_and_its_contacts(run):
     assert cover and after["count"] == MOTOR_CONTACTS - len(cover)
     assert after["contacts"] == {n: e for n, e in before.items() if n not in cover}
     current(after, MOTOR_CONTACTS - len(cover))
+    # the window's picture: the Undo button's list as it drops down says the same, no hidden Delete
+    assert move["png_window"][1]
+    assert move["undo_list_shown"] == after["undo"] and move["undo_list_shown"][0] == "Recompute contacts"
+    assert move["shown_contact"][1] == after["contacts"][move["shown_contact"][0]][1]
+    assert move["png_undone"][1]
     assert move["placement_restored"]
     undone = move["after_undo"]
     current(undone, MOTOR_CONTACTS)

@@ -89,6 +89,12 @@ def path_visible(root, prefix):
     return True
 
 
+def drawing_settings():
+    """What the preferences say a drawing looks like (paint style, colours):
+    a drawing made with others is out of date."""
+    return paint_style(), tuple(sorted(legend_colours().items()))
+
+
 class ContactOverlay:
     """The Coin drawing of a ContactAnalysis group's contacts.
 
@@ -101,6 +107,10 @@ class ContactOverlay:
         self.root = coin.SoSeparator()
         self.root.setName("ContactOverlay")
         self.switches = {}     # Contact name -> SoSwitch (0 shown, 1 highlighted)
+        # the switches' whichChild fields, held: pivy looks a field up by name at each attribute
+        # access (about a tenth of a millisecond), thousands of times per build
+        self._switch_fields = {}  # Contact name -> its switch's whichChild
+        self._side_fields = []    # (a side's whichChild, {body path key}) of every contact
         self.sides = {}        # Contact name -> [(SoSwitch, {body path key})] faces A, B, circle
         self.face_keys = {}    # Contact name -> {(root name, subname)}
         self.visible = {}      # Contact name -> bool (the Contact's Visibility)
@@ -118,6 +128,7 @@ class ContactOverlay:
         self.interferences = 0  # counted in the legend
         self.region_generation = None  # of the analysis' regions drawn (contactwb.objects.regions)
         self.colours = dict(TYPE_COLOURS)
+        self.drawn_with = None  # drawing_settings() of the last build
         self.legend = None
         self.failures = []
 
@@ -130,9 +141,11 @@ class ContactOverlay:
         if common_area is None:
             common_area = paint_style() == "Common area"
         self.colours = legend_colours()
+        self.drawn_with = drawing_settings()
         self.common_contacts = self.core_contacts = 0
         self.root.removeAllChildren()
         self.switches, self.sides, self.face_keys, self.visible = {}, {}, {}, {}
+        self._switch_fields, self._side_fields = {}, []
         self.highlighted, self.bodies, self.path_names = set(), {}, set()
         self.triangles = self.faces = self.circles = 0
         pick = coin.SoPickStyle()
@@ -196,11 +209,13 @@ class ContactOverlay:
                     side.addChild(face_set)
                     self.triangles += len(indices) // 4
                 sides.append((side, bodies))
+                self._side_fields.append((side.whichChild, bodies))
             circle = self._circle(contact) if kind in CIRCLE_TYPES else None
             if circle is not None:
                 circle_side = coin.SoSwitch()  # shown with either side
                 circle_side.addChild(circle)
                 sides.append((circle_side, sides[0][1] | sides[1][1]))
+                self._side_fields.append((circle_side.whichChild, sides[-1][1]))
                 self.circles += 1
             # Branch 0 draws the contact in its layer's colour, branch 1 in the
             # selection colour; both share the side nodes (Coin graphs are DAGs).
@@ -224,6 +239,7 @@ class ContactOverlay:
             switch.addChild(highlight)
             layer.node.addChild(switch)
             self.switches[contact.Name] = switch
+            self._switch_fields[contact.Name] = switch.whichChild
             self.sides[contact.Name] = sides
             self.face_keys[contact.Name] = face_keys
             self.visible[contact.Name] = bool(contact.Visibility)
@@ -270,19 +286,17 @@ class ContactOverlay:
                 shown[key] = path_visible(root, prefix)
             except Exception:  # a deleted body
                 shown[key] = False
-        for sides in self.sides.values():
-            for switch, bodies in sides:
-                visible = any(shown[key] for key in bodies)
-                switch.whichChild.setValue(coin.SO_SWITCH_ALL if visible else coin.SO_SWITCH_NONE)
+        for field, bodies in self._side_fields:
+            field.setValue(coin.SO_SWITCH_ALL if any(shown[key] for key in bodies) else coin.SO_SWITCH_NONE)
 
     def _update_switch(self, name):
-        switch = self.switches.get(name)
-        if switch is None:
+        field = self._switch_fields.get(name)
+        if field is None:
             return
         if not self.visible.get(name, True):
-            switch.whichChild.setValue(coin.SO_SWITCH_NONE)
+            field.setValue(coin.SO_SWITCH_NONE)
         else:
-            switch.whichChild.setValue(1 if name in self.highlighted else 0)
+            field.setValue(1 if name in self.highlighted else 0)
 
     def set_visible(self, name, visible):
         self.visible[name] = bool(visible)

@@ -1,6 +1,7 @@
 """Face geometry for the drawings: a contact's placed faces tessellated as their
 bodies are (or the area the two sides share), pushed out of their body so they
 show over it, and the circle of a ball contact."""
+import itertools
 import math
 
 import FreeCAD
@@ -12,6 +13,35 @@ CIRCLE_SEGMENTS = 96
 # the contacts whose bodies moved or changed.
 COMMON_CACHE_SIZE = 4000
 _common_cache = {}
+# Whole faces tessellated and pushed out, by object path, while the object's
+# placed shape stays the same OCCT shape at the same place (held: its memory
+# is never another's): a rebuild after a recompute tessellates the faces of
+# the bodies that moved or changed only. {(doc, root, prefix): (shape,
+# placement, deflection, {element: mesh})}
+_face_cache = {}
+# The core's region meshes pushed out of their sides, by the region's points
+# array (the regions cache keeps a region's arrays while its bodies stay put):
+# {id(points): (points, deflection, result)}
+_region_cache = {}
+
+
+def vectors_array(vectors):
+    """(n, 3) float array of FreeCAD vectors (or any (x, y, z) sequences):
+    read as one flat stream, twice as fast as a tuple per vector."""
+    return numpy.fromiter(itertools.chain.from_iterable(vectors), dtype=float,
+                          count=3 * len(vectors)).reshape(-1, 3)
+
+
+def triangles_array(triangles):
+    """(m, 3) int64 array of (i, j, k) index triples."""
+    return numpy.fromiter(itertools.chain.from_iterable(triangles), dtype=numpy.int64,
+                          count=3 * len(triangles)).reshape(-1, 3)
+
+
+def _bounded(cache, size=COMMON_CACHE_SIZE):
+    """Makes room for one entry (the oldest goes)."""
+    if len(cache) >= size:
+        cache.pop(next(iter(cache)))
 
 
 def circle_points(centre, axis, radius, segments=CIRCLE_SEGMENTS):
@@ -72,12 +102,22 @@ class FaceSource:
             prefix, _, element = subname.rpartition(".")
             prefix = prefix + "." if prefix else ""
             shape, deflection = self._object_shape(root, prefix)
-            face = shape.getElement(element)
-            points, triangles = face.tessellate(deflection)
-            if triangles:
-                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
-                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
-                mesh = (pushed_out(points, triangles, deflection), triangles, face.BoundBox)
+            object_key = (root.Document.Name, root.Name, prefix)
+            placement = tuple(shape.Placement.toMatrix().A)
+            held = _face_cache.get(object_key)
+            if held is None or held[1] != placement or held[2] != deflection or not held[0].isPartner(shape):
+                _bounded(_face_cache)
+                held = _face_cache[object_key] = (shape, placement, deflection, {})
+            meshes = held[3]
+            if element in meshes:
+                mesh = meshes[element]
+            else:
+                face = shape.getElement(element)
+                points, triangles = face.tessellate(deflection)
+                if triangles:
+                    points, triangles = vectors_array(points), triangles_array(triangles)
+                    mesh = (pushed_out(points, triangles, deflection), triangles, face.BoundBox)
+                meshes[element] = mesh
         except Exception as error:  # a deleted or broken body: draw the rest
             self.failures.append(f"{root.Label}.{subname}: {error}")
         self._meshes[key] = mesh
@@ -132,13 +172,17 @@ class FaceSource:
         for k, (points, triangles, deflection) in enumerate(found):
             if not len(triangles):
                 continue
-            low, high = points.min(axis=0), points.max(axis=0)
-            box = FreeCAD.BoundBox(*low, *high)
-            triangles = triangles.astype(numpy.int64)
-            # oriented out of side A: pushed out of A along it, out of B against it
-            for side, sign in ((0, 1.0), (1, -1.0)):
-                meshes[side].append(((contact.Name, side, k),
-                                     (pushed_out(points, triangles, sign * deflection), triangles, box)))
+            held = _region_cache.get(id(points))
+            if held is None or held[0] is not points or held[1] != deflection:
+                low, high = points.min(axis=0), points.max(axis=0)
+                box = FreeCAD.BoundBox(*low, *high)
+                triangles = triangles.astype(numpy.int64)
+                # oriented out of side A: pushed out of A along it, out of B against it
+                pushed = [(pushed_out(points, triangles, sign * deflection), triangles, box) for sign in (1.0, -1.0)]
+                _bounded(_region_cache)
+                held = _region_cache[id(points)] = (points, deflection, pushed)
+            for side in (0, 1):
+                meshes[side].append(((contact.Name, side, k), held[2][side]))
         return meshes if meshes[0] else None
 
     def common_meshes(self, contact, fuzzy):
@@ -177,8 +221,7 @@ class FaceSource:
                 points, triangles = piece.tessellate(deflection)
                 if not triangles:
                     continue
-                points = numpy.array([(p.x, p.y, p.z) for p in points], dtype=float)
-                triangles = numpy.array(triangles, dtype=numpy.int64).reshape(-1, 3)
+                points, triangles = vectors_array(points), triangles_array(triangles)
                 # the common face keeps side A's orientation: out of A is into B
                 for side, sign in ((0, 1.0), (1, -1.0)):
                     meshes[side].append(((contact.Name, side, k),

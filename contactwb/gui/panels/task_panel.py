@@ -14,7 +14,8 @@ from contactwb.document.identify import is_alive, is_contact, is_contact_analysi
 from contactwb.gui import settings
 
 PROGRESS_PERIOD_S = 0.1  # the search's progress shown (and Cancel heard) at most ten times a second,
-PROGRESS_COST_RATIO = 4.0  # and after an update that took t, not before 4 t (at most a fifth of the time)
+PROGRESS_COST_RATIO = 9.0  # and after an update that took t, not before 9 t (at most a tenth of the time)
+PROGRESS_FIRST_S = 0.3  # and not before the search has run this long: a shorter one needs no progress shown
 SCOPE_TEXTS = {"Document": "Whole document", "Selection": "Selected parts only",
                "PartAgainstRest": "Selected part against the rest"}
 
@@ -200,16 +201,27 @@ class FindContactsPanel:
     def request_cancel(self):
         self.cancel_requested = True
 
+    def _set_progress(self, value):
+        """The bar's value, painted with the next events processed (not at
+        once: QProgressBar.setValue repaints, which flushes the window)."""
+        self.progress_bar.setUpdatesEnabled(False)
+        self.progress_bar.setValue(value)
+        self.progress_bar.setUpdatesEnabled(True)  # schedules its paint
+
     def progress(self, stage, fraction):
-        """The core's progress: shown, and Cancel heard, at most every
-        PROGRESS_PERIOD_S, and never more than a fifth of the search's time
+        """The core's progress: shown, and Cancel heard, from PROGRESS_FIRST_S
+        into the search, at most every PROGRESS_PERIOD_S, and never more than
+        a tenth of the search's time
         (a QProgressBar repaints at once on each value, and processing the
         events may draw the window and its 3D view: done at each of the
-        core's calls, on a busy machine, they took most of a search)."""
+        core's calls, on a busy machine, they took most of a search). The bar
+        and the text are painted together, by the events processed: a paint
+        of a widget flushes the whole window, composed through OpenGL beside
+        the 3D view (software rendering under Xvfb: 0.1 s and more each)."""
         now = time.monotonic()
         if now >= self._next_progress:
+            self._set_progress(int(fraction * 1000))
             self.status.setText(f"{stage.capitalize()}...")
-            self.progress_bar.setValue(int(fraction * 1000))
             QtWidgets.QApplication.processEvents()
             done = time.monotonic()
             self._next_progress = done + max(PROGRESS_PERIOD_S, PROGRESS_COST_RATIO * (done - now))
@@ -228,7 +240,8 @@ class FindContactsPanel:
             self.status.setText("This scope needs parts: select them, then run Find contacts.")
             return False
         self.running, self.cancel_requested = True, False
-        self._next_progress = float("-inf")  # the first call shows
+        # a repaint of the window (and the events it lets in) per update: none for a search that ends soon
+        self._next_progress = time.monotonic() + PROGRESS_FIRST_S
         self.cancel.setEnabled(True)
         # the same scope again: that analysis, updated in place (not a second one)
         target = self.group if is_alive(self.doc, self.group) else analysis_of_scope(self.doc, scope, self.entries)
@@ -254,7 +267,7 @@ class FindContactsPanel:
             self.cancel.setEnabled(False)
         self.doc.commitTransaction()
         self.group = self.result = group
-        self.progress_bar.setValue(1000)
+        self._set_progress(1000)  # painted if the panel stays open (OK closes it)
         message = (f"{group.ContactCount} contacts between {group.BodyCount} bodies "
                    f"({', '.join(group.Summary) or 'none'})")
         if group.InterferenceCount:

@@ -33,14 +33,21 @@ def new_view_provider(obj):
 
 def attach_analysis(group):
     """Gives a ContactAnalysis group and its contacts their view providers,
-    and draws the contacts."""
+    and draws the contacts (unless the drawing shown is of these very
+    contacts and regions: a Find contacts again that changed nothing)."""
     provider = group.ViewObject.Proxy
+    given = False
     if not isinstance(provider, ViewProviderContactAnalysis):
         provider = ViewProviderContactAnalysis(group.ViewObject)
+        given = True
     for child in group.Group:
         if is_contact(child) and not isinstance(child.ViewObject.Proxy, ViewProviderContact):
             ViewProviderContact(child.ViewObject)
-    provider.rebuild()
+            given = True
+    if given or provider.drawing_out_of_date():
+        provider.rebuild()
+    else:
+        provider.update_switch()
 
 
 def give_view_provider(obj, provider_class):

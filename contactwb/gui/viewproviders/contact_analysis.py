@@ -65,6 +65,23 @@ class ViewProviderContactAnalysis(ViewProvider):
         shown = self.Object.ViewObject.Visibility and not self.is_stale()
         switch.whichChild.setValue(coin.SO_SWITCH_ALL if shown else coin.SO_SWITCH_NONE)
 
+    def drawing_out_of_date(self):
+        """Whether the drawing shown is not that of the group as it is: other
+        contacts, other regions (contactwb.objects.regions), another count of
+        interferences in the legend, other preferences, or a rebuild asked for."""
+        from contactwb.document.identify import interferences_of
+        from contactwb.gui.overlay.contact_overlay import drawing_settings
+        from contactwb.objects import regions
+        overlay = getattr(self, "overlay", None)
+        if overlay is None or self._stale:
+            return True
+        group = self.Object
+        contacts = tuple(c.Name for c in group.Group if is_contact(c) and c.FacesA and c.FacesB)
+        # (no regions cached: an undo dropped them; the bodies' own moves redraw then)
+        return (contacts != overlay.names or regions.generation(group) not in (None, overlay.region_generation)
+                or len(interferences_of(group)) != overlay.interferences
+                or overlay.drawn_with != drawing_settings())
+
     def after_recompute(self):
         """After a recompute, an undo or a redo: the paint shown while the
         analysis is current, and drawn again if the core's regions changed
@@ -74,22 +91,24 @@ class ViewProviderContactAnalysis(ViewProvider):
         overlay = getattr(self, "overlay", None)
         if overlay is None or self.is_stale():
             return
-        from contactwb.objects import regions
         try:
-            changed = regions.generation(self.Object) not in (None, overlay.region_generation)
+            # other regions, contacts or interferences, or the preferences' paint style or colours
+            changed = self.drawing_out_of_date()
         except Exception:  # the group deleted
             return
-        if self._stale or changed:
+        if changed:
             self.schedule_rebuild()
 
     def updateData(self, obj, prop):
         # Contacts deleted, added or found again (Bodies is set by every run):
-        # redraw. (Group alone is also announced after every attach.)
+        # redraw, unless the drawing is of the very same contacts and regions
+        # (a Find contacts again that changed nothing). (Group alone is also
+        # announced after every attach.)
         overlay = getattr(self, "overlay", None)
         if overlay is None:
             return
-        if prop == "Bodies" or (prop == "Group" and
-                                tuple(c.Name for c in obj.Group if is_contact(c)) != overlay.names):
+        if (prop == "Bodies" and self.drawing_out_of_date()) or (
+                prop == "Group" and tuple(c.Name for c in obj.Group if is_contact(c)) != overlay.names):
             self.schedule_rebuild()
 
     def schedule_rebuild(self):
