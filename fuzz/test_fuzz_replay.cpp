@@ -461,6 +461,39 @@ TEST(FuzzRegressions, BrepFaceWhoseBoundaryDoesNotCloseIsRefusedBeforeAnyBoolean
             "never return on such a face");
 }
 
+// make fuzz, fuzz_brep (the run after the open-wire fix; timeout, 35 s under
+// ASan): the same endless face-face intersection from another damage of the
+// ball in its cup. The seam's damage alone on the seed hangs it (the face-face
+// commons in FreeCAD: the seed's in 0.02 s, with only the seam damaged over
+// 90 s): the ball's seam edge with one parameter curve on both sides of the seam
+// ("3  3 3CN" in place of "3  2 3CN"), closed in 3D, a line in the sphere's
+// parameters. Refused before any Boolean, naming body, face and edge (FreeCAD's
+// Edge2, the seam of Face1, Edge.isSeam).
+TEST(FuzzRegressions, BrepSeamWithOneCurveOnBothSidesIsRefusedBeforeAnyBoolean) {
+  const std::string message =
+      "damaged topology: the seam edge 2 has the same curve on both sides of the face; OCCT's Booleans may never "
+      "return on such a face";
+  const std::vector<std::uint8_t> data =
+      bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "regressions/fuzz_brep/seam_pcurves_alike_face_face_intersection_hang.brep");
+  const contactcore::AssemblyResult found = contactcore::bodies_from_brep(std::string(data.begin(), data.end()), {"Ball", "Cup"});
+  EXPECT_EQ(found.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_EQ(found.status.body, "Ball");
+  EXPECT_EQ(found.status.face, 1);
+  EXPECT_EQ(found.status.message, message);
+  // The seam's damage alone on the seed: the same refusal; the seed itself reads.
+  const std::vector<std::uint8_t> seed = bytes_of(fs::path(CONTACTS_FUZZ_DIR) / "corpus/fuzz_brep/seed_ball_in_cup.brep");
+  std::string text(seed.begin(), seed.end());
+  EXPECT_TRUE(contactcore::bodies_from_brep(text, {"Ball", "Cup"}).status.ok());
+  const size_t at = text.find("3  2 3CN");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 8, "3  3 3CN");
+  const contactcore::AssemblyResult seam_alone = contactcore::bodies_from_brep(text, {"Ball", "Cup"});
+  EXPECT_EQ(seam_alone.status.code, contactcore::StatusCode::InvalidInput);
+  EXPECT_EQ(seam_alone.status.body, "Ball");
+  EXPECT_EQ(seam_alone.status.face, 1);
+  EXPECT_EQ(seam_alone.status.message, message);
+}
+
 // Bisected: the ball's wire record is the hang. OCCT reads it as a wire of
 // the seam edge alone (its two degenerate pole edges and the seam's second
 // use lost), so the sphere face has an open boundary; the same face-face

@@ -3,6 +3,7 @@
 #include "contactcore/common/out_of_memory.h"
 #include "bodies/step_check.h"
 #include "bodies/solid_harvest.h"
+#include "bodies/collapsed_seams.h"
 #include "bodies/open_wires.h"
 #include "bodies/step_products.h"
 
@@ -624,6 +625,17 @@ AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::
                 std::to_string(open.loose_ends) + " loose end(s)); OCCT's Booleans may never return on such a face");
         result.status.body = name;
         result.status.face = open.face;
+        return result;
+      }
+      // Likewise a seam whose two curves on its face are one (a damaged edge record).
+      const CollapsedSeam seam = find_collapsed_seam(children[i]);
+      if (seam.face) {
+        result.status = Status::failure(StatusCode::InvalidInput,
+                                        "damaged topology: the seam edge " + std::to_string(seam.edge) +
+                                            " has the same curve on both sides of the face; OCCT's Booleans may "
+                                            "never return on such a face");
+        result.status.body = name;
+        result.status.face = seam.face;
         return result;
       }
     }
