@@ -3,6 +3,7 @@
 // is checked by OCCT Booleans (path_checker.h), never by the loop's figures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -471,6 +472,51 @@ TEST(ProxyAcceptance, BallHeldToItsSpherePlaneJointSlidesTurnsAndLiftsOff) {
   const PathOverlap o = check_path(s.assembly, "Ball", s.scene->centre(), r.path, 2);
   expect_no_deeper(o, 1e-3);
   EXPECT_GE(o.samples_checked, 50);
+}
+
+// A roller r 5 along x (x 5..35, axis y = 20, z = 15) on a plate's top
+// (z = 10): its cylinder_plane joint held as a point/line contact. By hand:
+// two stops, one per end of the line (5, 20, 10) and (35, 20, 10), each moved
+// up the normal by the radius onto the roller's axis, (5, 20, 15) and
+// (35, 20, 15), each keeping -z . p <= -15: the axis never below z = 15
+// whatever the roller does (rolls about its axis, turns about z, slides,
+// lifts an end).
+TEST(ProxyAcceptance, RollerHeldToItsCylinderPlaneJointHasStopsOnItsAxis) {
+  Scene s;
+  contactcore::Body plate;
+  plate.name = "Plate";
+  plate.shape = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 40, 40, 10).Shape();
+  contactcore::Body roller;
+  roller.name = "Roller";
+  roller.shape = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(5, 20, 15), gp_Dir(1, 0, 0)), 5, 30).Shape();
+  s.assembly.bodies = {plate, roller};
+  contactcore::Status status;
+  s.scene = TrialScene::build(s.assembly, "Roller", SceneOptions{}, status);
+  ASSERT_TRUE(s.scene) << status.message;
+  const int moving = s.scene->moving();
+  const contactcore::ContactsResult contacts = contactcore::find_contacts(s.assembly, contactcore::ContactOptions{});
+  const contactcore::JointsResult joints = contactcore::find_joints(s.assembly, contacts);
+  ASSERT_EQ(joints.joints.size(), 1u);
+  ASSERT_EQ(joints.joints[0].type, contactcore::JointType::CylinderPlane);
+  JointState joint;
+  ASSERT_TRUE(joint_state_from_pair(joints.joints[0], moving, s.scene->centre(), s.scene->contacts().body_box(moving),
+                                    joint));
+  s.scene->attach_collision_group(joint);
+  EXPECT_EQ(joint.kind, JointKind::HigherPair);
+  ASSERT_EQ(joint.stop_count, 2);
+  std::vector<double> xs;
+  for (int k = 0; k < 2; ++k) {
+    const Stop& stop = joint.stops[k];
+    EXPECT_TRUE(stop.on_part_point);
+    EXPECT_LT((stop.normal - Vec3(0, 0, -1)).norm(), 1e-12);
+    EXPECT_NEAR(stop.part_point.y(), 20, 1e-6);
+    EXPECT_NEAR(stop.part_point.z(), 15, 1e-6);
+    EXPECT_NEAR(stop.limit, -15, 1e-6);
+    xs.push_back(stop.part_point.x());
+  }
+  std::sort(xs.begin(), xs.end());
+  EXPECT_NEAR(xs[0], 5, 1e-6);
+  EXPECT_NEAR(xs[1], 35, 1e-6);
 }
 
 // ---- Coulomb friction at the proxy's contacts

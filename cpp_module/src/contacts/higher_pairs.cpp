@@ -197,16 +197,7 @@ void sphere_point(const Side& s, const Side& t, const Tolerances& tol, std::vect
     }
     type = HigherPairType::SphereOnCylinder;
   }
-  const gp_Pnt p = ball.location.Translated(towards * ball.radius);
-  PartitionProbe probe_s(*s.parts, *s.partition), probe_t(*t.parts, *t.partition);
-  const int face_s = probe_s.face_at(p, 3 * tol.linear);
-  if (!face_s) return;
-  const int face_t = probe_t.face_at(p, 3 * tol.linear);
-  if (!face_t) return;
-  HigherPair pair;
-  pair.type = type;
-  pair.point = pair.start = pair.end = p;
-  record(pair, s, t, face_s, face_t, towards, out);
+  point_contact(type, ball.location.Translated(towards * ball.radius), towards, s, t, tol, out);
 }
 
 // A line contact: the runs of the line on_line + u axis, u in [t0, t1],

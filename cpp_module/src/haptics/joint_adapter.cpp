@@ -12,7 +12,7 @@ Vec3 vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
 // cone lying on one, a ball in a V): every twist free, each contact point a
 // one-sided stop on the part's point there (TrialScene::attach_collision_group
 // moves it to the centre of the part's surface: a ball's centre, a roller's
-// axis). Circle contacts give planar or revolute joints, held as those.
+// axis). Circle contacts give planar or revolute joints: the switch below.
 bool higher_pair_state(const PairJoint& pair, int moving, const Vec3& centre, JointState& out) {
   if (pair.stops.empty() || pair.stops.size() > static_cast<size_t>(kMaxStops)) return false;
   JointState j;
