@@ -17,6 +17,10 @@ TYPE_COLOURS = {
     "TRF": "#8b5a2b",  # brown
 }
 
+# Interferences (parts that overlap): their solids in the tree and the 3D view,
+# their legend entry and their rows in the table.
+INTERFERENCE_COLOUR = "#e60d0d"
+
 # A partition's surface -> the contact type whose hue family colours it: the
 # partitions view and the contacts' paint read alike (planes orange as PLF).
 SURFACE_FAMILY = {"Plane": "PLF", "Cylinder": "CLJ", "Cone": "CJU", "Sphere": "SPF", "Torus": "TRF"}

@@ -18,6 +18,7 @@
 #include <gp_Ax2.hxx>
 #include <gp_Quaternion.hxx>
 #include <gp_Trsf.hxx>
+#include <gp_Vec.hxx>
 
 #include <fcl/geometry/shape/box.h>
 #include <fcl/math/bv/OBB.h>
@@ -96,6 +97,13 @@ double reference_depth(const Body& a, const RigidTransform& ta, const Body& b, c
 }
 
 double length(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// The id of a body's (only) cylindrical partition: a bore or a shaft's side.
+int cylinder_partition(const Body& body) {
+  for (const Partition& p : body.partitions.partitions)
+    if (p.params.kind == SurfaceKind::Cylinder) return p.id;
+  return -1;
+}
 
 }  // namespace
 
@@ -196,7 +204,10 @@ TEST(Collision, DistancesMatchTheExactBRepDistanceOnSampledPlacements) {
   EXPECT_EQ(apart, 5);
   EXPECT_EQ(near, 1);
   EXPECT_EQ(apart + near + intersecting + contained, 40);
-  EXPECT_GT(deep, 0);
+  // Of the 34 intersecting placements, one merely touches (depth 0); none is wholly inside.
+  EXPECT_EQ(intersecting, 34);
+  EXPECT_EQ(contained, 0);
+  EXPECT_EQ(deep, 33);
 }
 
 TEST(Collision, SwitchedOffPartitionsAreIgnored) {
@@ -205,11 +216,6 @@ TEST(Collision, SwitchedOffPartitionsAreIgnored) {
                                                BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp::DZ()), 3, 12).Shape())
                                    .Shape());
   const Body shaft = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 20).Shape());
-  auto cylinder_partition = [](const Body& body) {
-    for (const Partition& p : body.partitions.partitions)
-      if (p.params.kind == SurfaceKind::Cylinder) return p.id;
-    return -1;
-  };
   CollisionPair pair(block.model, shaft.model);
   QueryResult result;
   // Turned by a few degrees about its own axis, the shaft's facets cut the bore's.
@@ -244,11 +250,6 @@ TEST(Collision, SwitchedOffPairIsIgnoredAndOnlyIt) {
                                                BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp::DZ()), 3, 12).Shape())
                                    .Shape());
   const Body shaft = make_body(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -5), gp::DZ()), 3, 20).Shape());
-  auto cylinder_partition = [](const Body& body) {
-    for (const Partition& p : body.partitions.partitions)
-      if (p.params.kind == SurfaceKind::Cylinder) return p.id;
-    return -1;
-  };
   const int bore = cylinder_partition(block), side = cylinder_partition(shaft);
   CollisionPair pair(block.model, shaft.model);
   QueryResult result;
@@ -618,11 +619,7 @@ TEST(Collision, BodyTreesGiveThePerPartitionAnswers) {
   const Body holed = make_body(BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(gp_Pnt(-6, -6, -4), 12, 12, 8).Shape(),
                                                BRepPrimAPI_MakeSphere(4.5).Shape())
                                    .Shape());
-  int bore = -1, side = -1;
-  for (const Partition& p : block.partitions.partitions)
-    if (p.params.kind == SurfaceKind::Cylinder) bore = p.id;
-  for (const Partition& p : shaft.partitions.partitions)
-    if (p.params.kind == SurfaceKind::Cylinder) side = p.id;
+  const int bore = cylinder_partition(block), side = cylinder_partition(shaft);
   ASSERT_GE(bore, 0);
   ASSERT_GE(side, 0);
   std::mt19937 rng(20);
@@ -662,9 +659,11 @@ TEST(Collision, BodyTreesGiveThePerPartitionAnswers) {
                 per_partition_holed.depth_inside(1, RigidTransform::identity(), point));
     }
   }
-  // Both kinds of answer are exercised (penetrating, merely touching or apart).
-  EXPECT_GT(deep, 0);
-  EXPECT_GT(touching + apart, 0);
+  // Both kinds of answer are exercised: of the 240 Penetration queries (3 modes x 40 poses x 2
+  // pairs) 210 penetrate and 30 merely touch (the seed fixes them).
+  EXPECT_EQ(deep, 210);
+  EXPECT_EQ(touching, 30);
+  EXPECT_EQ(apart, 0);
 }
 
 // Penetration's flood and the per-pair mask: a shaft (side meshed with edges of at most 1 mm, so
@@ -688,19 +687,33 @@ TEST(Collision, SwitchedOffPairOverlapIsNotFlooded) {
   ASSERT_TRUE(meshed.status.ok()) << meshed.status.describe();
   shaft.model = build_collision_model(meshed.mesh).model;
   ASSERT_TRUE(shaft.model);
-  int bore = -1, side = -1;
-  for (const Partition& p : block.partitions.partitions)
-    if (p.params.kind == SurfaceKind::Cylinder) bore = p.id;
-  for (const Partition& p : shaft.partitions.partitions)
-    if (p.params.kind == SurfaceKind::Cylinder) side = p.id;
+  const int bore = cylinder_partition(block), side = cylinder_partition(shaft);
   ASSERT_GE(bore, 0);
   ASSERT_GE(side, 0);
   CollisionPair pair(block.model, shaft.model);
   QueryResult on, off;
   const RigidTransform pushed = RigidTransform::translated(0.2, 0, 0);
   pair.query(RigidTransform::identity(), pushed, QueryKind::Penetration, on);
-  EXPECT_NEAR(on.depth, 0.205, 0.0051);
-  EXPECT_GT(on.direction[0], 0.99);
+  // The bore's facet the side is pushed through is the one facing +x (two facets tie, at +-theta,
+  // a tessellation vertex on the x axis). Its normal n = (cos theta, +-sin theta, 0) is the
+  // direction, and the deepest side vertex, at angle theta, lies 3 (1 - cos theta) + 0.2 cos theta
+  // beyond that facet's plane (the plane at 3 cos theta from the axis).
+  double facing = -1;
+  for (std::size_t t = 0; t < block.mesh.triangles.size(); ++t) {
+    if (block.mesh.triangle_partition[t] != bore) continue;
+    const auto& [i0, i1, i2] = block.mesh.triangles[t];
+    const auto& p0 = block.mesh.vertices[i0];
+    const auto& p1 = block.mesh.vertices[i1];
+    const auto& p2 = block.mesh.vertices[i2];
+    const gp_Vec normal = gp_Vec(gp_Pnt(p0[0], p0[1], p0[2]), gp_Pnt(p1[0], p1[1], p1[2]))
+                              .Crossed(gp_Vec(gp_Pnt(p0[0], p0[1], p0[2]), gp_Pnt(p2[0], p2[1], p2[2])));
+    facing = std::max(facing, -normal.X() / normal.Magnitude());  // the block's normal points to the axis
+  }
+  ASSERT_GT(facing, 0.99);
+  EXPECT_NEAR(on.direction[0], facing, 1e-9);
+  EXPECT_NEAR(std::abs(on.direction[1]), std::sqrt(1 - facing * facing), 1e-9);
+  EXPECT_NEAR(on.direction[2], 0.0, 1e-12);
+  EXPECT_NEAR(on.depth, 3 * (1 - facing) + 0.2 * facing, 1e-9);
   pair.set_pair_enabled(bore, side, false);
   pair.query(RigidTransform::identity(), pushed, QueryKind::Penetration, off);
   EXPECT_TRUE(off.intersecting);

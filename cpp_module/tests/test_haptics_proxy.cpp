@@ -213,14 +213,17 @@ TEST(ProxyAcceptance, ScrewDroppedFrom160mmEndsOnTheCover) {
   EXPECT_EQ(engaged, (std::vector<std::string>{"Front-cover", "Body", "Back-cover"}));
   const PathOverlap o = check_path(s.assembly, "Screw-1", s.scene->centre(), r.path, 10);
   expect_no_deeper(o, 0.01);
-  EXPECT_GE(o.samples_checked, 25);
+  EXPECT_EQ(o.samples_checked, 28);  // every 10th of the path's samples and the last
   const PathOverlap end = check_pose(s.assembly, "Screw-1", s.scene->centre(), r.final_translate, r.final_rotate_deg);
   expect_no_deeper(end, 0.01);
   // On the cover, not hovering: 0.02 mm lower its head is inside the Front-cover.
   const PathOverlap lower = check_pose(s.assembly, "Screw-1", s.scene->centre(),
                                        r.final_translate - Vec3(0, 0, 0.02), r.final_rotate_deg);
+  // The head's underside sunk 0.02 - 0.001 mm into the cover: the planar contact's area (the
+  // contacts stage's PLF of Screw-1 and Front-cover, 16.6897 mm^2) times that depth.
   EXPECT_EQ(lower.worst_body, "Front-cover");
-  EXPECT_GT(lower.max_volume, 0.0);
+  EXPECT_NEAR(lower.max_volume, 16.68971097 * (0.02 - ServoConfig{}.contact_skin), 1e-6);
+  EXPECT_NEAR(lower.max_depth, 0.02 - ServoConfig{}.contact_skin, 1e-9);
 }
 
 TEST(ProxyAcceptance, PinWithClearanceSlidesAlongTheWallAndSeats) {

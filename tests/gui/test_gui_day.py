@@ -7,6 +7,7 @@ updating in place, contacts keeping their identity. The steps' durations are
 printed (run with -s), never asserted."""
 import pytest
 
+from contactwb.gui.palette import INTERFERENCE_COLOUR, rgb  # the one red of interferences
 from freecad_session import run_session  # tests/gui is on sys.path
 
 MOTOR_CONTACTS = 35
@@ -125,7 +126,7 @@ def test_interferences_are_shown_exported_and_undone(run):
         assert solid == pytest.approx(volume, rel=1e-3)  # the shown solid is the overlap
         assert label.endswith(f"{pair[0]} \u2013 {pair[1]}") and label.startswith("I") and label[1:label.index(":")].isdigit()
         assert label2.endswith("mm\u00b3")
-        assert colour[0] > 0.8 and colour[1] < 0.2 and colour[2] < 0.2 and shown
+        assert colour == pytest.approx(rgb(INTERFERENCE_COLOUR), abs=0.5 / 255) and shown
     assert found["display_modes"] == ["Flat Lines"] * 3  # drawn
     assert found["count"] == 3 and len(found["lines"]) == 3
     assert sorted((i["a"], i["b"]) for i in found["export"]) == sorted(SCREW_INTERFERENCES)

@@ -8,6 +8,7 @@ recomputed: the group is removed; one Ctrl+Z brings it back with the same
 objects; saved and reopened, it is the same, and the export unchanged."""
 import pytest
 
+from contactwb.gui.palette import INTERFERENCE_COLOUR, rgb  # the one red of interferences
 from freecad_session import run_session  # tests/gui is on sys.path
 
 # The CLI's figures for Screw-1 pushed 0.6 mm sideways (issue 21), the core's pair order
@@ -50,7 +51,7 @@ def test_the_group_holds_the_three_interferences(run):
         assert item["solid"] == pytest.approx(item["boolean"], rel=1e-6)  # the red solid is the overlap
         assert item["label"] == f"I{item['number']}: {a} {EN_DASH} {b}"
         assert item["label2"] == f"{item['volume']:.4g} mm\u00b3"
-        assert item["colour"][0] > 0.8 and max(item["colour"][1:]) < 0.2 and item["shown"]
+        assert item["colour"] == pytest.approx(rgb(INTERFERENCE_COLOUR), abs=0.5 / 255) and item["shown"]
         assert item["provider"] == "ViewProviderInterference"
     total = sum(i["volume"] for i in found.values())
     assert holder["label2"] == f"3, {total:.4g} mm\u00b3"
@@ -83,7 +84,7 @@ def test_saved_and_reopened_unchanged(run):
     same = lambda state: sorted((i["name"], i["label"], i["label2"], i["number"], round(i["volume"], 6),  # noqa: E731
                                  round(i["solid"], 6)) for i in state["interferences"])
     assert same(reopened) == same(pushed)
-    assert all(i["provider"] == "ViewProviderInterference" and i["colour"][0] > 0.8
+    assert all(i["provider"] == "ViewProviderInterference" and i["colour"] == pytest.approx(rgb(INTERFERENCE_COLOUR), abs=0.5 / 255)
                for i in reopened["interferences"])
     assert reopened["export"] == pushed["export"] and reopened["legend"] == 3 and not reopened["touched"]
     assert reopened["touched_results"] == []  # nothing saved as needing a recompute

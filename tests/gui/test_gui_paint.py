@@ -7,6 +7,7 @@ see-through mode showing the contacts inside the assembly, out of the undo
 stack."""
 import pytest
 
+from contactwb.gui.palette import INTERFERENCE_COLOUR, rgb  # the one red of interferences
 from freecad_session import run_session  # tests/gui is on sys.path
 
 MOTOR_CONTACTS = 35
@@ -60,7 +61,7 @@ def test_interferences_are_first_class_results(run):
         assert boolean == pytest.approx(figure, rel=5e-3)
         assert volume == pytest.approx(boolean, rel=1e-6) and solid == pytest.approx(boolean, rel=1e-6)
         assert label.startswith("I") and label.endswith(f"{a} \u2013 {b}") and label2.endswith("mm\u00b3")
-        assert colour[0] > 0.8 and colour[1] < 0.2 and colour[2] < 0.2
+        assert colour == pytest.approx(rgb(INTERFERENCE_COLOUR), abs=0.5 / 255)
     rows = {(r[2], r[3]): r for r in found["rows"]}
     assert sorted(rows) == sorted(SCREW_INTERFERENCES)
     for pair, row in rows.items():

@@ -8,16 +8,11 @@ from contactwb.gui import settings
 # The legend: one colour per contact type (also the tree icons' colour), from
 # the one palette. None is near FreeCAD's selection green or preselection
 # yellow (legend_colours also keeps user-chosen colours away from them).
-from contactwb.gui.palette import TYPE_COLOURS
+from contactwb.gui.palette import TYPE_COLOURS, rgb  # noqa: F401 (rgb: the overlay's colours)
 assert list(TYPE_COLOURS) == CONTACT_TYPES, "a colour for every contact type of contactwb.core.kinds"
 MIN_COLOUR_DISTANCE = 0.25  # per channel (0..1): what still reads as another colour
 UNKNOWN_COLOUR = "#808080"
 PARTIAL_LIGHTEN = 0.45         # partial contacts: this far towards white
-
-
-def rgb(colour):
-    """(r, g, b) in 0..1 of a "#rrggbb" colour."""
-    return tuple(int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
 
 
 def hex_colour(colour):

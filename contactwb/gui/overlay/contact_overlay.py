@@ -22,9 +22,9 @@ from contactwb.gui.overlay.coin_nodes import (legend_node, line_material, materi
                                               set_stripe_period, stripes, unlit_polyline)
 from contactwb.gui.overlay.colours import TYPE_COLOURS, legend_colours, selection_colour, type_colour
 from contactwb.gui.overlay.faces import FaceSource, circle_points
+from contactwb.gui.palette import INTERFERENCE_COLOUR, rgb
 from contactwb.gui.settings import paint_style
 
-INTERFERENCE_COLOUR = (0.9, 0.05, 0.05)  # as the Interference objects are drawn
 CIRCLE_FACE_TRANSPARENCY = 0.6  # the ball and its seat, behind the circle
 CIRCLE_WIDTH = 4  # pixels
 
@@ -236,7 +236,7 @@ class ContactOverlay:
         entries = [(f"{k} {TYPE_NAMES[k]} ({counts[k]})", type_colour(k, False, self.colours)) for k in kinds]
         self.interferences = len(interferences_of(group)) if group is not None else 0
         if self.interferences:
-            entries.append((f"Interferences ({self.interferences})", INTERFERENCE_COLOUR))
+            entries.append((f"Interferences ({self.interferences})", rgb(INTERFERENCE_COLOUR)))
         self.legend = legend_node(entries, stack=(self.doc_name, ("analysis", id(self))))
         self.root.addChild(self.legend)
         self.names = tuple(c.Name for c in contacts)

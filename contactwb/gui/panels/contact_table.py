@@ -11,6 +11,7 @@ from contactwb.core.kinds import CONTACT_TYPES
 from contactwb.document import units
 from contactwb.document.identify import interferences_of, is_contact, is_joint
 from contactwb.gui.overlay.colours import legend_colours
+from contactwb.gui.palette import INTERFERENCE_COLOUR
 from contactwb.gui.panels import contact_extent
 
 # Quantities written as the property editor writes them (contactwb.document.units)
@@ -18,7 +19,6 @@ COLUMNS = ["#", "Type", "Part A", "Part B", "Area", "Span / DOF", "Radius", "Ext
 NUMERIC = {0, 4, 5, 6}
 PARTIAL_COLUMN = 8
 DOCK_NAME = "ContactsTable"
-INTERFERENCE_COLOUR = "#e60d0d"  # as the Interference objects are drawn
 SORT_KEY = QtCore.Qt.UserRole + 2  # the Type column's key: type, then pair, then number
 # The dock's share of the main window's width at most: the 3D view keeps the rest.
 DOCK_WIDTH_SHARE = 0.3

@@ -8,9 +8,9 @@ the analysis' Interferences group with its children in the tree.
 Saved files name ViewProviderInterference and ViewProviderInterferenceGroup by
 this module: permanent names."""
 import contactwb
+from contactwb.gui.palette import INTERFERENCE_COLOUR, rgb
 from contactwb.gui.viewproviders.base import ViewProvider
 
-INTERFERENCE_COLOUR = (0.9, 0.05, 0.05)
 
 
 class ViewProviderInterference(ViewProvider):
@@ -18,9 +18,9 @@ class ViewProviderInterference(ViewProvider):
 
     def __init__(self, vobj):
         super().__init__(vobj)
-        vobj.ShapeColor = INTERFERENCE_COLOUR
-        vobj.LineColor = INTERFERENCE_COLOUR
-        vobj.PointColor = INTERFERENCE_COLOUR
+        vobj.ShapeColor = rgb(INTERFERENCE_COLOUR)
+        vobj.LineColor = rgb(INTERFERENCE_COLOUR)
+        vobj.PointColor = rgb(INTERFERENCE_COLOUR)
         vobj.Transparency = 0
 
     def getIcon(self):
