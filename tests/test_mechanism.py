@@ -223,3 +223,98 @@ def test_ball_in_a_v_groove_is_two_point_contacts_and_four_dof():
     assert sorted(tuple(round(v, 9) + 0.0 for v in d) for d in j.free_directions) == \
         sorted(tuple(round(v, 9) + 0.0 for v in d) for d in expected)
     assert found.mobility.dof == 4
+
+
+def cone_and_ring_on_a_block():
+    """A block 80 x 40 x 20 with a bore r 5 through it at (20, 20); a pointed
+    cone (apex (20, 20, 15), axis +z, half angle 45 deg, r 10 at z 25)
+    seated on the bore's sharp rim; an O-ring (torus R 10, r 2, axis z)
+    lying flat on the block's top at (60, 20)."""
+    block = Part.makeBox(80, 40, 20).cut(Part.makeCylinder(5, 40, V(20, 20, -10)))
+    cone = Part.makeCone(0, 10, 10, V(20, 20, 15), V(0, 0, 1))
+    ring = Part.makeTorus(10, 2, V(60, 20, 22), V(0, 0, 1))
+    return [("Block", block), ("Cone", cone), ("Ring", ring)]
+
+
+def test_cone_on_a_rim_and_a_flat_ring_are_circle_contacts_in_the_cli_json(tmp_path):
+    # By hand (cpp_module/tests/test_mechanism.cpp has the same cases): the cone's radius at the
+    # bore's mouth (z = 20) is 5 tan 45 = 5: cone_on_cylinder along the circle r 5 about
+    # (20, 20, 20), the block's normal (-radial + z)/sqrt 2; the joint revolute about the bore's
+    # axis, 1 DOF, free within 45 deg of +z. The ring's tube centres at z = 22 are its minor radius
+    # above the top: torus_on_plane along the circle r 10 about (60, 20, 20), normal +z; the joint
+    # planar, 3 DOF, free along the plane and up. The block grounded: 1 + 3 = 4 DOF. No surface
+    # contact; the JSON keeps the point/line fields and adds "axis" and "radius" for a circle.
+    import math
+    named = cone_and_ring_on_a_block()
+    path = str(tmp_path / "cone_ring.step")
+    Part.makeCompound([s for _, s in named]).exportStep(path)
+    done = run_cli(path, "--joints", "--json")
+    assert done.returncode == 0, done.stderr
+    document = json.loads(done.stdout)
+    assert document["contacts"] == []
+    pairs = {h["type"]: h for h in document["higher_pairs"]}
+    assert sorted(pairs) == ["cone_on_cylinder", "torus_on_plane"]
+    rim, flat = pairs["cone_on_cylinder"], pairs["torus_on_plane"]
+    for h in (rim, flat):
+        assert h["kind"] == "circle"
+        assert set(h) == {"type", "kind", "a", "b", "faces_a", "faces_b", "point", "normal", "start", "end",
+                          "length", "axis", "radius"}
+        assert parallel(h["axis"], (0, 0, 1))
+    assert rim["point"] == pytest.approx([20, 20, 20], abs=1e-9)
+    assert rim["radius"] == pytest.approx(5, abs=1e-9)
+    assert rim["length"] == pytest.approx(10 * math.pi, abs=1e-9)
+    start = rim["start"]
+    assert math.dist(start, [20, 20, 20]) == pytest.approx(5, abs=1e-9) and start[2] == pytest.approx(20, abs=1e-9)
+    # The block (the file's first solid) is side a: the normal out of its material.
+    assert rim["a"] == flat["a"] and rim["b"] != flat["b"]
+    inwards = [(20 - start[0]) / 5, (20 - start[1]) / 5, 1]
+    assert rim["normal"] == pytest.approx([v / math.sqrt(2) for v in inwards], abs=1e-9)
+    assert flat["normal"] == pytest.approx([0, 0, 1], abs=1e-9)
+    assert flat["point"] == pytest.approx([60, 20, 20], abs=1e-9)
+    assert flat["radius"] == pytest.approx(10, abs=1e-9)
+    joints_by_index = {tuple(j["higher_pairs"]): j for j in document["joints"]}
+    index = {h["type"]: k for k, h in enumerate(document["higher_pairs"])}
+    seated = joints_by_index[(index["cone_on_cylinder"],)]
+    lying = joints_by_index[(index["torus_on_plane"],)]
+    assert (seated["type"], seated["dof"], lying["type"], lying["dof"]) == ("revolute", 1, "planar", 3)
+    assert parallel(seated["rotations"][0]["direction"], (0, 0, 1))
+    for d in seated["free_directions"]:
+        assert math.degrees(math.acos(abs(d[2]))) == pytest.approx(45, abs=1e-6) and d[2] > 0
+    assert any(d == pytest.approx([0, 0, 1], abs=1e-9) for d in lying["free_directions"])
+    assert document["mobility"]["dof"] == 4
+
+
+def test_cone_and_ring_higher_pairs_in_the_table_and_the_disassembly(tmp_path):
+    # The table prints each circle; the cone is free only within 45 deg of +z (12 generators
+    # exactly on that cone). The disassembly keeps the block as its base and takes the cone and
+    # the ring out by directions their joints leave free, never through the block.
+    import math
+    from contactwb.core import meshes
+    from contactwb.document import shapes as document_shapes
+    named = cone_and_ring_on_a_block()
+    result, found = joints.joints_in_shapes(named, ground="Block")
+    table = result.table()
+    assert "cone_on_cylinder along a circle r 5 about (20, 20, 20)" in table
+    assert "torus_on_plane along a circle r 10 about (60, 20, 20)" in table
+    assert found.mobility.dof == 4
+    cone_free = found.free_directions_of("Cone")
+    assert len(cone_free) == 12
+    assert all(math.degrees(math.acos(d[2])) == pytest.approx(45, abs=1e-6) for d in cone_free)
+    path = str(tmp_path / "cone_ring.step")
+    Part.makeCompound([s for _, s in named]).exportStep(path)
+    assembly = meshes.read_step_assembly(path)
+    volumes = {b.name: document_shapes.shape_from_brep(b.brep).Volume for b in assembly.bodies}
+    by_volume = {name: min(volumes, key=lambda n: abs(volumes[n] - shape.Volume)) for name, shape in named}
+    plan = meshes.disassembly_json(assembly, meshes.disassemble(assembly))
+    assert plan["complete"] is True
+    moved = {tuple(step["parts"]): step["direction"] for step in plan["disassembly"]}
+    assert set(moved) == {(by_volume["Cone"],), (by_volume["Ring"],)}
+    assert plan["base"] == by_volume["Block"]
+    # Each by a direction its joint leaves free: the cone within 45 deg of +z, the ring up or
+    # along the plane (it slides off the top), never into the block (OCCT Booleans on the way out).
+    cone_way, ring_way = moved[(by_volume["Cone"],)], moved[(by_volume["Ring"],)]
+    assert math.degrees(math.acos(cone_way[2] / math.sqrt(sum(v * v for v in cone_way)))) <= 45 + 1e-6
+    assert ring_way[2] >= -1e-9
+    from test_disassembly_mechanic import cuts_along_paths
+    shapes = [(body.name, document_shapes.shape_from_brep(body.brep)) for body in assembly.bodies]
+    assert cuts_along_paths(shapes, plan) == []

@@ -186,8 +186,10 @@ class Analysis:
             lines.append(f"Point and line contacts (higher pairs, apart from the contacts above): "
                          f"{len(self.higher_pairs)}")
             for h in self.higher_pairs:
+                centre = "(" + ", ".join(f"{v:.4g}" for v in h["point"]) + ")"
                 where = (f"along {h['length']:.4g} mm" if h["kind"] == "line" else
-                         "at (" + ", ".join(f"{v:.4g}" for v in h["point"]) + ")")
+                         f"along a circle r {h['radius']:.4g} about {centre}" if h["kind"] == "circle" else
+                         f"at {centre}")
                 lines.append(f"  {h['a']:<{width}}  <->  {h['b']:<{width}}  {h['type']} {where}")
         if self.interferences:
             lines.append("")
@@ -272,12 +274,21 @@ def _convert_result(source, assembly, result, face_name=None):
         candidates=result.candidates, times=times, skipped=skipped,
         invalid_bodies=[{"body": names[i.body], "faces": [face_name(i.body, f) for f in i.faces], "reason": i.reason}
                         for i in getattr(result, "invalid_bodies", [])],
-        higher_pairs=[{"type": h.type, "kind": h.kind, "a": names[h.body_a], "b": names[h.body_b],
-                       "faces_a": [face_name(h.body_a, f) for f in h.faces_a],
-                       "faces_b": [face_name(h.body_b, f) for f in h.faces_b],
-                       "point": list(h.point), "normal": list(h.normal), "start": list(h.start),
-                       "end": list(h.end), "length": h.length}
-                      for h in getattr(result, "higher_pairs", [])])
+        higher_pairs=[_higher_pair_dict(h, names, face_name) for h in getattr(result, "higher_pairs", [])])
+
+
+def _higher_pair_dict(h, names, face_name):
+    """One point, line or circle contact as --json lists it (a circle also
+    has its "axis" and "radius"; its "point" is the centre)."""
+    out = {"type": h.type, "kind": h.kind, "a": names[h.body_a], "b": names[h.body_b],
+           "faces_a": [face_name(h.body_a, f) for f in h.faces_a],
+           "faces_b": [face_name(h.body_b, f) for f in h.faces_b],
+           "point": list(h.point), "normal": list(h.normal), "start": list(h.start),
+           "end": list(h.end), "length": h.length}
+    if h.kind == "circle":
+        out["axis"] = list(h.axis)
+        out["radius"] = h.radius
+    return out
 
 
 def find_contacts_in_assembly(assembly, source="assembly", linear=None, angular=None, progress=None,

@@ -123,9 +123,13 @@ void bind_contacts(py::module_& m) {
 
   py::class_<HigherPair>(m, "HigherPair", "A point or line contact (apart from the surface contacts).")
       .def_property_readonly("type", [](const HigherPair& h) { return std::string(to_string(h.type)); },
-          "'sphere_on_plane', 'sphere_on_cylinder', 'cylinder_on_plane' or 'cylinder_on_cylinder'")
-      .def_property_readonly("kind", [](const HigherPair& h) { return std::string(h.is_line() ? "line" : "point"); },
-          "'point' or 'line'")
+          "'sphere_on_plane', 'sphere_on_cylinder', 'cylinder_on_plane', 'cylinder_on_cylinder', 'cone_on_plane', "
+          "'torus_on_plane', 'torus_on_cylinder' or 'cone_on_cylinder'")
+      .def_property_readonly("kind", [](const HigherPair& h) { return std::string(to_string(h.kind)); },
+          "'point', 'line' or 'circle'")
+      .def_property_readonly("axis", [](const HigherPair& h) { return to_tuple(h.axis); },
+          "a circle's axis (its normals turn about it)")
+      .def_property_readonly("radius", read_only(&HigherPair::radius), "mm: a circle's radius (0: a point or a line)")
       .def_property_readonly("body_a", read_only(&HigherPair::body_a), "index into Assembly.bodies")
       .def_property_readonly("body_b", read_only(&HigherPair::body_b), "index into Assembly.bodies")
       .def_property_readonly("partition_a", read_only(&HigherPair::partition_a), "partition id within body_a")

@@ -147,11 +147,11 @@ class HapticSession {
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j) out.matrix[i][j] = s.proxy.matrix()(i, j);
     for (int k = 0; s.engaged && k < s.joint.body_count; ++k) out.joint_with.push_back(scene_.body_names()[s.joint.bodies[k]]);
-    // The joint's one-sided stops (n . c <= limit on the reference point),
-    // active when the part is on them (within 1 um): the panel's readout.
-    const Vec3 reference = s.proxy * c;
+    // The joint's one-sided stops (n . p <= limit on the reference point, or
+    // on the stop's own point of the part), active when the part is on them
+    // (within 1 um): the panel's readout.
     for (int k = 0; s.engaged && k < s.joint.stop_count; ++k) {
-      const double gap = s.joint.stops[k].limit - s.joint.stops[k].normal.dot(reference);
+      const double gap = s.joint.stops[k].limit - s.joint.stops[k].normal.dot(stop_point(s.joint.stops[k], s.proxy, c));
       out.stops.push_back({triple(s.joint.stops[k].normal), gap, gap < 1e-3});
     }
     out.realtime_priority = loop_->got_realtime_priority();

@@ -3,6 +3,7 @@
 // is checked by OCCT Booleans (path_checker.h), never by the loop's figures.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -11,6 +12,7 @@
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
 #include <gp_Ax2.hxx>
 
 #include "contactcore/haptics/proxy_solver.h"
@@ -393,6 +395,141 @@ TEST(ProxyAcceptance, AxisHeldToAChosenJointSlidesOut) {
   const PathOverlap o = check_path(s.assembly, "Axis", s.scene->centre(), r.path, 5);
   expect_no_deeper(o, 0.01);
   EXPECT_GE(o.samples_checked, 20);
+}
+
+// ---- held to a point contact's joint (issue 22 item 3: higher pairs in the trial)
+
+namespace {
+// A ball r 5 (centre (20, 20, 15)) resting on a plate's top (z = 10).
+Scene& ball_on_plate() {
+  static Scene s;
+  if (!s.scene) {
+    contactcore::Body plate;
+    plate.name = "Plate";
+    plate.shape = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 40, 40, 10).Shape();
+    contactcore::Body ball;
+    ball.name = "Ball";
+    ball.shape = BRepPrimAPI_MakeSphere(gp_Pnt(20, 20, 15), 5).Shape();
+    s.assembly.bodies = {plate, ball};
+    contactcore::Status status;
+    s.scene = TrialScene::build(s.assembly, "Ball", SceneOptions{}, status);
+  }
+  return s;
+}
+}  // namespace
+
+// The ball's sphere_plane joint from the joints stage, held as the panel
+// holds a chosen joint: by hand, every twist free and one stop on the
+// ball's centre, -z . c <= -15 (the centre never below z = 15, the plate's
+// top plus the radius). The hand goes 3 mm into the plate while moving 12
+// along x (0.6 s), 6 along y while turning 25 deg about x and 40 about z
+// (to 1.2 s), stays there (to 1.6 s), then goes up 13 mm (to 2.2 s). By hand: the ball follows the hand
+// along the plate at its own height (offset z 0, up to the contact skin),
+// turns with the hand, and leaves the plate with the hand (z offset 10 at
+// the end); the judge finds no overlap with the plate anywhere on the path.
+TEST(ProxyAcceptance, BallHeldToItsSpherePlaneJointSlidesTurnsAndLiftsOff) {
+  Scene& s = ball_on_plate();
+  ASSERT_TRUE(s.scene);
+  const int ball = s.scene->moving();
+  const contactcore::ContactsResult contacts = contactcore::find_contacts(s.assembly, contactcore::ContactOptions{});
+  const contactcore::JointsResult joints = contactcore::find_joints(s.assembly, contacts);
+  ASSERT_EQ(joints.joints.size(), 1u);
+  ASSERT_EQ(joints.joints[0].type, contactcore::JointType::SpherePlane);
+  JointState joint;
+  ASSERT_TRUE(joint_state_from_pair(joints.joints[0], ball, s.scene->centre(), s.scene->contacts().body_box(ball), joint));
+  s.scene->attach_collision_group(joint);
+  EXPECT_EQ(joint.kind, JointKind::HigherPair);
+  EXPECT_STREQ(to_string(joint.kind), "Point/line contact");
+  ASSERT_EQ(joint.stop_count, 1);
+  EXPECT_TRUE(joint.stops[0].on_part_point);
+  EXPECT_LT((joint.stops[0].part_point - Vec3(20, 20, 15)).norm(), 1e-9);
+  EXPECT_LT((joint.stops[0].normal - Vec3(0, 0, -1)).norm(), 1e-12);
+  EXPECT_NEAR(joint.stops[0].limit, -15, 1e-9);
+  EXPECT_LT((joint.axis - Vec3(0, 0, 1)).norm(), 1e-12);
+  Eigen::Matrix<double, 6, 6> basis;
+  EXPECT_EQ(free_twists(joint, Vec3(20, 20, 15), basis), 6);
+
+  TrialScript script;
+  script.start = key(0, Vec3::Zero());
+  script.hand = {key(0.0, Vec3::Zero()), key(0.6, Vec3(12, 0, -3)), key(1.2, Vec3(12, 6, -3), Vec3(25, 0, 40)),
+                 key(1.6, Vec3(12, 6, -3), Vec3(25, 0, 40)), key(2.2, Vec3(12, 6, 10), Vec3(25, 0, 40))};
+  TrialOptions options;
+  options.hold = &joint;
+  options.settle = 0.5;
+  options.record_every = 10;
+  const TrialResult r = run_trial(*s.scene, script, options);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  // On the plate, pushed into it: at its own height, where the hand is in x, y.
+  const TrialSample* on_plate = nullptr;
+  double lowest = 1e300;
+  for (const TrialSample& sample : r.path) {
+    if (sample.t <= 1.6) lowest = std::min(lowest, sample.translate.z());
+    if (sample.t <= 1.6) on_plate = &sample;
+  }
+  ASSERT_NE(on_plate, nullptr);
+  std::printf("[ figures ] at t = %.3f: %.6f %.6f %.6f mm, %.3f %.3f %.3f deg; lowest z offset %.9f\n", on_plate->t,
+              on_plate->translate.x(), on_plate->translate.y(), on_plate->translate.z(), on_plate->rotate_deg.x(),
+              on_plate->rotate_deg.y(), on_plate->rotate_deg.z(), lowest);
+  EXPECT_GE(lowest, -1e-9);
+  EXPECT_NEAR(on_plate->translate.z(), 0, 0.05);
+  EXPECT_NEAR(on_plate->translate.x(), 12, 0.1);
+  EXPECT_NEAR(on_plate->translate.y(), 6, 0.1);
+  EXPECT_NEAR(on_plate->rotate_deg.x(), 25, 0.5);
+  EXPECT_NEAR(on_plate->rotate_deg.z(), 40, 0.5);
+  // Lifted with the hand: off the plate.
+  EXPECT_NEAR(r.final_translate.z(), 10, 0.05) << r.final_translate.transpose();
+  EXPECT_NEAR(r.final_translate.x(), 12, 0.05);
+  EXPECT_NEAR(r.final_translate.y(), 6, 0.05);
+  EXPECT_TRUE(r.joints_engaged.empty());  // held, not found
+  // Pushed 3 mm into the plate: the judge finds no overlap anywhere.
+  const PathOverlap o = check_path(s.assembly, "Ball", s.scene->centre(), r.path, 2);
+  expect_no_deeper(o, 1e-3);
+  EXPECT_GE(o.samples_checked, 50);
+}
+
+// A roller r 5 along x (x 5..35, axis y = 20, z = 15) on a plate's top
+// (z = 10): its cylinder_plane joint held as a point/line contact. By hand:
+// two stops, one per end of the line (5, 20, 10) and (35, 20, 10), each moved
+// up the normal by the radius onto the roller's axis, (5, 20, 15) and
+// (35, 20, 15), each keeping -z . p <= -15: the axis never below z = 15
+// whatever the roller does (rolls about its axis, turns about z, slides,
+// lifts an end).
+TEST(ProxyAcceptance, RollerHeldToItsCylinderPlaneJointHasStopsOnItsAxis) {
+  Scene s;
+  contactcore::Body plate;
+  plate.name = "Plate";
+  plate.shape = BRepPrimAPI_MakeBox(gp_Pnt(0, 0, 0), 40, 40, 10).Shape();
+  contactcore::Body roller;
+  roller.name = "Roller";
+  roller.shape = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(5, 20, 15), gp_Dir(1, 0, 0)), 5, 30).Shape();
+  s.assembly.bodies = {plate, roller};
+  contactcore::Status status;
+  s.scene = TrialScene::build(s.assembly, "Roller", SceneOptions{}, status);
+  ASSERT_TRUE(s.scene) << status.message;
+  const int moving = s.scene->moving();
+  const contactcore::ContactsResult contacts = contactcore::find_contacts(s.assembly, contactcore::ContactOptions{});
+  const contactcore::JointsResult joints = contactcore::find_joints(s.assembly, contacts);
+  ASSERT_EQ(joints.joints.size(), 1u);
+  ASSERT_EQ(joints.joints[0].type, contactcore::JointType::CylinderPlane);
+  JointState joint;
+  ASSERT_TRUE(joint_state_from_pair(joints.joints[0], moving, s.scene->centre(), s.scene->contacts().body_box(moving),
+                                    joint));
+  s.scene->attach_collision_group(joint);
+  EXPECT_EQ(joint.kind, JointKind::HigherPair);
+  ASSERT_EQ(joint.stop_count, 2);
+  std::vector<double> xs;
+  for (int k = 0; k < 2; ++k) {
+    const Stop& stop = joint.stops[k];
+    EXPECT_TRUE(stop.on_part_point);
+    EXPECT_LT((stop.normal - Vec3(0, 0, -1)).norm(), 1e-12);
+    EXPECT_NEAR(stop.part_point.y(), 20, 1e-6);
+    EXPECT_NEAR(stop.part_point.z(), 15, 1e-6);
+    EXPECT_NEAR(stop.limit, -15, 1e-6);
+    xs.push_back(stop.part_point.x());
+  }
+  std::sort(xs.begin(), xs.end());
+  EXPECT_NEAR(xs[0], 5, 1e-6);
+  EXPECT_NEAR(xs[1], 35, 1e-6);
 }
 
 // ---- Coulomb friction at the proxy's contacts

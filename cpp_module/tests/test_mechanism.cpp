@@ -15,6 +15,7 @@
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepGProp.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
@@ -376,6 +377,219 @@ TEST(Mechanism, ParallelCylindersOfDifferentRadiiMakeALineContact) {
   const PairJoint& j = only_joint(inside);
   EXPECT_EQ(j.type, JointType::CylinderPlane);
   EXPECT_EQ(j.dof, 4);
+}
+
+// ------------------------------------ cone and torus higher pairs (item 3)
+
+namespace {
+TopoDS_Shape torus(gp_Pnt centre, gp_Dir axis, double major, double minor) {
+  return BRepPrimAPI_MakeTorus(gp_Ax2(centre, axis), major, minor).Shape();
+}
+// Every direction of `dirs` at `angle` from `axis`.
+void expect_all_at(const std::vector<gp_Dir>& dirs, const gp_Dir& axis, double angle) {
+  for (const gp_Dir& d : dirs) EXPECT_NEAR(d.Angle(axis), angle, 1e-9) << d.X() << " " << d.Y() << " " << d.Z();
+}
+}  // namespace
+
+// A frustum (radii 2 and 6 over 16: tan(half angle) = 1/4, so sin = 1/sqrt 17,
+// cos = 4/sqrt 17; its apex 8 behind the small end) with its apex at the
+// origin and its axis (4, 0, 1)/sqrt 17, lying on a plate's top (z = 0). By
+// hand: its lowest generator cos(a) axis + sin(a) (1, 0, -4)/sqrt 17 is
+// (1, 0, 0) at z = 0, from 8/cos a = 2 sqrt 17 to 24/cos a = 6 sqrt 17 from
+// the apex: a line from (2 sqrt 17, 0, 0) to (6 sqrt 17, 0, 0), 4 sqrt 17 =
+// 16.4924 mm long, normal +z out of the plate. The joint: forces along z at
+// both ends, as a roller: cylinder_plane, 4 DOF, translations in the plane,
+// five free directions with +z, never -z; with the plate grounded, 4 DOF.
+TEST(Mechanism, ConeLyingOnAPlaneIsALineContactAlongAGenerator) {
+  const double root17 = std::sqrt(17.0);
+  const gp_Dir axis(4 / root17, 0, 1 / root17);
+  const TopoDS_Shape cone =
+      BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0).Translated(gp_Vec(axis) * 8), axis), 2, 6, 16).Shape();
+  const Analysed a = analyse({{"Plate", box(gp_Pnt(-10, -20, -10), gp_Pnt(40, 20, 0))}, {"Cone", cone}});
+  EXPECT_TRUE(a.contacts.contacts.empty());
+  const HigherPair& h = only_higher(a);
+  EXPECT_EQ(h.type, HigherPairType::ConeOnPlane);
+  EXPECT_STREQ(to_string(h.type), "cone_on_plane");
+  EXPECT_EQ(h.kind, HigherPairKind::Line);
+  EXPECT_NEAR(h.length, 4 * root17, 1e-6);
+  EXPECT_LT(h.start.Distance(gp_Pnt(2 * root17, 0, 0)), 1e-6);
+  EXPECT_LT(h.end.Distance(gp_Pnt(6 * root17, 0, 0)), 1e-6);
+  EXPECT_LT(h.point.Distance(gp_Pnt(4 * root17, 0, 0)), 1e-6);
+  EXPECT_LT(h.normal.Angle(gp::DZ()), 1e-9);
+  const PairJoint& j = only_joint(a);
+  EXPECT_EQ(j.higher_pairs, std::vector<int>{0});
+  EXPECT_EQ(j.type, JointType::CylinderPlane);
+  EXPECT_EQ(j.dof, 4);
+  ASSERT_EQ(j.translations.size(), 2u);
+  for (const gp_Dir& t : j.translations) EXPECT_NEAR(t.Z(), 0, 1e-9);
+  EXPECT_EQ(j.free_directions.size(), 5u);
+  EXPECT_TRUE(contains(j.free_directions, gp::DZ()));
+  EXPECT_FALSE(contains(j.free_directions, -gp::DZ()));
+  MobilityOptions options;
+  options.ground = 0;
+  const MobilityResult m = assembly_mobility(a.assembly, a.contacts, a.joints, options);
+  ASSERT_TRUE(m.status.ok()) << m.status.describe();
+  EXPECT_EQ(m.dof, 4);
+  // Tilted 1 deg more about its generator's normal: no longer on the plane.
+  const TopoDS_Shape steeper = BRepPrimAPI_MakeCone(
+      gp_Ax2(gp_Pnt(0, 0, 0).Translated(gp_Vec(axis.Rotated(gp_Ax1(gp::Origin(), -gp::DY()), 1 * M_PI / 180)) * 8),
+             axis.Rotated(gp_Ax1(gp::Origin(), -gp::DY()), 1 * M_PI / 180)),
+      2, 6, 16).Shape();
+  const Analysed off = analyse({{"Plate", box(gp_Pnt(-10, -20, -10), gp_Pnt(40, 20, 0))}, {"Cone", steeper}});
+  EXPECT_TRUE(off.contacts.higher_pairs.empty());
+}
+
+// A ring (torus R 10, r 2) lying flat on a plate's top (z = 10), centre
+// (20, 20, 12). By hand: its tube's centres at z = 12 touch z = 10 along the
+// circle of radius 10 about (20, 20, 10), normal +z all round. The joint:
+// forces along z around a circle: planar, 3 DOF (slides in x, y, turns
+// about z); free directions: the plane both ways and +z (five). Grounded
+// plate: 3 DOF.
+TEST(Mechanism, RingLyingFlatOnAPlaneIsACircleContactAndPlanar) {
+  const Analysed a = analyse({{"Plate", box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 10))},
+                              {"Ring", torus(gp_Pnt(20, 20, 12), gp::DZ(), 10, 2)}});
+  EXPECT_TRUE(a.contacts.contacts.empty());
+  const HigherPair& h = only_higher(a);
+  EXPECT_EQ(h.type, HigherPairType::TorusOnPlane);
+  EXPECT_STREQ(to_string(h.type), "torus_on_plane");
+  EXPECT_EQ(h.kind, HigherPairKind::Circle);
+  EXPECT_STREQ(to_string(h.kind), "circle");
+  EXPECT_LT(h.point.Distance(gp_Pnt(20, 20, 10)), 1e-9);
+  EXPECT_NEAR(h.radius, 10, 1e-9);
+  EXPECT_NEAR(h.length, 20 * M_PI, 1e-9);
+  EXPECT_TRUE(h.axis.IsParallel(gp::DZ(), 1e-9));
+  EXPECT_NEAR(h.start.Distance(gp_Pnt(20, 20, 10)), 10, 1e-9);
+  EXPECT_NEAR(h.start.Z(), 10, 1e-9);
+  EXPECT_LT(h.normal.Angle(gp::DZ()), 1e-9);
+  const PairJoint& j = only_joint(a);
+  EXPECT_EQ(j.type, JointType::Planar);
+  EXPECT_EQ(j.dof, 3);
+  EXPECT_EQ(j.free_directions.size(), 5u);
+  EXPECT_TRUE(contains(j.free_directions, gp::DZ()));
+  EXPECT_FALSE(contains(j.free_directions, -gp::DZ()));
+  MobilityOptions options;
+  options.ground = 0;
+  const MobilityResult m = assembly_mobility(a.assembly, a.contacts, a.joints, options);
+  ASSERT_TRUE(m.status.ok()) << m.status.describe();
+  EXPECT_EQ(m.dof, 3);
+}
+
+// A rounded wheel (torus R 10, r 2) on a plate's top (z = 10). Standing (axis
+// y, centre (20, 20, 22)): its lowest point (20, 20, 10), 22 - 10 - 2 above
+// the plate's top is 0. Tilted 30 deg (axis (1/2, 0, sqrt 3/2), centre
+// (20, 20, 17)): the normal's part across the axis has length sin 30 = 1/2,
+// the lowest tube centre C + 10 (sqrt 3/2, 0, -1/2) at z = 12, the point
+// (20 + 5 sqrt 3, 20, 10). Both: a point, normal +z; sphere_plane, 5 DOF.
+TEST(Mechanism, WheelStandingOrTiltedOnAPlaneIsAPointContact) {
+  const Analysed standing = analyse({{"Plate", box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 10))},
+                                     {"Wheel", torus(gp_Pnt(20, 20, 22), gp::DY(), 10, 2)}});
+  const HigherPair& h = only_higher(standing);
+  EXPECT_EQ(h.type, HigherPairType::TorusOnPlane);
+  EXPECT_EQ(h.kind, HigherPairKind::Point);
+  EXPECT_LT(h.point.Distance(gp_Pnt(20, 20, 10)), 1e-9);
+  EXPECT_LT(h.normal.Angle(gp::DZ()), 1e-9);
+  const PairJoint& j = only_joint(standing);
+  EXPECT_EQ(j.type, JointType::SpherePlane);
+  EXPECT_EQ(j.dof, 5);
+  EXPECT_TRUE(contains(j.free_directions, gp::DZ()));
+
+  const Analysed tilted = analyse({{"Plate", box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 10))},
+                                   {"Wheel", torus(gp_Pnt(20, 20, 17), gp_Dir(0.5, 0, std::sqrt(3.0) / 2), 10, 2)}});
+  const HigherPair& g = only_higher(tilted);
+  EXPECT_EQ(g.type, HigherPairType::TorusOnPlane);
+  EXPECT_EQ(g.kind, HigherPairKind::Point);
+  EXPECT_LT(g.point.Distance(gp_Pnt(20 + 5 * std::sqrt(3.0), 20, 10)), 1e-9);
+  EXPECT_EQ(only_joint(tilted).type, JointType::SpherePlane);
+  EXPECT_EQ(only_joint(tilted).dof, 5);
+}
+
+// An O-ring (torus R 10, r 2, axis z, centre (20, 20, 10)) in a bore r 12
+// through a block: its outer equator (radius 12) on the wall, a circle about
+// (20, 20, 10), the block's normal towards the axis all round. The joint:
+// radial forces in one plane have no moment about the centre: they hold
+// x and y only: sphere_cylinder, 4 DOF (turns about the centre, slides along
+// z), free along +-z only. The same ring on a shaft r 8 (its inner equator,
+// 10 - 2): a circle r 8, the shaft's normal away from the axis; 4 DOF. A
+// wheel (R 5, r 2, outer equator 7) in the bore r 12, 5 off its axis at
+// (25, 20, 10): the point (32, 20, 10), normal -x out of the block;
+// sphere_plane, 5 DOF.
+TEST(Mechanism, RingInABoreOrOnAShaftIsACircleOrAPoint) {
+  const TopoDS_Shape block = cut(box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 20)), cylinder(12, 40, gp_Pnt(20, 20, -10)));
+  const Analysed in_bore = analyse({{"Block", block}, {"ORing", torus(gp_Pnt(20, 20, 10), gp::DZ(), 10, 2)}});
+  EXPECT_TRUE(in_bore.contacts.contacts.empty());
+  const HigherPair& h = only_higher(in_bore);
+  EXPECT_EQ(h.type, HigherPairType::TorusOnCylinder);
+  EXPECT_STREQ(to_string(h.type), "torus_on_cylinder");
+  EXPECT_EQ(h.kind, HigherPairKind::Circle);
+  EXPECT_LT(h.point.Distance(gp_Pnt(20, 20, 10)), 1e-9);
+  EXPECT_NEAR(h.radius, 12, 1e-9);
+  EXPECT_NEAR(h.start.Distance(gp_Pnt(20, 20, 10)), 12, 1e-9);
+  EXPECT_LT(h.normal.Angle(gp_Dir(gp_Vec(h.start, gp_Pnt(20, 20, 10)))), 1e-9);  // out of the block: inwards
+  const PairJoint& j = only_joint(in_bore);
+  EXPECT_EQ(j.type, JointType::SphereCylinder);
+  EXPECT_EQ(j.dof, 4);
+  ASSERT_EQ(j.free_directions.size(), 2u);
+  EXPECT_TRUE(contains(j.free_directions, gp::DZ()));
+  EXPECT_TRUE(contains(j.free_directions, -gp::DZ()));
+
+  const Analysed on_shaft = analyse({{"Shaft", cylinder(8, 30, gp_Pnt(20, 20, -5))},
+                                     {"ORing", torus(gp_Pnt(20, 20, 10), gp::DZ(), 10, 2)}});
+  const HigherPair& g = only_higher(on_shaft);
+  EXPECT_EQ(g.type, HigherPairType::TorusOnCylinder);
+  EXPECT_EQ(g.kind, HigherPairKind::Circle);
+  EXPECT_NEAR(g.radius, 8, 1e-9);
+  EXPECT_LT(g.normal.Angle(gp_Dir(gp_Vec(gp_Pnt(20, 20, 10), g.start))), 1e-9);  // out of the shaft
+  EXPECT_EQ(only_joint(on_shaft).dof, 4);
+
+  const Analysed wheel = analyse({{"Block", block}, {"Wheel", torus(gp_Pnt(25, 20, 10), gp::DZ(), 5, 2)}});
+  const HigherPair& w = only_higher(wheel);
+  EXPECT_EQ(w.type, HigherPairType::TorusOnCylinder);
+  EXPECT_EQ(w.kind, HigherPairKind::Point);
+  EXPECT_LT(w.point.Distance(gp_Pnt(32, 20, 10)), 1e-9);
+  EXPECT_LT(w.normal.Angle(-gp::DX()), 1e-9);
+  EXPECT_EQ(only_joint(wheel).type, JointType::SpherePlane);
+  EXPECT_EQ(only_joint(wheel).dof, 5);
+}
+
+// A pointed cone (half angle 45 deg, apex (20, 20, 15), axis +z, radius 10
+// at z = 25) seated on the sharp rim of a bore r 5 through a block 20 high:
+// its radius at the mouth (z = 20) is 5 tan 45 = 5. By hand: a circle r 5
+// about (20, 20, 20), the block's normal (-radial + z)/sqrt 2. The joint:
+// those forces around the circle hold x, y, z and the tilts: revolute about
+// the bore's axis, 1 DOF; it lifts off within the circular cone of 45 deg
+// about +z (the normals' cone, at 45 deg from +z, leaves 90 - 45): the 12
+// generators exactly on it. Grounded block: 1 DOF.
+TEST(Mechanism, ConeSeatedOnABoresRimIsACircleContactAndRevolute) {
+  const TopoDS_Shape block = cut(box(gp_Pnt(0, 0, 0), gp_Pnt(40, 40, 20)), cylinder(5, 40, gp_Pnt(20, 20, -10)));
+  const TopoDS_Shape cone = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(20, 20, 15), gp::DZ()), 0, 10, 10).Shape();
+  const Analysed a = analyse({{"Block", block}, {"Cone", cone}});
+  EXPECT_TRUE(a.contacts.contacts.empty());
+  const HigherPair& h = only_higher(a);
+  EXPECT_EQ(h.type, HigherPairType::ConeOnCylinder);
+  EXPECT_STREQ(to_string(h.type), "cone_on_cylinder");
+  EXPECT_EQ(h.kind, HigherPairKind::Circle);
+  EXPECT_LT(h.point.Distance(gp_Pnt(20, 20, 20)), 1e-9);
+  EXPECT_NEAR(h.radius, 5, 1e-9);
+  EXPECT_NEAR(h.start.Z(), 20, 1e-9);
+  const gp_Vec inwards(h.start, gp_Pnt(20, 20, 20));
+  EXPECT_LT(h.normal.Angle(gp_Dir(inwards / 5 + gp_Vec(0, 0, 1))), 1e-9);
+  const PairJoint& j = only_joint(a);
+  EXPECT_EQ(j.type, JointType::Revolute);
+  EXPECT_EQ(j.dof, 1);
+  ASSERT_EQ(j.rotations.size(), 1u);
+  EXPECT_TRUE(j.rotations[0].direction.IsParallel(gp::DZ(), 1e-9));
+  EXPECT_NEAR(gp_Vec(j.rotations[0].point.X() - 20, j.rotations[0].point.Y() - 20, 0).Magnitude(), 0, 1e-6);
+  EXPECT_EQ(j.free_directions.size(), 12u);
+  expect_all_at(j.free_directions, gp::DZ(), M_PI / 4);
+  MobilityOptions options;
+  options.ground = 0;
+  const MobilityResult m = assembly_mobility(a.assembly, a.contacts, a.joints, options);
+  ASSERT_TRUE(m.status.ok()) << m.status.describe();
+  EXPECT_EQ(m.dof, 1);
+  // The cone free of the grounded block: the same exact cone.
+  const std::vector<gp_Dir> out = body_free_directions(a.contacts, a.joints, 1);
+  EXPECT_EQ(out.size(), 12u);
+  expect_all_at(out, gp::DZ(), M_PI / 4);
 }
 
 // ------------------------------------------------------------ annotations

@@ -1,7 +1,7 @@
-// Stage 3 (contacts), beside the surface contacts: point and line contacts
-// (higher pairs) between a ball, a cylinder and a plane or cylinder of
-// another radius, found from the partitions' analytic surfaces and checked
-// on the faces themselves.
+// Stage 3 (contacts), beside the surface contacts: point, line and circle
+// contacts (higher pairs) of a ball, a cylinder, a cone or a ring (torus) on a
+// plane or a cylinder (contacts.h lists the types), found from the
+// partitions' analytic surfaces and checked on the faces themselves.
 #pragma once
 
 #include <vector>

@@ -14,6 +14,7 @@ const char* to_string(JointKind kind) {
     case JointKind::Spherical: return "Ball";
     case JointKind::Fixed: return "Fixed";
     case JointKind::Planar: return "Planar";
+    case JointKind::HigherPair: return "Point/line contact";
   }
   return "?";
 }
@@ -29,6 +30,7 @@ int free_twists(const JointState& joint, const Vec3& c, Eigen::Matrix<double, 6,
   };
   switch (joint.kind) {
     case JointKind::Free:
+    case JointKind::HigherPair:  // its stops hold it
       basis.setIdentity();
       return 6;
     case JointKind::Fixed:
@@ -60,7 +62,7 @@ int free_twists(const JointState& joint, const Vec3& c, Eigen::Matrix<double, 6,
 }
 
 Pose snap_to_joint(const JointState& joint, const Pose& pose) {
-  if (joint.kind == JointKind::Free) return pose;
+  if (joint.kind == JointKind::Free || joint.kind == JointKind::HigherPair) return pose;
   const Vec3 q = pose * joint.part_point;
   Pose out = pose;
   if (joint.kind == JointKind::Spherical) {
@@ -83,7 +85,7 @@ Pose snap_to_joint(const JointState& joint, const Pose& pose) {
 }
 
 double joint_deviation(const JointState& joint, const Pose& pose) {
-  if (joint.kind == JointKind::Free) return 0;
+  if (joint.kind == JointKind::Free || joint.kind == JointKind::HigherPair) return 0;  // stops: their overshoot
   if (joint.kind == JointKind::Spherical) return (pose * joint.part_point - joint.point).norm();
   if (joint.kind == JointKind::Planar) {
     const double c = std::clamp(-(pose.linear() * joint.part_axis).dot(joint.axis), -1.0, 1.0);

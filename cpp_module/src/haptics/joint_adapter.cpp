@@ -8,11 +8,46 @@ namespace contactcore::haptics {
 namespace {
 Vec3 vec(const gp_Pnt& p) { return {p.X(), p.Y(), p.Z()}; }
 Vec3 vec(const gp_Dir& d) { return {d.X(), d.Y(), d.Z()}; }
+// Point and line contacts only (a ball or a wheel on a plane, a roller or a
+// cone lying on one, a ball in a V): every twist free, each contact point a
+// one-sided stop on the part's point there (TrialScene::attach_collision_group
+// moves it to the centre of the part's surface: a ball's centre, a roller's
+// axis). Circle contacts give planar or revolute joints: the switch below.
+bool higher_pair_state(const PairJoint& pair, int moving, const Vec3& centre, JointState& out) {
+  if (pair.stops.empty() || pair.stops.size() > static_cast<size_t>(kMaxStops)) return false;
+  JointState j;
+  j.kind = JointKind::HigherPair;
+  j.point = centre;
+  j.part_point = centre;
+  Vec3 lift = Vec3::Zero();
+  for (const OneSidedStop& stop : pair.stops) {
+    if (stop.higher_pair < 0) return false;
+    const Vec3 n = vec(stop.normal);
+    const Vec3 blocked = moving == pair.body_b ? Vec3(-n) : n;
+    const Vec3 at = vec(stop.point);
+    j.add_stop(blocked, blocked.dot(at));
+    j.stops[j.stop_count - 1].on_part_point = true;
+    j.stops[j.stop_count - 1].part_point = at;
+    lift -= blocked;
+  }
+  // The axis: the way off the surfaces (the lift-off normal, or their mean).
+  j.axis = lift.norm() > 1e-9 ? Vec3(lift.normalized()) : Vec3(-j.stops[0].normal);
+  j.part_axis = j.axis;
+  j.bodies[0] = moving == pair.body_a ? pair.body_b : pair.body_a;
+  j.body_count = 1;
+  j.contact_type = static_cast<int>(ContactType::PLF);  // reports only: the surface it rests on
+  out = j;
+  return true;
+}
+
 }  // namespace
 
 bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre,
                            const Eigen::AlignedBox3d& part_box, JointState& out) {
   if (moving != pair.body_a && moving != pair.body_b) return false;
+  if (pair.contacts.empty() && !pair.higher_pairs.empty() &&
+      (pair.type == JointType::SpherePlane || pair.type == JointType::CylinderPlane || pair.type == JointType::General))
+    return higher_pair_state(pair, moving, centre, out);
   JointState j;
   switch (pair.type) {
     case JointType::Rigid:

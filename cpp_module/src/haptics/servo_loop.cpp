@@ -352,10 +352,12 @@ Pose ServoLoop::move_proxy(const Pose& target, double dt, double spent_lin, doub
     r.bound = std::min(config_.contact_skin - k.gap, config_.max_pushout);
   };
   for (int i = 0; engaged_ && i < joint_.stop_count; ++i) {
+    // normal . p <= limit at the stop's point p: -normal . dp >= normal . p - limit.
+    const Stop& stop = joint_.stops[i];
+    const Vec3 p0 = stop_point(stop, proxy_, c);
     ProxyConstraint& r = rows[row_count++];
-    r.row.setZero();
-    r.row.head<3>() = -joint_.stops[i].normal;
-    r.bound = joint_.stops[i].normal.dot(c0) - joint_.stops[i].limit;
+    r.row = contact_row(p0, -stop.normal, c0);
+    r.bound = stop.normal.dot(p0) - stop.limit;
   }
   for (int i = 0; i < constraint_count_; ++i) add_contact(constraint_set_[i]);
 
@@ -399,7 +401,7 @@ Pose ServoLoop::move_proxy(const Pose& target, double dt, double spent_lin, doub
     if (engaged_) candidate = snap_to_joint(joint_, candidate);
     for (int i = 0; i < joint_.stop_count && engaged_; ++i) {
       const Stop& stop = joint_.stops[i];
-      const double over = stop.normal.dot(candidate * c) - stop.limit;
+      const double over = stop.normal.dot(stop_point(stop, candidate, c)) - stop.limit;
       if (over > 0) {
         candidate.translation() -= over * stop.normal;
         last_.blocked = true;
@@ -577,7 +579,8 @@ void ServoLoop::tick(double now, bool wall_clock) {
   double penetration = reason == Watchdog::None ? std::max(0.0, -min_gap_of_measured()) : last_.penetration;
   if (engaged_) penetration = std::max(penetration, joint_deviation(joint_, proxy_));
   for (int i = 0; engaged_ && i < joint_.stop_count; ++i)
-    penetration = std::max(penetration, joint_.stops[i].normal.dot(proxy_ * c) - joint_.stops[i].limit);
+    penetration = std::max(penetration, joint_.stops[i].normal.dot(stop_point(joint_.stops[i], proxy_, c)) -
+                                            joint_.stops[i].limit);
   max_penetration_ = std::max(max_penetration_, penetration);
   if (engaged_ && !held_) {
     ++engaged_ticks_;

@@ -115,8 +115,45 @@ std::unique_ptr<TrialScene> TrialScene::build(const Assembly& assembly, const st
   return scene;
 }
 
+namespace {
+// A point and line contact's stop moved from the contact point p to the
+// centre of the part's surface there, along the normal: the ball's centre,
+// the point of a roller's or a cone's axis (q = p - rho n, rho > 0). That
+// point keeps its height while the part rolls, turns or slides, so the stop
+// holds exactly; a stop whose point is on no such surface (the part is the
+// plane) stays at the contact point.
+void centre_stop(const std::vector<SurfaceProxy>& surfaces, Stop& stop) {
+  constexpr double kOn = 1e-3;  // mm
+  const Vec3 p = stop.part_point, n = stop.normal;
+  for (const SurfaceProxy& m : surfaces) {
+    if (m.side != MaterialSide::Convex) continue;
+    Vec3 q;
+    if (m.kind == SurfaceKind::Sphere) {
+      q = m.location;
+    } else if (m.kind == SurfaceKind::Cylinder || m.kind == SurfaceKind::Cone) {
+      q = m.location + (p - m.location).dot(m.axis) * m.axis;  // p's foot on the axis
+    } else {
+      continue;
+    }
+    const double rho = (p - q).dot(n);
+    if (rho <= kOn || (p - rho * n - q).norm() > kOn) continue;
+    if (m.kind != SurfaceKind::Cone && std::abs(rho - m.radius) > kOn) continue;
+    stop.part_point = q;
+    stop.limit = n.dot(q);
+    return;
+  }
+}
+}  // namespace
+
 void TrialScene::attach_collision_group(JointState& joint) const {
   joint.group = -1;
+  if (joint.kind == JointKind::HigherPair) {
+    // No collision group: the surfaces stay in the collision response (a
+    // ball touches its plane at no partition it shares a group with).
+    for (int k = 0; k < joint.stop_count; ++k)
+      if (joint.stops[k].on_part_point) centre_stop(contacts_->moving_surfaces(), joint.stops[k]);
+    return;
+  }
   const double tol = contacts_->tolerances().distance, cos_tol = std::cos(contacts_->tolerances().angle);
   const bool bore = joint.kind == JointKind::Cylindrical || joint.kind == JointKind::Revolute;
   // The part's surface on the joint: on its axis (centre, plane) and, among

@@ -255,20 +255,51 @@ ContactConstraints constraints_of(const ContactsResult& result, int index, const
 
 // A point contact: one force along the normal, one-sided; a line contact:
 // that force at both ends of the line (it also holds the rotation across the
-// line in the tangent plane).
-ContactConstraints constraints_of_higher(const ContactsResult& result, int index, const Frame& frame) {
+// line in the tangent plane); a circle: forces at `samples` points around it
+// each along the normal turned with the point, their free directions from the
+// exact circular cone of those normals (a ring of radial normals: none across
+// the axis; one normal all round: that normal).
+ContactConstraints constraints_of_higher(const ContactsResult& result, int index, const Frame& frame,
+                                         int samples = 12) {
   const HigherPair& h = result.higher_pairs[index];
   ContactConstraints out;
-  const Vec3 n = vec(h.normal);
-  std::vector<gp_Pnt> points{h.start};
-  if (h.is_line()) points.push_back(h.end);
-  for (const gp_Pnt& at : points) {
+  const auto add = [&](const gp_Pnt& at, const Vec3& n) {
     out.rows.push_back(frame.force_row(vec(at), n));
     OneSidedStop stop;
     stop.higher_pair = index;
     stop.point = at;
-    stop.normal = h.normal;
+    stop.normal = dir(n);
     out.stops.push_back(stop);
+  };
+  if (!h.is_circle()) {
+    add(h.start, vec(h.normal));
+    if (h.is_line()) add(h.end, vec(h.normal));
+    return out;
+  }
+  const Vec3 centre = vec(h.point), m = vec(h.axis).normalized(), n0 = vec(h.normal);
+  const Vec3 r0 = (vec(h.start) - centre).normalized(), t0 = m.cross(r0);
+  const double along = n0.dot(m), out_radial = n0.dot(r0);  // the normal's parts, the same all round
+  const int count = std::max(samples, 3);
+  for (int i = 0; i < count; ++i) {
+    const double theta = kTwoPi * i / count;
+    const Vec3 radial = std::cos(theta) * r0 + std::sin(theta) * t0;
+    add(pnt(centre + h.radius * radial), (along * m + out_radial * radial).normalized());
+  }
+  // A cone on a rim: its normals meet at one point of the axis (to first
+  // order a ball joint), but a cone is no sphere: tilted about that point,
+  // the rim goes into the cone's material on every side (second order), so
+  // the tilts are held, as a seated cone's are (CJU).
+  if (h.type == HigherPairType::ConeOnCylinder) add_axis_moments(m, out);
+  constexpr double kFlat = 1e-9;
+  if (std::abs(out_radial) <= kFlat) {
+    out.stops.resize(1);  // one normal all round: one stop says it
+  } else if (std::abs(along) <= kFlat) {
+    Vec3 u, v;
+    perpendiculars(m, u, v);
+    out.bilateral_forces.push_back(u);
+    out.bilateral_forces.push_back(v);
+  } else {
+    out.circles.push_back({along > 0 ? m : Vec3(-m), std::acos(std::min(1.0, std::abs(along)))});
   }
   return out;
 }
@@ -395,7 +426,7 @@ PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
   }
   for (int i : higher_pair_indices) {
     const HigherPair& h = result.higher_pairs[i];
-    length = std::max(length, (vec(h.point) - frame.centre).norm() + 0.5 * h.length);
+    length = std::max(length, (vec(h.point) - frame.centre).norm() + (h.is_circle() ? h.radius : 0.5 * h.length));
   }
   frame.length = length > 1e-9 ? length : 1.0;
   joint.frame_centre = pnt(frame.centre);
@@ -415,9 +446,14 @@ PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
     joint.stops.insert(joint.stops.end(), cc.stops.begin(), cc.stops.end());
   }
   for (int i : higher_pair_indices) {
-    const ContactConstraints cc = constraints_of_higher(result, i, frame);
+    const ContactConstraints cc = constraints_of_higher(result, i, frame, options.cone_samples);
     rows.insert(rows.end(), cc.rows.begin(), cc.rows.end());
-    for (const OneSidedStop& s : cc.stops) normals.push_back(vec(s.normal));
+    bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
+    if (cc.circles.empty()) {
+      for (const OneSidedStop& s : cc.stops) normals.push_back(vec(s.normal));
+    } else {
+      for (const CircularStops& circle : cc.circles) add_circle(circle, options.cone_samples, bilateral, normals);
+    }
     joint.stops.insert(joint.stops.end(), cc.stops.begin(), cc.stops.end());
   }
   Eigen::MatrixXd a(rows.size(), 6);
@@ -474,9 +510,18 @@ std::vector<gp_Dir> body_free_directions(const ContactsResult& contacts, const J
         }
       }
     }
-    for (int i : joint.higher_pairs)
-      for (const OneSidedStop& stop : constraints_of_higher(contacts, i, frame).stops)
-        normals.push_back(sign * vec(stop.normal));
+    for (int i : joint.higher_pairs) {
+      const ContactConstraints cc = constraints_of_higher(contacts, i, frame, options.cone_samples);
+      bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
+      if (cc.circles.empty()) {
+        for (const OneSidedStop& stop : cc.stops) normals.push_back(sign * vec(stop.normal));
+      } else {
+        for (CircularStops circle : cc.circles) {
+          circle.axis *= sign;
+          add_circle(circle, options.cone_samples, bilateral, normals);
+        }
+      }
+    }
   }
   return free_direction_cone(bilateral, normals);
 }

@@ -65,26 +65,47 @@ struct Contact {
 // contacts above (whose counts they never change): a ball on a plane or
 // against a cylinder of another radius touches at a point; a cylinder lying
 // on a plane, or along a parallel cylinder of another radius (outside it, or
-// inside a larger bore), along a line. Each is one-sided.
+// inside a larger bore), along a line; a cone lying on a plane along a
+// generator; a torus (a ring, an O-ring, a rounded wheel) on a plane or
+// against a cylinder with a parallel axis at a point, or along a circle when
+// it lies flat or sits coaxially; a cone seated on a bore's rim along a
+// circle. Each is one-sided.
 enum class HigherPairType {
   SphereOnPlane,       // point
   SphereOnCylinder,    // point: a ball against a shaft, or inside a larger bore
   CylinderOnPlane,     // line
   CylinderOnCylinder,  // line: parallel axes, different radii
+  ConeOnPlane,         // line: a generator of a cone lying on a plane, from its apex
+  TorusOnPlane,        // point (tilted or standing), circle (lying flat)
+  TorusOnCylinder,     // point (parallel axes apart), circle (coaxial): its outer
+                       // equator in a bore or against a shaft, its inner one on a shaft
+  ConeOnCylinder,      // circle: a cone seated on the rim of a coaxial bore's mouth
 };
-// "sphere_on_plane", "sphere_on_cylinder", "cylinder_on_plane", "cylinder_on_cylinder".
+// "sphere_on_plane", "sphere_on_cylinder", "cylinder_on_plane",
+// "cylinder_on_cylinder", "cone_on_plane", "torus_on_plane",
+// "torus_on_cylinder", "cone_on_cylinder".
 const char* to_string(HigherPairType type);
+
+enum class HigherPairKind { Point, Line, Circle };
+// "point", "line", "circle".
+const char* to_string(HigherPairKind kind);
 
 struct HigherPair {
   HigherPairType type = HigherPairType::SphereOnPlane;
+  HigherPairKind kind = HigherPairKind::Point;
   int body_a = 0, body_b = 0;            // body_a < body_b
   int partition_a = 0, partition_b = 0;
   std::vector<int> faces_a, faces_b;     // 1-based FaceN of the faces touching
-  gp_Pnt point;   // the point of contact; a line's middle
-  gp_Dir normal;  // the common normal there, out of body_a's material
-  gp_Pnt start, end;  // a line's ends (a point: the point twice)
-  double length = 0;  // a line's length, mm (a point: 0)
-  bool is_line() const { return type == HigherPairType::CylinderOnPlane || type == HigherPairType::CylinderOnCylinder; }
+  gp_Pnt point;   // the point of contact; a line's middle; a circle's centre
+  gp_Dir normal;  // the common normal there, out of body_a's material (a circle: at `start`)
+  gp_Pnt start, end;  // a line's ends (a point: the point twice; a circle: one of its points twice)
+  double length = 0;  // a line's length, a circle's circumference, mm (a point: 0)
+  // A circle: its axis and radius; the normal at a point of the circle is
+  // `normal` turned about `axis` with the point (a surface of revolution).
+  gp_Dir axis;
+  double radius = 0;
+  bool is_line() const { return kind == HigherPairKind::Line; }
+  bool is_circle() const { return kind == HigherPairKind::Circle; }
 };
 
 // Which solid checks run (validity.h): Quick, the default, or also OCCT's

@@ -15,15 +15,29 @@ namespace contactcore::haptics {
 // Planar: a face on a plane (axis: the plane's normal, out of the material the
 // part rests on; part_axis: the part's face normal). It slides in the plane,
 // turns about the normal and may lift off (a one-sided stop keeps it out).
-enum class JointKind { Free, Cylindrical, Revolute, Prismatic, Spherical, Fixed, Planar };
+// HigherPair: point and line contacts (a ball or a wheel on a plane, a roller
+// or a cone lying on one, a ball in a V): every twist is free but for the
+// one-sided stops, each on a point of the part (a ball's centre, points of a
+// roller's axis), so the part slides, turns and rolls on the surfaces and
+// lifts off them, never sinks into them.
+enum class JointKind { Free, Cylindrical, Revolute, Prismatic, Spherical, Fixed, Planar, HigherPair };
 const char* to_string(JointKind kind);
 
 // A one-sided stop: the reference point c of the part keeps normal . c <= limit
-// (a shoulder on a bore's face, the bottom of a blind hole).
+// (a shoulder on a bore's face, the bottom of a blind hole); with
+// on_part_point, the part's point part_point (its assembled frame) does
+// instead (a ball's centre above the plane it rolls on).
 struct Stop {
   Vec3 normal = Vec3::UnitZ();
   double limit = 0;
+  bool on_part_point = false;
+  Vec3 part_point = Vec3::Zero();
 };
+
+// Where stop `s` holds the part at `pose` (c: its reference point, assembled).
+inline Vec3 stop_point(const Stop& s, const Pose& pose, const Vec3& c) {
+  return s.on_part_point ? Vec3(pose * s.part_point) : Vec3(pose * c);
+}
 
 constexpr int kMaxStops = 8;
 constexpr int kMaxJointBodies = 8;

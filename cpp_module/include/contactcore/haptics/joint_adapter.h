@@ -9,8 +9,11 @@
 namespace contactcore::haptics {
 
 // `moving` is pair.body_a or pair.body_b; `centre` the moving part's reference
-// point and `part_box` its box (assembled placement). False for joint types
-// the loop does not hold (sphere-in-cylinder, general, helical).
+// point and `part_box` its box (assembled placement). A pair touching by
+// point and line contacts only (sphere_plane, cylinder_plane, or general:
+// a ball in a V) is a HigherPair joint: every twist free, one stop per
+// contact point. False for joint types the loop does not hold
+// (sphere-in-cylinder, helical, a general joint of surface contacts).
 bool joint_state_from_pair(const PairJoint& pair, int moving, const Vec3& centre,
                            const Eigen::AlignedBox3d& part_box, JointState& out);
 
