@@ -498,8 +498,8 @@ std::vector<gp_Dir> body_free_directions(const ContactsResult& contacts, const J
     if (joint.annotated_rigid) return {};  // held by a press fit or a bond
     // Stops are written for b moving away from a: a moves away along -n.
     const double sign = joint.body_b == body ? 1.0 : -1.0;
-    for (int i : joint.contacts) {
-      const ContactConstraints cc = constraints_of(contacts, i, frame, options);
+    // A surface contact's or a higher pair's constraints, as seen by `body`.
+    auto add = [&](const ContactConstraints& cc) {
       bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
       if (cc.circles.empty()) {
         for (const OneSidedStop& stop : cc.stops) normals.push_back(sign * vec(stop.normal));
@@ -509,19 +509,9 @@ std::vector<gp_Dir> body_free_directions(const ContactsResult& contacts, const J
           add_circle(circle, options.cone_samples, bilateral, normals);
         }
       }
-    }
-    for (int i : joint.higher_pairs) {
-      const ContactConstraints cc = constraints_of_higher(contacts, i, frame, options.cone_samples);
-      bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
-      if (cc.circles.empty()) {
-        for (const OneSidedStop& stop : cc.stops) normals.push_back(sign * vec(stop.normal));
-      } else {
-        for (CircularStops circle : cc.circles) {
-          circle.axis *= sign;
-          add_circle(circle, options.cone_samples, bilateral, normals);
-        }
-      }
-    }
+    };
+    for (int i : joint.contacts) add(constraints_of(contacts, i, frame, options));
+    for (int i : joint.higher_pairs) add(constraints_of_higher(contacts, i, frame, options.cone_samples));
   }
   return free_direction_cone(bilateral, normals);
 }
