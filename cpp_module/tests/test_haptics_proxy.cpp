@@ -470,7 +470,7 @@ TEST(ProxyAcceptance, BallHeldToItsSpherePlaneJointSlidesTurnsAndLiftsOff) {
   std::printf("[ figures ] at t = %.3f: %.6f %.6f %.6f mm, %.3f %.3f %.3f deg; lowest z offset %.9f\n", on_plate->t,
               on_plate->translate.x(), on_plate->translate.y(), on_plate->translate.z(), on_plate->rotate_deg.x(),
               on_plate->rotate_deg.y(), on_plate->rotate_deg.z(), lowest);
-  EXPECT_GE(lowest, -1e-9);
+  EXPECT_NEAR(lowest, 0.0, 1e-9);  // never below its start on the plate
   EXPECT_NEAR(on_plate->translate.z(), 0, 0.05);
   EXPECT_NEAR(on_plate->translate.x(), 12, 0.1);
   EXPECT_NEAR(on_plate->translate.y(), 6, 0.1);
@@ -484,7 +484,7 @@ TEST(ProxyAcceptance, BallHeldToItsSpherePlaneJointSlidesTurnsAndLiftsOff) {
   // Pushed 3 mm into the plate: the judge finds no overlap anywhere.
   const PathOverlap o = check_path(s.assembly, "Ball", s.scene->centre(), r.path, 2);
   expect_no_deeper(o, 1e-3);
-  EXPECT_GE(o.samples_checked, 50);
+  EXPECT_EQ(o.samples_checked, 136);  // every 2nd of the 271 samples, the last included
 }
 
 // A roller r 5 along x (x 5..35, axis y = 20, z = 15) on a plate's top
