@@ -31,7 +31,7 @@ CollapsedSeam find_collapsed_seam(const TopoDS_Shape& shape) {
           BRep_Tool::CurveOnSurface(TopoDS::Edge(edge.Oriented(TopAbs_REVERSED)), face, first2, last2);
       if (one.IsNull() || other.IsNull() || !std::isfinite(first1) || !std::isfinite(last1)) continue;
       const double middle = 0.5 * (first1 + last1);
-      if (one == other || one->Value(middle).Distance(other->Value(middle)) <= Precision::PConfusion())
+      if (one->Value(middle).Distance(other->Value(middle)) <= Precision::PConfusion())
         return {f, edges.FindIndex(edge)};
     }
   }
