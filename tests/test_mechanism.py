@@ -314,7 +314,8 @@ def test_cone_and_ring_higher_pairs_in_the_table_and_the_disassembly(tmp_path):
     # along the plane (it slides off the top), never into the block (OCCT Booleans on the way out).
     cone_way, ring_way = moved[(by_volume["Cone"],)], moved[(by_volume["Ring"],)]
     assert math.degrees(math.acos(cone_way[2] / math.sqrt(sum(v * v for v in cone_way)))) <= 45 + 1e-6
-    assert ring_way[2] >= -1e-9
+    assert ring_way == pytest.approx([1, 0, 0], abs=1e-9)  # slid off along the top, +x
+    assert cone_way == pytest.approx([0, 0, 1], abs=1e-9)
     from test_disassembly_mechanic import cuts_along_paths
     shapes = [(body.name, document_shapes.shape_from_brep(body.brep)) for body in assembly.bodies]
     assert cuts_along_paths(shapes, plan) == []
