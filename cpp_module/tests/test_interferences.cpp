@@ -473,3 +473,75 @@ TEST(Separation, ProvesTheMotorsTouchingPairsApart) {
   }
   EXPECT_EQ(deep, 44);  // of its 51 body pairs
 }
+
+namespace {
+
+// R08's tube (SOLID.5) standing on its domed nut (PRT0001), along z: the nut
+// a cylinder r 16 from z = 0 to 20 whose bottom is the cap of a ball of
+// radius 29 centred on the axis 29 above the bottom (down to z = 4.81 at its
+// rim), a bore r 5 through it; the tube r 19.75 with a bore r 12 from
+// z = `tube_bottom` to 60. Moved by `motion`.
+std::pair<TopoDS_Shape, TopoDS_Shape> tube_on_domed_nut(double tube_bottom, const gp_Trsf& motion) {
+  const TopoDS_Shape dome = BRepPrimAPI_MakeSphere(gp_Pnt(0, 0, 29), 29).Shape();
+  const TopoDS_Shape domed = BRepAlgoAPI_Common(cylinder(16, 20, gp_Pnt(0, 0, 0)), dome).Shape();
+  const TopoDS_Shape nut = BRepAlgoAPI_Cut(domed, cylinder(5, 22, gp_Pnt(0, 0, -1))).Shape();
+  const TopoDS_Shape tube = BRepAlgoAPI_Cut(cylinder(19.75, 60 - tube_bottom, gp_Pnt(0, 0, tube_bottom)),
+                                            cylinder(12, 62 - tube_bottom, gp_Pnt(0, 0, tube_bottom - 1)))
+                                .Shape();
+  return {BRepBuilderAPI_Transform(nut, motion, Standard_True).Shape(),
+          BRepBuilderAPI_Transform(tube, motion, Standard_True).Shape()};
+}
+
+}  // namespace
+
+TEST(Separation, ProvesATubeOnItsDomedNutApart) {
+  // The ball of the nut's dome reaches z = 58 along the axis, far past the
+  // plane z = 20 the tube stands on: seen as a whole sphere, it overlaps the
+  // tube's shadow and nothing is proven (the pair went to the samples and the
+  // boundary-crossing test, a second of R08's pass). Its cap lies in z 0 to
+  // 4.81: within its box, the nut stays below z = 20 and the tube above.
+  // Sunk 0.1 into the nut, they share the ring r 12..16 over 0.1 (by hand:
+  // 11.2 pi mm3), and no proof may claim them apart.
+  gp_Trsf tilt;
+  tilt.SetRotation(gp_Ax1(gp_Pnt(3, -2, 1), gp_Dir(1, 2, 0.5)), 0.7);
+  tilt.SetTranslationPart(gp_Vec(12.5, -7, 3));
+  for (const gp_Trsf& motion : {gp_Trsf(), tilt}) {
+    const auto [nut, tube] = tube_on_domed_nut(20, motion);
+    const Assembly touching = make_assembly({{"nut", nut}, {"tube", tube}});
+    const ContactsResult result = contacts_of(touching);
+    EXPECT_TRUE(apart(result, 0, 1));
+    EXPECT_TRUE(result.interferences.empty());
+    EXPECT_TRUE(whole_solid_interferences(touching, result).empty());
+    ASSERT_EQ(result.contacts.size(), 1u);  // the tube's end on the nut's top: r 12..16
+    EXPECT_EQ(result.contacts[0].type, ContactType::PLF);
+    EXPECT_NEAR(result.contacts[0].area, M_PI * (16 * 16 - 12 * 12), 1e-6 * M_PI * (16 * 16 - 12 * 12));
+
+    const auto [nut_sunk, tube_sunk] = tube_on_domed_nut(19.9, motion);
+    const Assembly sunk = make_assembly({{"nut", nut_sunk}, {"tube", tube_sunk}});
+    const ContactsResult overlapping = contacts_of(sunk);
+    EXPECT_FALSE(apart(overlapping, 0, 1));
+    ASSERT_EQ(overlapping.interferences.size(), 1u);
+    EXPECT_NEAR(overlapping.interferences[0].volume, 11.2 * M_PI, 1e-6 * 11.2 * M_PI);
+    const std::vector<Interference> reference = whole_solid_interferences(sunk, overlapping);
+    ASSERT_EQ(reference.size(), 1u);
+    EXPECT_NEAR(reference[0].volume, 11.2 * M_PI, 1e-3 * 11.2 * M_PI);
+  }
+}
+
+TEST(Separation, ProvesR08sTubeOnItsNutApart) {
+  // The pair above as R08 has it (SOLID.5 on PRT0001, a hexagonal nut with a
+  // domed end, touching at world y = 188.5): proven apart from the partitions.
+  const std::string path = shared_step("R08_presse_asm.step");
+  CONTACTS_REQUIRE_FILE(path);
+  const AssemblyResult read = read_step(path);
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  const ContactsResult result = contacts_of(read.assembly);
+  int tube = -1, nut = -1;
+  for (std::size_t i = 0; i < read.assembly.bodies.size(); ++i) {
+    if (read.assembly.bodies[i].name == "SOLID.5") tube = static_cast<int>(i);
+    if (read.assembly.bodies[i].name == "PRT0001") nut = static_cast<int>(i);
+  }
+  ASSERT_GE(tube, 0);
+  ASSERT_GE(nut, 0);
+  EXPECT_TRUE(apart(result, tube, nut));
+}

@@ -158,6 +158,26 @@ double reach_at(const std::vector<ReachPiece>& reach, double z) {
   return r;
 }
 
+// A distance from the axis that no point of the face comes under, from its
+// surface alone (0 when unknown): a plane along the axis (a flat of a hexagon
+// around a bore), a cylinder parallel to it and off it (a bolt hole). Spares
+// the distance query against the reach for faces that stay out of it.
+double distance_from_axis_at_least(const FaceInfo& face, const gp_Pnt& origin, const gp_Dir& direction,
+                                   const Tolerances& tol) {
+  const SurfaceParams& p = face.params;
+  const gp_Vec offset(origin, p.location);
+  if (p.kind == SurfaceKind::Plane && std::abs(gp_Vec(p.axis).Dot(gp_Vec(direction))) < 1e-12)
+    return std::abs(offset.Dot(gp_Vec(p.axis)));
+  if (p.kind == SurfaceKind::Cylinder && p.axis.IsParallel(direction, tol.angular)) {
+    // Both axes parallel within the angular tolerance: over the face's
+    // length the offset varies by at most that angle times its reach.
+    const double off_axis = offset.Crossed(gp_Vec(direction)).Magnitude();
+    const double length = std::max(std::abs(face.extent.axial_min), std::abs(face.extent.axial_max));
+    return std::max(0.0, off_axis - p.radius - std::sin(tol.angular) * length);
+  }
+  return 0;
+}
+
 // The faces of `body` within the reach, all planes across the axis or
 // coaxial surfaces of revolution: their profiles; false when another face
 // comes within it (proven away by its box, or by its distance to the solid
@@ -175,8 +195,10 @@ bool profiles_within(const BodyPartitions& body, const gp_Pnt& origin, const gp_
       out.push_back(*profile);
       continue;
     }
+    const double beyond = distance_from_axis_at_least(face, origin, direction, tol);
     for (std::size_t k = 0; k < reach.size(); ++k) {
       if (face.box.IsOut(boxes[k])) continue;
+      if (beyond > reach[k].radius + tol.linear) continue;  // the whole face farther from the axis than the piece
       if (solids[k].IsNull())
         solids[k] = BRepPrimAPI_MakeCylinder(gp_Ax2(origin.Translated(gp_Vec(direction) * reach[k].z0), direction),
                                              reach[k].radius, reach[k].z1 - reach[k].z0)
@@ -188,6 +210,15 @@ bool profiles_within(const BodyPartitions& body, const gp_Pnt& origin, const gp_
     }
   }
   return true;
+}
+
+// True when the point lies farther than `linear` outside the box.
+bool outside_box(const Bnd_Box& box, const gp_Pnt& p, double linear) {
+  if (box.IsVoid()) return false;
+  double x0, y0, z0, x1, y1, z1;
+  box.Get(x0, y0, z0, x1, y1, z1);
+  return p.X() < x0 - linear || p.X() > x1 + linear || p.Y() < y0 - linear || p.Y() > y1 + linear ||
+         p.Z() < z0 - linear || p.Z() > z1 + linear;
 }
 
 struct Radius {
@@ -319,11 +350,18 @@ std::optional<double> common_of_revolution(const std::vector<Profile>& rev_profi
           if (r < rev_radius) bounds.push_back(r);
         }
       if (other_radii.empty() && other_everywhere < 0) {
-        if (!classifier) classifier = std::make_unique<BRepClass3d_SolidClassifier>(other_shape);
-        classifier->Perform(origin.Translated(gp_Vec(direction) * middle), tol.linear);
-        const TopAbs_State state = classifier->State();
-        if (state != TopAbs_IN && state != TopAbs_OUT) return std::nullopt;
-        other_everywhere = state == TopAbs_IN ? 1 : 0;
+        // Off the other body's box (a shaft's ends beyond its housing): out,
+        // without a classifier (built from the whole solid: B-spline faces).
+        const gp_Pnt on_axis = origin.Translated(gp_Vec(direction) * middle);
+        if (outside_box(other.box, on_axis, tol.linear)) {
+          other_everywhere = 0;
+        } else {
+          if (!classifier) classifier = std::make_unique<BRepClass3d_SolidClassifier>(other_shape);
+          classifier->Perform(on_axis, tol.linear);
+          const TopAbs_State state = classifier->State();
+          if (state != TopAbs_IN && state != TopAbs_OUT) return std::nullopt;
+          other_everywhere = state == TopAbs_IN ? 1 : 0;
+        }
       }
       std::sort(bounds.begin(), bounds.end());
       double area = 0;

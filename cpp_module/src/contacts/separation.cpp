@@ -211,8 +211,8 @@ Shadow torus_tube_shadow(const Partition& p, const BodyPartitions& body, const S
           std::max(whole.z0, s.z0 - 2 * linear), std::min(whole.z1, s.z1 + 2 * linear)};
 }
 
-Shadow revolution_shadow(const Partition& p, const SeparationAxis& axis, double linear,
-                         const BodyPartitions* body = nullptr) {
+// Where a partition's whole surface (its full axial range and turn) lies.
+Shadow surface_shadow(const Partition& p, const SeparationAxis& axis, double linear, const BodyPartitions* body) {
   const SurfaceParams& sp = p.params;
   const bool parallel = gp_Vec(sp.axis).Crossed(gp_Vec(axis.direction)).Magnitude() < kParallel;
   const double offset = line_distance(sp.location, axis);
@@ -244,11 +244,44 @@ Shadow revolution_shadow(const Partition& p, const SeparationAxis& axis, double 
     case SurfaceKind::Sphere: {
       if (offset > linear) break;
       const double zc = gp_Vec(axis.origin, sp.location).Dot(gp_Vec(axis.direction));
-      return {0, sp.radius + linear, zc - sp.radius - linear, zc + sp.radius + linear};
+      Shadow whole{0, sp.radius + linear, zc - sp.radius - linear, zc + sp.radius + linear};
+      if (!body) return whole;
+      // The faces' own range along the line (a cap spans a fraction of the
+      // diameter: a domed end), in any frame on it (sphere faces are
+      // re-measured about the line).
+      double low = kInf, high = -kInf;
+      const gp_Dir ref_dir = gp_Ax2(sp.location, axis.direction).XDirection();
+      for (int index : p.faces) {
+        if (index < 1 || index > static_cast<int>(body->faces.size())) return whole;
+        const Extent e = revolution_extent_in(body->faces[index - 1], sp.location, axis.direction, ref_dir, linear);
+        if (!(e.axial_min <= e.axial_max)) return whole;
+        low = std::min(low, e.axial_min);
+        high = std::max(high, e.axial_max);
+      }
+      if (p.faces.empty()) return whole;
+      whole.z0 = std::max(whole.z0, zc + low - 2 * linear);
+      whole.z1 = std::min(whole.z1, zc + high + 2 * linear);
+      return whole;
     }
     default: break;
   }
   return box_shadow(p.box, axis);
+}
+
+// The surface's shadow within the partition's box's: both hold the partition,
+// so their intersection does too. The box cuts what the surface alone cannot
+// see: a domed end (a sphere of radius 29 whose cap spans 10 mm of the axis,
+// R08's PRT0001) reaches 58 mm along it as a whole sphere, past the plane the
+// part rests on; a torus or cone face covering part of its turn.
+Shadow revolution_shadow(const Partition& p, const SeparationAxis& axis, double linear,
+                         const BodyPartitions* body = nullptr) {
+  Shadow s = surface_shadow(p, axis, linear, body);
+  const Shadow box = box_shadow(p.box, axis);
+  s.r0 = std::max(s.r0, box.r0);
+  s.r1 = std::min(s.r1, box.r1);
+  s.z0 = std::max(s.z0, box.z0);
+  s.z1 = std::min(s.z1, box.z1);
+  return s;
 }
 
 // A curve r = f(z), monotone in z, with every shadow of `inner` on its axis

@@ -21,7 +21,9 @@ struct SeparationAxis {
 
 // Where a partition can lie about an axis: r in [r0, r1], z in [z0, z1]
 // (never smaller than the truth: exact for coaxial cylinders, cones, planes
-// across or along the axis; the partition's box otherwise).
+// across or along the axis; the partition's box otherwise; a surface of
+// revolution's range always cut down to its box's, so a domed end, the cap
+// of a large sphere, reaches no farther along the axis than the cap does).
 struct Shadow {
   double r0 = 0, r1 = 0, z0 = 0, z1 = 0;
   // r has no minimum inside the partition (a cross hole away from the
