@@ -277,3 +277,30 @@ TEST(InterferenceEquivalence, BSplineBossInAHole) {
   ASSERT_EQ(ring.size(), 1u);
   EXPECT_NEAR(ring.begin()->second, M_PI * (5.05 * 5.05 - 25) * 10, kRelative * M_PI * (5.05 * 5.05 - 25) * 10);
 }
+
+TEST(InterferenceEquivalence, PressFitBesideAParallelHole) {
+  // A hole r 1 parallel to the bore r 5, its axis on the diagonal 6.08 from
+  // the bore's: its nearest line 5.08 from the axis, beyond the shaft (r 5.05)
+  // but within its reach (5.05 grown by 1 %, 5.1005), so the slicing must not
+  // pass it by: the region Boolean measures the pair, the ring (the hole takes
+  // nothing of it). At 6.5 (nearest 5.5, its box still across the reach's) it
+  // is passed by from its distance to the axis, and the slicing measures the
+  // ring exactly: pi (5.05^2 - 5^2) 10.
+  const double ring = M_PI * (5.05 * 5.05 - 25) * 10;
+  for (const double away : {6.08, 6.5}) {
+    const gp_Pnt centre(away / std::sqrt(2.0), away / std::sqrt(2.0), 0);
+    const TopoDS_Shape plate = BRepAlgoAPI_Cut(plate_with_bore(5), cylinder(1, 10, centre)).Shape();
+    const TopoDS_Shape shaft = cylinder(5.05, 30, gp_Pnt(0, 0, -10));
+    const Assembly assembly = make_assembly({{"plate", plate}, {"shaft", shaft}});
+    const Found found = expect_equivalent(assembly, "press fit beside a parallel hole");
+    ASSERT_EQ(found.size(), 1u);
+    const ContactsResult result = contacts_of(assembly);
+    const std::optional<double> sliced =
+        coaxial_common_volume(result.partitions[0], plate, result.partitions[1], shaft, gp_Ax1(gp::Origin(), gp::DZ()),
+                              pair_tolerances(result.partitions[0], result.partitions[1]));
+    const bool beyond_reach = away > 6.2;
+    EXPECT_EQ(sliced.has_value(), beyond_reach) << away;
+    if (beyond_reach && sliced) EXPECT_NEAR(*sliced, ring, 1e-9 * ring);
+    EXPECT_NEAR(found.begin()->second, ring, (beyond_reach ? 1e-9 : 1e-3) * ring) << away;
+  }
+}
