@@ -6,7 +6,7 @@
 // run's own; times are the best of --repeat runs. Prints one JSON object per
 // line; bench/run_benchmarks.py makes the tables.
 //
-//   bench_contacts [--repeat N] [--threads N] [--reference] [--no-bare] FILE.step...
+//   bench_contacts [--repeat N] [--threads N] [--reference] [--no-bare] [--read-as-written] FILE.step...
 //
 // --reference: the pipeline's child also times the whole-solid Boolean pass
 // the interference pass replaced (whole_solid_interferences, issue 24) on the
@@ -14,6 +14,9 @@
 // both passes' interference counts.
 // --no-bare: our pipeline only (files whose bare XDE read would take hours:
 // the 100,000-part grid, issue 24).
+// --read-as-written: read_step's product read on the file's text as written
+// (StepReadMode::ProductsAsWritten: assemblies' lists of placements not
+// shortened for OCCT's parser), to measure what the shortening saves.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -91,9 +94,10 @@ struct CancelAt : Progress {
   double at;
 };
 
-int pipeline(const std::string& path, int threads, bool reference) {
+int pipeline(const std::string& path, int threads, bool reference, bool as_written) {
   const double start = now();
-  const AssemblyResult read = read_step(path);
+  const AssemblyResult read =
+      read_step(path, nullptr, as_written ? StepReadMode::ProductsAsWritten : StepReadMode::Products);
   const double read_seconds = now() - start;
   if (!read.status.ok()) {
     std::printf("{\"file\": \"%s\", \"error\": \"%s\"}\n", json_escape(path).c_str(),
@@ -160,7 +164,7 @@ bool in_child(Work&& work) {
 
 int main(int argc, char** argv) {
   int repeat = 3, threads = 0;
-  bool reference = false, bare = true;
+  bool reference = false, bare = true, as_written = false;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
@@ -169,6 +173,8 @@ int main(int argc, char** argv) {
       reference = true;
     } else if (std::strcmp(argv[i], "--no-bare") == 0) {
       bare = false;
+    } else if (std::strcmp(argv[i], "--read-as-written") == 0) {
+      as_written = true;
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       threads = std::max(0, std::atoi(argv[++i]));
     } else {
@@ -176,7 +182,8 @@ int main(int argc, char** argv) {
     }
   }
   if (files.empty()) {
-    std::fprintf(stderr, "usage: %s [--repeat N] [--threads N] [--reference] [--no-bare] FILE.step...\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [--repeat N] [--threads N] [--reference] [--no-bare] [--read-as-written] FILE.step...\n",
+                 argv[0]);
     return 2;
   }
   int failures = 0;
@@ -184,7 +191,7 @@ int main(int argc, char** argv) {
     // Interleaved, so a burst of load on the machine hits both alike.
     for (int r = 0; r < repeat; ++r) {
       if (bare) failures += !in_child([&] { return bare_read(file); });
-      failures += !in_child([&] { return pipeline(file, threads, reference); });
+      failures += !in_child([&] { return pipeline(file, threads, reference, as_written); });
     }
   }
   return failures ? 1 : 0;

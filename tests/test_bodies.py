@@ -111,21 +111,45 @@ def test_fast_step_read_gives_what_the_xde_read_gives(sample, name):
         assert a.center == pytest.approx(b.center, abs=1e-9)
 
 
-def test_fast_step_read_falls_back_in_the_json_messages(shared_step):
-    """R09 places a product through a MAPPED_ITEM: the XDE read serves it, and
+def test_fast_step_read_falls_back_in_the_json_messages(sample, tmp_path):
+    """pin_block.step with a placement (CONTEXT_DEPENDENT_SHAPE_REPRESENTATION)
+    of a product rather than of an occurrence: the XDE read serves it, and
     `contacts --json --progress` says so."""
     import json
     import subprocess
     import sys
-    path = shared_step("R09_chrono_assembly.stp")
+    with open(sample("cases/pin_block.step")) as f:
+        text = f.read()
+    end = text.rindex("ENDSEC;")
+    path = tmp_path / "pin_block_fallback.step"
+    path.write_text(text[:end] + "#99990 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#461,#34);\n" + text[end:])
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    out = subprocess.run([sys.executable, "-m", "contactwb.cli", path, "--json", "--progress"], capture_output=True,
+    out = subprocess.run([sys.executable, "-m", "contactwb.cli", str(path), "--json", "--progress"], capture_output=True,
                          text=True, env=dict(os.environ, PYTHONPATH=repo), cwd=repo, timeout=300)
     assert out.returncode == 0, out.stderr
     messages = json.loads(out.stdout)["messages"]
-    assert ("STEP read: the fast product read cannot serve this file (a mapped item of a product (#106)): "
-            "read through OCCT's XDE reader") in messages
+    assert ("STEP read: the fast product read cannot serve this file (a placement of no assembly occurrence "
+            "(#99990)): read through OCCT's XDE reader") in messages
     assert "read (XDE fallback)" in out.stderr
+
+
+def test_fast_step_read_serves_hybrid_and_mapped_products(shared_step):
+    """R08's products made of a solid beside a surface model and R09's products
+    placed by MAPPED_ITEMs: the read by products gives XDE's sub-assemblies
+    (names, paths, volumes, centres, skipped shells), with no fallback."""
+    for name in ("R08_presse_asm.step", "R09_chrono_assembly.stp"):
+        fast = core.contactcore.read_step(shared_step(name))
+        xde = core.contactcore.read_step(shared_step(name), reader="xde")
+        assert (fast.reader, xde.reader) == ("products", "xde")
+        assert [(b.name, b.path) for b in fast.bodies] == [(b.name, b.path) for b in xde.bodies]
+        for a, b in zip(fast.bodies, xde.bodies):
+            assert a.volume == pytest.approx(b.volume, rel=1e-9)
+            assert a.center == pytest.approx(b.center, abs=1e-9)
+        skipped = [m for m in xde.messages if m.startswith("skipped")]
+        assert [m for m in fast.messages if m.startswith("skipped")] == skipped
+        assert not any("cannot serve" in m for m in fast.messages)
+    r09 = core.contactcore.read_step(shared_step("R09_chrono_assembly.stp"))
+    assert [(b.name, b.path) for b in r09.bodies] == [("body1", "Assem1/body1"), ("body2", "Assem1/body2")]
 
 
 def test_step_reader_must_be_known(sample):

@@ -6,6 +6,7 @@
 #include "bodies/collapsed_seams.h"
 #include "bodies/open_wires.h"
 #include "bodies/step_products.h"
+#include "bodies/step_placement_lists.h"
 
 #include "contactcore/bodies/instances.h"
 #include "contactcore/common/parallel.h"
@@ -365,6 +366,14 @@ std::string transfer_failure(const Standard_Failure& failure, const StepModelChe
 
 }  // namespace
 
+namespace {
+// A stream over text in memory, not copied (OCCT's parser reads it once).
+class TextBuffer : public std::streambuf {
+ public:
+  explicit TextBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
+};
+}  // namespace
+
 AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMode mode, std::size_t max_bodies) {
   AssemblyResult result;
   const auto fail = [&result, &path](StatusCode code, const std::string& message) {
@@ -393,7 +402,29 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
     reader.SetColorMode(false);
     reader.SetLayerMode(false);
     reader.SetPropsMode(false);
-    if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) {
+    // The read by products parses the text with assemblies' lists of
+    // placements shortened (step_placement_lists.h: OCCT's parser is
+    // quadratic in a list's length); the XDE read parses the file as written.
+    ShortenedPlacementLists shortened;
+    IFSelect_ReturnStatus parsed;
+    if (mode == StepReadMode::Products) {
+      {
+        std::ifstream in(path, std::ios::binary);
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        shortened = shorten_placement_lists(text);
+      }
+      if (shortened.changed()) {
+        TextBuffer buffer(shortened.text);
+        std::istream stream(&buffer);
+        parsed = reader.ChangeReader().ReadStream(path.c_str(), stream);
+        std::string().swap(shortened.text);  // parsed: the model holds it now
+      } else {
+        parsed = reader.ReadFile(path.c_str());
+      }
+    } else {
+      parsed = reader.ReadFile(path.c_str());
+    }
+    if (parsed != IFSelect_RetDone) {
       std::string why;
       for (const std::string& line : guard.messages()) why += (why.empty() ? "" : "; ") + line;
       // OCCT's reader catches its own Standard_OutOfMemory and only says so,
@@ -453,27 +484,47 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
                                              "): read through OCCT's XDE reader");
           if (progress && !progress->report("read (XDE fallback)", 0.3)) fail(StatusCode::Cancelled, "cancelled");
         };
-        if (mode == StepReadMode::Products) {
-          const ProductPlanResult plan = plan_products(reader);
-          if (!plan.plan) {
+        const auto new_reader = [] {
+          auto fresh = std::make_unique<StepReader>();
+          fresh->SetNameMode(true);
+          fresh->SetColorMode(false);
+          fresh->SetLayerMode(false);
+          fresh->SetPropsMode(false);
+          return fresh;
+        };
+        std::unique_ptr<StepReader> as_written;  // the file parsed as written, when a shortened list is not an assembly's
+        StepReader* products_reader = &reader;
+        if (mode == StepReadMode::Products || mode == StepReadMode::ProductsAsWritten) {
+          ProductPlanResult plan = plan_products(reader, &shortened.removed);
+          if (plan.needs_whole_text || (!plan.plan && shortened.changed())) {
+            // A shortened list outside an assembly, or the XDE read to come
+            // (its placements scan the lists): the file parsed as written.
+            as_written = new_reader();
+            if (as_written->ReadFile(path.c_str()) != IFSelect_RetDone) {
+              fail(StatusCode::ReadError, "not a readable STEP file (second read)");
+            } else {
+              xde_reader = as_written.get();
+              if (plan.needs_whole_text) {
+                products_reader = as_written.get();
+                plan = plan_products(*as_written);
+              }
+            }
+          }
+          if (result.status.ok() && !plan.plan) {
             fall_back(plan.why_not);
-          } else {
+          } else if (result.status.ok()) {
             result.assembly.reader = "products";
             ProductRead outcome;
             try {
               OCC_CATCH_SIGNALS
-              outcome = read_products(*plan.plan, reader, result.assembly, progress, 0.3, 1.0);
+              outcome = read_products(*plan.plan, *products_reader, result.assembly, progress, 0.3, 1.0);
             } CONTACTS_PASS_OUT_OF_MEMORY catch (const Standard_Failure& failure) {
               fail(StatusCode::ReadError, transfer_failure(failure, check));
             }
             if (result.status.ok() && outcome.outcome == ProductRead::Cancelled) fail(StatusCode::Cancelled, "cancelled");
             if (result.status.ok() && outcome.outcome == ProductRead::NotServed) {
               fall_back(outcome.why_not);
-              reread = std::make_unique<StepReader>();
-              reread->SetNameMode(true);
-              reread->SetColorMode(false);
-              reread->SetLayerMode(false);
-              reread->SetPropsMode(false);
+              reread = new_reader();
               if (result.status.ok() && reread->ReadFile(path.c_str()) != IFSelect_RetDone)
                 fail(StatusCode::ReadError, "not a readable STEP file (second read)");
               xde_reader = reread.get();

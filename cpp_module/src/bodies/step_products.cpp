@@ -20,12 +20,10 @@
 #include <StepRepr_CharacterizedDefinition.hxx>
 #include <StepRepr_HArray1OfRepresentationItem.hxx>
 #include <StepRepr_ItemDefinedTransformation.hxx>
-#include <StepRepr_MappedItem.hxx>
 #include <StepRepr_NextAssemblyUsageOccurrence.hxx>
 #include <StepRepr_ProductDefinitionShape.hxx>
 #include <StepRepr_Representation.hxx>
 #include <StepRepr_RepresentationItem.hxx>
-#include <StepRepr_RepresentationMap.hxx>
 #include <StepRepr_RepresentationRelationship.hxx>
 #include <StepRepr_RepresentedDefinition.hxx>
 #include <StepRepr_ShapeAspect.hxx>
@@ -36,7 +34,9 @@
 #include <StepShape_ShapeDefinitionRepresentation.hxx>
 #include <StepToGeom.hxx>
 #include <TCollection_HAsciiString.hxx>
+#include <TopAbs.hxx>
 #include <TopLoc_Location.hxx>
+#include <TopTools_DataMapOfShapeInteger.hxx>
 #include <TopTools_MapOfShape.hxx>
 #include <TopoDS_Iterator.hxx>
 #include <StepShape_ShapeRepresentation.hxx>
@@ -104,9 +104,12 @@ class ProductPlan {
  public:
   std::vector<Product> products;
   std::vector<int> roots;  // free products in the model's order
+  // Per assembly representation whose list of placements was shortened before
+  // parsing, the #numbers taken out of it (still its items for the placements).
+  std::unordered_map<const void*, std::unordered_set<int>> removed_items;
 };
 
-ProductPlanResult plan_products(const StepReader& reader) {
+ProductPlanResult plan_products(const StepReader& reader, const std::unordered_map<int, std::vector<int>>* shortened) {
   ProductPlanResult result;
   const Handle(StepData_StepModel) model = reader.Reader().StepModel();
   if (model.IsNull()) {
@@ -126,7 +129,6 @@ ProductPlanResult plan_products(const StepReader& reader) {
   std::vector<Handle(StepShape_ShapeDefinitionRepresentation)> definitions;
   std::vector<Handle(StepShape_ContextDependentShapeRepresentation)> placements;
   std::vector<Handle(StepRepr_ShapeAspect)> aspects;
-  std::vector<Handle(StepRepr_MappedItem)> mapped;
   std::vector<Handle(StepRepr_RepresentationRelationship)> relations;
   const Handle(Standard_Type) nauo_type = STANDARD_TYPE(StepRepr_NextAssemblyUsageOccurrence);
   const Standard_Integer count = model->NbEntities();
@@ -157,8 +159,6 @@ ProductPlanResult plan_products(const StepReader& reader) {
       placements.push_back(Handle(StepShape_ContextDependentShapeRepresentation)::DownCast(entity));
     } else if (entity->IsKind(STANDARD_TYPE(StepRepr_ShapeAspect))) {
       aspects.push_back(Handle(StepRepr_ShapeAspect)::DownCast(entity));
-    } else if (entity->IsKind(STANDARD_TYPE(StepRepr_MappedItem))) {
-      mapped.push_back(Handle(StepRepr_MappedItem)::DownCast(entity));
     } else if (entity->IsKind(STANDARD_TYPE(StepRepr_RepresentationRelationship))) {
       relations.push_back(Handle(StepRepr_RepresentationRelationship)::DownCast(entity));
     }
@@ -247,46 +247,40 @@ ProductPlanResult plan_products(const StepReader& reader) {
       }
     }
   }
-  std::unordered_set<const void*> placement_relations;
-  for (const auto& cdsr : placements) placement_relations.insert(key(cdsr->RepresentationRelation()));
-  // Per leaf product, the representations its shape is made of: its own
-  // (when they hold more than placements) and those related to them. Two or
-  // more give a compound of representations, which XDE turns into a
-  // sub-assembly (a hybrid model: a solid beside a surface model).
-  std::vector<int> parts_of(plan->products.size(), 0);
-  for (std::size_t p = 0; p < plan->products.size(); ++p) {
-    if (!plan->products[p].children.empty()) continue;
-    for (const auto& rep : reps_of[p]) {
-      const Handle(StepRepr_HArray1OfRepresentationItem) items = rep->Items();
-      bool geometry = false;
-      if (!items.IsNull())
-        for (Standard_Integer i = items->Lower(); i <= items->Upper() && !geometry; ++i)
-          geometry = !items->Value(i).IsNull() && !items->Value(i)->IsKind(STANDARD_TYPE(StepGeom_Axis2Placement3d));
-      parts_of[p] += geometry ? 1 : 0;
+  // Shortened lists: only assemblies' (the transfer of a leaf, a root's
+  // placement included, reads its representation's items).
+  if (shortened && !shortened->empty()) {
+    std::size_t matched = 0;
+    for (std::size_t p = 0; p < plan->products.size(); ++p) {
+      if (plan->products[p].children.empty()) continue;
+      for (const auto& rep : reps_of[p]) {
+        const auto found = shortened->find(model->IdentLabel(rep));
+        if (found == shortened->end()) continue;
+        auto& removed = plan->removed_items[key(rep)];
+        if (removed.empty()) ++matched;
+        removed.insert(found->second.begin(), found->second.end());
+      }
+    }
+    if (matched != shortened->size()) {
+      result.needs_whole_text = true;
+      return fail("a shortened list of placements outside an assembly's representation");
     }
   }
+  std::unordered_set<const void*> placement_relations;
+  for (const auto& cdsr : placements) placement_relations.insert(key(cdsr->RepresentationRelation()));
+  // A leaf product made of several representations (a hybrid model: a
+  // solid beside a surface model) or whose representation maps other
+  // products' (MAPPED_ITEM) transfers to a compound of representations, which
+  // XDE makes a sub-assembly: read_products does as XDE does with it.
   for (const auto& relation : relations) {
     if (placement_relations.count(key(relation))) continue;
     if (assembly_reps.count(key(relation->Rep1())) || assembly_reps.count(key(relation->Rep2())))
       return fail("an assembly's representation related to another (" + entity_ref(model, relation) + ")");
-    for (const auto& end : {relation->Rep1(), relation->Rep2()}) {
-      const auto found = end.IsNull() ? product_of_rep.end() : product_of_rep.find(key(end));
-      if (found != product_of_rep.end()) ++parts_of[found->second];
-    }
   }
-  for (std::size_t p = 0; p < plan->products.size(); ++p)
-    if (parts_of[p] > 1)
-      return fail("a product made of several representations (" + entity_ref(model, plan->products[p].definition) + ")");
   for (const auto& aspect : aspects) {
     const auto found = aspect->OfShape().IsNull() ? product_of_shape.end() : product_of_shape.find(key(aspect->OfShape()));
     if (found != product_of_shape.end() && !plan->products[found->second].children.empty())
       return fail("a shape aspect of an assembly (" + entity_ref(model, aspect) + ")");
-  }
-  // A mapped item of a product's representation makes XDE see an assembly.
-  for (const auto& item : mapped) {
-    const Handle(StepRepr_RepresentationMap) source = item->MappingSource();
-    if (!source.IsNull() && product_of_rep.count(key(source->MappedRepresentation())))
-      return fail("a mapped item of a product (" + entity_ref(model, item) + ")");
   }
   for (std::size_t p = 0; p < plan->products.size(); ++p)
     if (!is_child[p]) plan->roots.push_back(static_cast<int>(p));
@@ -302,8 +296,9 @@ namespace {
 // the items are looked up in sets made once per representation.
 class PlacementMaker {
  public:
-  PlacementMaker(const Handle(STEPControl_ActorRead)& actor, const Handle(Transfer_TransientProcess)& process)
-      : actor_(actor), process_(process) {}
+  PlacementMaker(const Handle(STEPControl_ActorRead)& actor, const Handle(Transfer_TransientProcess)& process,
+                 const ProductPlan& plan, const Handle(StepData_StepModel)& model)
+      : actor_(actor), process_(process), plan_(plan), model_(model) {}
 
   gp_Trsf placement(const Handle(StepRepr_RepresentationRelationship)& relation) {
     const auto with_transformation = Handle(StepRepr_ShapeRepresentationRelationshipWithTransformation)::DownCast(relation);
@@ -345,7 +340,10 @@ class PlacementMaker {
         for (Standard_Integer i = items->Lower(); i <= items->Upper(); ++i) set.insert(key(items->Value(i)));
       found = items_.emplace(key(rep), std::move(set)).first;
     }
-    return found->second.count(key(item)) > 0;
+    if (found->second.count(key(item))) return true;
+    // An item taken out of the list before parsing (step_placement_lists.h).
+    const auto removed = plan_.removed_items.find(key(rep));
+    return removed != plan_.removed_items.end() && !model_.IsNull() && removed->second.count(model_->IdentLabel(item));
   }
   // The unit factors of `rep`'s context (PrepareUnits sets them globally for StepToGeom).
   void units(const Handle(StepRepr_Representation)& rep) {
@@ -355,6 +353,8 @@ class PlacementMaker {
   }
   Handle(STEPControl_ActorRead) actor_;
   Handle(Transfer_TransientProcess) process_;
+  const ProductPlan& plan_;
+  Handle(StepData_StepModel) model_;
   Handle(StepRepr_Representation) current_;
   std::unordered_map<const void*, std::unordered_set<const void*>> items_;
 };
@@ -420,11 +420,17 @@ ProductRead read_products(const ProductPlan& plan, StepReader& reader, Assembly&
   detail::CancelWatch watch(progress, "read");
   Handle(detail::OcctBreak) indicator = new detail::OcctBreak(watch, from, from + 0.9 * (to - from));
   Message_ProgressScope scope(indicator->Start(), "products", static_cast<Standard_Real>(std::max<std::size_t>(1, leaves.size())));
-  struct LeafShape {
-    std::vector<TopoDS_Shape> solids;
-    std::string skipped;  // the harvest's message, "" when none ("%s" replaced by the path)
+  // One part of a product XDE makes a sub-assembly (below).
+  struct Component {
+    std::string name;
+    TopLoc_Location location;  // in the product
     SolidHarvest harvest;
     bool finite = true;
+  };
+  struct LeafShape {
+    SolidHarvest harvest;
+    bool finite = true;
+    std::vector<Component> components;  // not empty: XDE's sub-assembly, placed instead of the solids
   };
   std::vector<LeafShape> shapes(n);
   for (int p : leaves) {
@@ -440,16 +446,22 @@ ProductRead read_products(const ProductPlan& plan, StepReader& reader, Assembly&
     if (shape.IsNull()) continue;
     LeafShape& leaf = shapes[p];
     leaf.harvest = harvest_solids(shape);
-    leaf.solids = leaf.harvest.solids;
     leaf.finite = has_finite_box(shape);
   }
 
-  // XDE makes a product whose shape is a compound holding the results of
-  // representations (a hybrid model: a solid's representation beside a
-  // surface model's) a sub-assembly of them (STEPCAFControl_Reader::AddShape):
-  // such a file is left to XDE.
+  // XDE makes a product whose shape is a compound holding results of
+  // representations or of products (a hybrid model: a solid's representation
+  // beside a surface model's; a representation mapping other products' with
+  // MAPPED_ITEMs) a sub-assembly (STEPCAFControl_Reader::AddShape): each
+  // element of the compound a component, placed by its location, named by
+  // the product whose shape it is (ReadNames), else by its shape type
+  // (XCAFDoc_ShapeTool's automatic names: "SOLID", "SHELL", "COMPOUND").
+  // Such components are not free: a root product that is one is placed only
+  // there (XDE's GetFreeShapes). Deeper nesting is left to XDE.
+  TopTools_MapOfShape component_shapes;
   {
-    TopTools_MapOfShape representation_shapes;
+    TopTools_MapOfShape made;  // XDE's NewShapesMap: results of shape representations and products
+    TopTools_DataMapOfShapeInteger product_of_shape;
     const Handle(StepData_StepModel) model = step.StepModel();
     for (Standard_Integer i = 1, count = model->NbEntities(); i <= count; ++i) {
       const Handle(Standard_Transient)& entity = model->Value(i);
@@ -457,23 +469,47 @@ ProductRead read_products(const ProductPlan& plan, StepReader& reader, Assembly&
       const Standard_Integer index = process->MapIndex(entity);
       if (index <= 0) continue;
       const TopoDS_Shape shape = TransferBRep::ShapeResult(process->MapItem(index));
-      if (!shape.IsNull()) representation_shapes.Add(shape);
+      if (!shape.IsNull()) made.Add(shape);
     }
     for (int p : leaves) {
       const TopoDS_Shape shape = TransferBRep::ShapeResult(process, process->Find(plan.products[p].definition));
-      if (shape.IsNull() || shape.ShapeType() != TopAbs_COMPOUND) continue;
+      if (shape.IsNull()) continue;
+      made.Add(shape);
+      if (!product_of_shape.IsBound(shape)) product_of_shape.Bind(shape, p);
+    }
+    const auto holds_made = [&made](const TopoDS_Shape& shape) {
+      if (shape.ShapeType() != TopAbs_COMPOUND) return false;
+      for (TopoDS_Iterator it(shape); it.More(); it.Next())
+        if (made.Contains(it.Value().Located(TopLoc_Location()))) return true;
+      return false;
+    };
+    for (int p : leaves) {
+      const TopoDS_Shape shape = TransferBRep::ShapeResult(process, process->Find(plan.products[p].definition));
+      if (shape.IsNull() || !holds_made(shape)) continue;
+      LeafShape& leaf = shapes[p];
       for (TopoDS_Iterator it(shape); it.More(); it.Next()) {
-        if (representation_shapes.Contains(it.Value().Located(TopLoc_Location()))) {
+        const TopoDS_Shape part = it.Value().Located(TopLoc_Location());
+        if (holds_made(part)) {
           outcome.outcome = ProductRead::NotServed;
-          outcome.why_not = "a product made of several representations (" + entity_ref(model, plan.products[p].definition) + ")";
+          outcome.why_not = "a product made of representations made of representations (" +
+                            entity_ref(model, plan.products[p].definition) + ")";
           return outcome;
         }
+        Component component;
+        if (product_of_shape.IsBound(part)) component.name = plan.products[product_of_shape.Find(part)].name;
+        else component.name = TopAbs::ShapeTypeToString(part.ShapeType());
+        if (component.name.empty()) component.name = "Body";
+        component.location = it.Value().Location();
+        component.harvest = harvest_solids(part);
+        component.finite = has_finite_box(part);
+        leaf.components.push_back(std::move(component));
+        component_shapes.Add(part);
       }
     }
   }
 
   // The tree walked as the XDE walk goes: roots in order, occurrences in order.
-  PlacementMaker placements(actor, process);
+  PlacementMaker placements(actor, process, plan, step.StepModel());
   std::unordered_map<const void*, gp_Trsf> placement_cache;  // one relationship may place several (never in practice)
   std::size_t placed = 0;
   struct Frame {
@@ -483,6 +519,10 @@ ProductRead read_products(const ProductPlan& plan, StepReader& reader, Assembly&
   };
   std::vector<Frame> pending;
   for (auto it = plan.roots.rbegin(); it != plan.roots.rend(); ++it) {
+    if (plan.products[*it].children.empty()) {
+      const TopoDS_Shape shape = TransferBRep::ShapeResult(process, process->Find(plan.products[*it].definition));
+      if (!shape.IsNull() && component_shapes.Contains(shape)) continue;  // a component of another root
+    }
     std::string name = plan.products[*it].name.empty() ? "Body" : plan.products[*it].name;
     pending.push_back({*it, TopLoc_Location(), name, name});
   }
@@ -492,13 +532,20 @@ ProductRead read_products(const ProductPlan& plan, StepReader& reader, Assembly&
     const Product& product = plan.products[frame.product];
     if (product.children.empty()) {
       const LeafShape& leaf = shapes[frame.product];
-      if (leaf.harvest.open_shells || leaf.harvest.loose_faces) out.messages.push_back(skipped_message(frame.path, leaf.harvest));
-      for (const TopoDS_Shape& solid : leaf.solids) {
-        if (leaf.finite && finite(frame.location.Transformation()))
-          out.bodies.push_back(Body{frame.name, frame.path, solid.Moved(frame.location)});
-        else
-          out.messages.push_back("skipped '" + frame.path + "': coordinates that are not finite numbers");
-      }
+      const auto place = [&out](const SolidHarvest& harvest, bool finite_shape, const TopLoc_Location& location,
+                                const std::string& name, const std::string& path) {
+        if (harvest.open_shells || harvest.loose_faces) out.messages.push_back(skipped_message(path, harvest));
+        for (const TopoDS_Shape& solid : harvest.solids) {
+          if (finite_shape && finite(location.Transformation()))
+            out.bodies.push_back(Body{name, path, solid.Moved(location)});
+          else
+            out.messages.push_back("skipped '" + path + "': coordinates that are not finite numbers");
+        }
+      };
+      if (leaf.components.empty()) place(leaf.harvest, leaf.finite, frame.location, frame.name, frame.path);
+      for (const Component& component : leaf.components)
+        place(component.harvest, component.finite, frame.location * component.location, component.name,
+              frame.path + "/" + component.name);
       if (++placed % 1024 == 0 && !watch.report("read", from + 0.95 * (to - from))) return cancelled();
       continue;
     }

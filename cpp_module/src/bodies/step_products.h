@@ -10,14 +10,19 @@
 // units of each representation): the same bodies, names, paths and
 // placements as the XDE read, in the same order.
 //
+// A product whose shape is a compound of representations (a hybrid model: a
+// solid beside a surface model; a representation mapping other products'
+// with MAPPED_ITEMs) is read as XDE reads it: a sub-assembly of its parts.
 // A file whose product structure holds something this path does not know
-// (an assembly with geometry of its own, mapped items of products, product
-// definitions with documents, an occurrence without one placement) is left
-// to the XDE read: plan_products says why.
+// (an assembly with geometry of its own, product definitions with documents,
+// an occurrence without one placement, representations nested in such a
+// compound) is left to the XDE read: plan_products and read_products say why.
 #pragma once
 
 #include <memory>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 #include <STEPCAFControl_Reader.hxx>
 #include <TCollection_ExtendedString.hxx>
@@ -38,10 +43,15 @@ class StepReader : public STEPCAFControl_Reader {
 struct ProductPlanResult {
   std::shared_ptr<ProductPlan> plan;  // null when the fast path cannot serve the file
   std::string why_not;                // then: what it met ("an assembly with geometry of its own: #12")
+  bool needs_whole_text = false;      // a shortened list is not an assembly's: parse the file as written
 };
 
 // Inspects a parsed model (linear in its entities; nothing transferred yet).
-ProductPlanResult plan_products(const StepReader& reader);
+// `shortened`: the placements taken out of SHAPE_REPRESENTATIONs' lists before
+// parsing (step_placement_lists.h), per representation's #number; each must be
+// an assembly's representation, whose items the read asks about only here.
+ProductPlanResult plan_products(const StepReader& reader,
+                                const std::unordered_map<int, std::vector<int>>* shortened = nullptr);
 
 struct ProductRead {
   enum Outcome { Done, Cancelled, NotServed } outcome = Done;
@@ -51,8 +61,8 @@ struct ProductRead {
 // Transfers each leaf product once and appends the placed solids to `out`
 // (bodies in the XDE walk's order, names not yet made unique; skipped shells
 // as messages). Reports "read" from `from` to `to`. NotServed (nothing
-// appended) when a product's transfer gives a compound of representations,
-// which XDE would turn into a sub-assembly: the caller reads the file through
+// appended) when a product's compound of representations holds another such
+// compound (XDE would nest sub-assemblies): the caller reads the file through
 // XDE then.
 ProductRead read_products(const ProductPlan& plan, StepReader& reader, Assembly& out, Progress* progress,
                           double from, double to);

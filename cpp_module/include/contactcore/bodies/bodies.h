@@ -56,7 +56,10 @@ struct AssemblyResult {
 // parts), falling back to the XDE read, with a message and a progress stage
 // "read (XDE fallback)", for a product structure it does not know. Xde:
 // OCCT's XDE reader alone (time quadratic in the instances), as a reference.
-enum class StepReadMode { Products, Xde };
+// ProductsAsWritten: Products on the file's text as written, without the
+// assemblies' lists of placements shortened for OCCT's parser (what the
+// shortening changes is measured and tested against it).
+enum class StepReadMode { Products, Xde, ProductsAsWritten };
 
 // Reads a STEP file with names, instances and units (shapes converted to mm).
 // Open shells and surface models are skipped with a message. Both modes give
