@@ -48,17 +48,21 @@ def selected_analysis(doc):
 
 def model_tolerances(doc, entries=None):
     """(linear mm, angular rad) the core would choose for the document's
-    visible solids: its defaults scaled to the model's box."""
+    visible solids and report as used: each body's defaults are scaled to its
+    own box (contactcore.find_contacts), the coarsest body's linear one is the
+    analysis' LinearTolerance."""
     from contactwb import core
     from contactwb.document import bodies
-    box = FreeCAD.BoundBox()
+    linear, angular = None, 1e-4
     for body in bodies.document_bodies(doc):
-        box.add(body.shape.BoundBox)
-    if not box.isValid():
-        return 1e-3, 1e-4
-    tolerances = core.contactcore.default_tolerances(box.XMin, box.YMin, box.ZMin,
-                                                     box.XMax, box.YMax, box.ZMax)
-    return tolerances.linear, tolerances.angular
+        box = body.shape.BoundBox
+        if not box.isValid():
+            continue
+        tolerances = core.contactcore.default_tolerances(box.XMin, box.YMin, box.ZMin,
+                                                         box.XMax, box.YMax, box.ZMax)
+        linear = tolerances.linear if linear is None else max(linear, tolerances.linear)
+        angular = tolerances.angular
+    return (1e-3 if linear is None else linear), angular
 
 
 def _quantity_box(unit, value):
@@ -147,10 +151,15 @@ class FindContactsPanel:
         group = self.group
         if group is not None:
             self.scope.setCurrentIndex(SCOPES.index(group.Scope))
-            if group.LinearToleranceSetting.Value:
-                self.linear.setValue(group.LinearToleranceSetting.Value)
-            if group.AngularToleranceSetting.Value:
-                self.angular.setValue(group.AngularToleranceSetting.Value)
+            from contactwb.document.units import tolerance_settings
+            try:
+                linear, angular = tolerance_settings(group)
+            except Exception:  # a setting typed wrong in the property editor: the model's shown, to correct
+                linear, angular = None, None
+            if linear:
+                self.linear.setValue(linear)
+            if angular:
+                self.angular.setValue(degrees(angular))
             self.gap.setValue(group.ClearanceGap.Value)
             for kind, check in self.types.items():
                 check.setChecked(not group.ContactTypes or kind in group.ContactTypes)
