@@ -353,6 +353,22 @@ def contact_label2(record):
     return text
 
 
+def relabel_quantities(doc):
+    """The quantities' texts a recompute wrote (the tree's description column,
+    the interference lines) written again as the property editor now writes
+    them: the user changed the unit schema or the decimals
+    (contactwb.gui.units.watch_unit_preferences). Nothing is recomputed."""
+    from types import SimpleNamespace
+    from contactwb.objects import interferences
+    for group in [o for o in doc.Objects if is_contact_analysis(o)]:
+        for obj in group.Group:
+            if is_contact(obj):
+                record = SimpleNamespace(type=obj.ContactType, area=obj.Area.Value, partial=obj.Partial,
+                                         span=obj.Span.Value, radius=obj.Radius.Value)
+                set_if_changed(obj, "Label2", contact_label2(record))
+        interferences.relabel(group)
+
+
 def _choose_bodies(doc, group, messages):
     """(bodies to analyse, indices of the focus bodies or None)."""
     everything = document_bodies.document_bodies(doc, None, messages)

@@ -96,6 +96,20 @@ def test_every_quantity_reads_alike_in_property_editor_panel_tree_and_table(run)
         assert contact["span"] == pytest.approx(360)
 
 
+def test_a_new_unit_schema_rewrites_the_tree_as_the_property_editor(run):
+    """The user switches Preferences -> Units to "Metric small parts & CNC" and back: the tree's
+    description column follows the property editor at once (no recompute), the table too; nothing enters
+    the undo stack, nothing needs a recompute."""
+    no_error(run, "schema_changed")
+    seen = run["schema"]
+    area = seen["area"]
+    assert area > 100
+    assert seen["6"] == {"label2": f"{area:.2f} mm^2", "editor": f"{area:.2f} mm^2", "table": f"{area:.2f} mm^2"}
+    standard = f"{area / 100:.2f} cm^2"
+    assert seen["0"] == {"label2": standard, "editor": standard, "table": standard}
+    assert seen["undo_after"] == seen["undo"] and seen["touched"] == []
+
+
 def test_a_partial_span_and_a_circle_radius_read_alike_in_tree_property_editor_and_table(run):
     no_error(run, "cases_alike")
     (cradle,), circles = run["cases"]["cradle_120"], run["cases"]["ball_in_bore"]

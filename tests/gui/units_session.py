@@ -217,6 +217,39 @@ def quantities_alike():
     report["quantities"] = result
 
 
+def schema_changed():
+    """Preferences -> General -> Units set to "Metric small parts & CNC" as the
+    dialog does (the parameter written, then the schema set): the largest
+    contact's area in the tree, the property editor and the table after it,
+    then back to the Standard schema."""
+    from contactwb.document.identify import analyses, is_contact
+    from contactwb.gui.panels import contact_table
+    doc = state["motor"]
+    (group,) = analyses(doc)
+    largest = max((c for c in group.Group if is_contact(c)), key=lambda c: c.Area.Value)
+    FreeCADGui.runCommand("Contacts_ShowContactTable")
+    settle()
+    widget = contact_table.dock().widget()
+    params = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Units")
+    result = {"area": largest.Area.Value, "undo": list(doc.UndoNames)}
+
+    def seen():
+        session_helpers.wait(0.3)
+        row = next(r for r in range(widget.table.rowCount()) if widget.contact_of_row(r) == largest)
+        return {"label2": largest.Label2, "editor": property_editor_text(largest, "Area"),
+                "table": widget.table.item(row, 4).text()}
+
+    for schema in (6, 0):
+        params.SetInt("UserSchema", schema)
+        FreeCAD.Units.setSchema(schema)
+        result[str(schema)] = seen()
+    result["undo_after"] = list(doc.UndoNames)
+    result["touched"] = [o.Name for o in doc.Objects if "Touched" in o.State]
+    FreeCADGui.Selection.clearSelection()
+    widget.parent().hide()
+    report["schema"] = result
+
+
 def cases_alike():
     """The bundled cases with a partial contact (cradle_120: a 120° cradle) and
     a circle contact (ball_in_bore): each contact's area, span and radius in
@@ -349,7 +382,8 @@ def shared_imports():
     report["shared"] = result
 
 
-for function in (preferences_dialog, task_panel_units, areas_alike, quantities_alike, imports, cases_alike,
+for function in (preferences_dialog, task_panel_units, areas_alike, quantities_alike, schema_changed, imports,
+                 cases_alike,
                  shared_imports):
     step(function)
 session_helpers.write_report_and_exit(report)
