@@ -110,6 +110,20 @@ def test_a_new_unit_schema_rewrites_the_tree_as_the_property_editor(run):
     assert seen["undo_after"] == seen["undo"] and seen["touched"] == []
 
 
+def test_a_selections_tolerance_reads_alike_in_panel_and_property_editor(run):
+    """Each body's default tolerance is scaled to its own box and the coarsest analysed body's is reported:
+    for Screw-1 and Back-cover, smaller than the whole motor's. The panel shows that figure, not the
+    document's."""
+    no_error(run, "selection_tolerance_alike")
+    seen = run["selection_tolerance"]
+    assert seen["scope"] == "Selection" and seen["accepted"] is True
+    assert seen["panel"] == seen["editor"] == seen["reopened"]
+    assert seen["editor"] != seen["document"]
+    number, unit = seen["editor"].split()
+    assert unit == "mm" and float(number) == pytest.approx(seen["used"], rel=5e-4)
+    assert float(number) < float(seen["document"].split()[0])
+
+
 def test_a_partial_span_and_a_circle_radius_read_alike_in_tree_property_editor_and_table(run):
     no_error(run, "cases_alike")
     (cradle,), circles = run["cases"]["cradle_120"], run["cases"]["ball_in_bore"]

@@ -250,6 +250,39 @@ def schema_changed():
     report["schema"] = result
 
 
+def selection_tolerance_alike():
+    """Find contacts on two parts of the motor (Screw-1 and Back-cover
+    selected: scope Selection): the linear tolerance the panel shows is the
+    one the new analysis reports in the property editor (the coarsest of the
+    two parts', not the document's)."""
+    from contactwb.document.identify import analyses
+    from contactwb.gui.panels import task_panel
+    doc = state["motor"]
+    before = {g.Name for g in analyses(doc)}
+    (whole,) = [g for g in analyses(doc)]
+    FreeCADGui.Selection.clearSelection()
+    for label in ("Screw-1", "Back-cover"):
+        FreeCADGui.Selection.addSelection(doc.getObjectsByLabel(label)[0])
+    FreeCADGui.runCommand("Contacts_FindContacts")
+    settle()
+    panel = task_panel.current
+    result = {"scope": panel.scope_value(), "panel": panel.linear.text(), "document": whole.LinearTolerance}
+    result["accepted"] = panel.accept()
+    settle()
+    (group,) = [g for g in analyses(doc) if g.Name not in before]
+    result["editor"] = property_editor_text(group, "Linear Tolerance")
+    result["used"] = group.LinearToleranceValue.Value
+    # the panel the new analysis opens in shows its figure too
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    FreeCADGui.runCommand("Contacts_FindContacts")
+    settle()
+    result["reopened"] = task_panel.current.linear.text()
+    FreeCADGui.Control.closeDialog()
+    settle()
+    report["selection_tolerance"] = result
+
+
 def cases_alike():
     """The bundled cases with a partial contact (cradle_120: a 120° cradle) and
     a circle contact (ball_in_bore): each contact's area, span and radius in
@@ -382,7 +415,8 @@ def shared_imports():
     report["shared"] = result
 
 
-for function in (preferences_dialog, task_panel_units, areas_alike, quantities_alike, schema_changed, imports,
+for function in (preferences_dialog, task_panel_units, areas_alike, quantities_alike, schema_changed,
+                 selection_tolerance_alike, imports,
                  cases_alike,
                  shared_imports):
     step(function)

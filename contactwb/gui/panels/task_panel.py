@@ -46,15 +46,19 @@ def selected_analysis(doc):
     return None
 
 
-def model_tolerances(doc, entries=None):
-    """(linear mm, angular rad) the core would choose for the document's
-    visible solids and report as used: each body's defaults are scaled to its
-    own box (contactcore.find_contacts), the coarsest body's linear one is the
-    analysis' LinearTolerance."""
+def model_tolerances(doc, entries=None, scope="Document"):
+    """(linear mm, angular rad) the core would choose for the bodies the scope
+    analyses (the document's visible solids; the selection `entries` for
+    scope "Selection") and report as used: each body's defaults are scaled to
+    its own box (contactcore.find_contacts), the coarsest body's linear one is
+    the analysis' LinearTolerance."""
     from contactwb import core
     from contactwb.document import bodies
     linear, angular = None, 1e-4
-    for body in bodies.document_bodies(doc):
+    analysed = bodies.document_bodies(doc)
+    if scope == "Selection" and entries:
+        analysed = bodies.bodies_of_selection(analysed, entries)
+    for body in analysed:
         box = body.shape.BoundBox
         if not box.isValid():
             continue
@@ -145,6 +149,7 @@ class FindContactsPanel:
         layout.addWidget(run_box)
         layout.addStretch(1)
         self.scope.currentIndexChanged.connect(self._show_parts)
+        self.scope.currentIndexChanged.connect(self._follow_model_defaults)
         return form
 
     def _load(self):
@@ -187,6 +192,18 @@ class FindContactsPanel:
             self.parts.setText("Parts: " + ", ".join(names))
         else:
             self.parts.setText("Select the parts in the tree or the 3D view first.")
+
+    def _follow_model_defaults(self, *_):
+        """The model's defaults for the scope chosen (a selection's coarsest body
+        may be smaller than the document's); a field left at the old default
+        follows, so that the panel shows what the analysis will report."""
+        linear, angular = model_tolerances(self.doc, self.entries, self.scope_value())
+        if abs(self.linear.value() - self.model_linear) <= 1e-12:
+            self.linear.setValue(linear)
+        if abs(radians(self.angular.value()) - self.model_angular) <= 1e-12:
+            self.angular.setValue(degrees(angular))
+        self.model_linear, self.model_angular = linear, angular
+        self.defaults.setToolTip(f"Scaled to the model: {linear:.3g} mm, {degrees(angular):.3g}\u00b0")
 
     def _set_model_defaults(self):
         self.linear.setValue(self.model_linear)
