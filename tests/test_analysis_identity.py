@@ -178,9 +178,9 @@ def test_interferences_are_objects_with_their_solid_and_exported(boxes, tmp_path
     assert (found.BodyA, found.BodyB) == ("Base", "Top")
     assert found.Volume.Value == pytest.approx(48.0, rel=1e-6)
     assert found.Shape.Volume == pytest.approx(48.0, rel=1e-6)  # the overlapping solid itself
-    assert found.Label == "I1: Base \u2013 Top" and found.Label2 == "48 mm\u00b3" and found.Number == 1
+    assert found.Label == "I1: Base \u2013 Top" and found.Label2 == "48.00 mm^3" and found.Number == 1
     assert holder.Label == "Interferences" and holder.Count == 1 and holder.TotalVolume.Value == pytest.approx(48.0)
-    assert group.InterferenceCount == 1 and group.Interferences == ["Base \u2013 Top: 48 mm\u00b3"]
+    assert group.InterferenceCount == 1 and group.Interferences == ["Base \u2013 Top: 48.00 mm^3"]
     path = tmp_path / "boxes.json"
     export.export_contacts(group, str(path))
     written = json.loads(path.read_text())["interferences"]

@@ -125,9 +125,10 @@ def homes(tmp_path_factory):
     return bare, installed
 
 
-def check_round_trip(homes, tmp_path, source, expected):
+def check_round_trip(homes, tmp_path, source, expected, expected_back=None):
     """Opens `source` without the workbench, saves it there, reopens it with
-    the workbench: `expected` (name -> properties) is what must come back."""
+    the workbench: `expected` (name -> properties) is what must come back
+    (`expected_back` once the workbench migrated it, if it differs)."""
     bare, installed = homes
     without = run_session(bare, source, str(tmp_path / "without.FCStd"))
     assert without["workbench_importable"] is False
@@ -148,7 +149,7 @@ def check_round_trip(homes, tmp_path, source, expected):
         assert back["objects"][name]["proxy"] == f"contactwb.objects.contact_objects.{kind}"
         assert back["objects"][name]["properties"]["ProxyVersion"] == PROXY_VERSION
         assert "Touched" not in back["objects"][name]["state"]
-    for name, properties in expected.items():
+    for name, properties in (expected_back or expected).items():
         restored = {k: v for k, v in back["objects"][name]["properties"].items() if k in properties}
         assert restored == properties, name
     # and the analysis works: moving the block away loses its contact and joint
@@ -171,10 +172,18 @@ def test_version_1_document_survives_a_freecad_without_the_workbench(homes, tmp_
     added = {"ProxyType", "ProxyVersion", "ContactCount", "JointCount", "LastNumber", "OutOfDate",
              "InterferenceCount", "Interferences", "LastInterferenceNumber", "Annotations", "Intent", "Fit",
              "FitClass"}
+    added |= {"LinearToleranceValue", "AngularToleranceValue"}
     expected = {name: {k: v for k, v in props.items() if k not in added}
                 for name, props in document_snapshot(doc).items()}
+    # the tolerances became text (issue 21): the file holds them as quantities, their values, until the
+    # workbench migrates them
+    expected_back = json.loads(json.dumps(expected))
+    group = doc.getObject("Contacts")
+    expected["Contacts"].update(LinearToleranceSetting=0.0, AngularToleranceSetting=0.0,
+                                LinearTolerance=round(group.LinearToleranceValue.Value, 9),
+                                AngularTolerance=round(group.AngularToleranceValue.Value, 9))
     FreeCAD.closeDocument(doc.Name)
-    back = check_round_trip(homes, tmp_path, V1_FIXTURE, expected)
+    back = check_round_trip(homes, tmp_path, V1_FIXTURE, expected, expected_back)
     # recognised by its properties alone (no ProxyType in a version 1 file), then migrated
     assert back["objects"]["Contacts"]["properties"]["ContactCount"] == 2
     assert back["objects"]["Contacts"]["properties"]["JointCount"] == 2
@@ -266,5 +275,95 @@ def test_2_0_1_document_opens_recomputes_and_finds_its_contacts():
         after = [o for o in group.Group if contact_objects.is_contact(o)]
         assert len(after) < before and all("Seal" not in (c.BodyA, c.BodyB) for c in after)
         assert min(p.x for p in model.MeshPoints) > 400
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+# Issue 21 item 11: the tolerances became text properties (the property editor shows them as the panel
+# writes them, "0.0009751 mm", "0.00573 °", never FreeCAD's "975.10 nm" or "0.01 °"), their exact values
+# hidden quantity properties. contacts_quantity_tolerances.FCStd was saved by main at 30bba7e, when they
+# were App::PropertyLength and App::PropertyAngle: tests/contacts_document.py's document plus a second
+# analysis "Tight" (Plate and Shaft, settings 0.002 mm and 0.01 deg).
+QUANTITY_TOLERANCES_FIXTURE = os.path.join(REPO, "tests", "data", "contacts_quantity_tolerances.FCStd")
+# what that code computed: the model's linear tolerance, the core's angular default (1e-4 rad), as the file
+# writes them (16 digits)
+SAVED_LINEAR, SAVED_ANGULAR = 0.0005744562677872, 0.0057295779513082
+
+
+def _tolerance_properties(group):
+    return {name: (group.getTypeIdOfProperty(name), getattr(group, name)) for name in
+            ("LinearToleranceSetting", "AngularToleranceSetting", "LinearTolerance", "AngularTolerance")}
+
+
+def test_quantity_tolerances_of_an_earlier_file_become_text_and_recompute_the_same():
+    with zipfile.ZipFile(QUANTITY_TOLERANCES_FIXTURE) as archive:
+        xml = archive.read("Document.xml").decode()
+    assert '<Property name="LinearToleranceSetting" type="App::PropertyLength"' in xml
+    assert '<Property name="AngularTolerance" type="App::PropertyAngle"' in xml
+    doc = FreeCAD.openDocument(QUANTITY_TOLERANCES_FIXTURE)
+    try:
+        group, tight = doc.getObject("Contacts"), doc.getObject("Tight")
+        string = "App::PropertyString"
+        assert _tolerance_properties(group) == {
+            "LinearToleranceSetting": (string, "scaled to the model"), "AngularToleranceSetting": (string, "default"),
+            "LinearTolerance": (string, "0.0005745 mm"), "AngularTolerance": (string, "0.00573 \u00b0")}
+        assert _tolerance_properties(tight) == {
+            "LinearToleranceSetting": (string, "0.002 mm"), "AngularToleranceSetting": (string, "0.01 \u00b0"),
+            "LinearTolerance": (string, "0.002 mm"), "AngularTolerance": (string, "0.01 \u00b0")}
+        # the exact values kept, hidden from the property editor
+        assert group.LinearToleranceValue.Value == SAVED_LINEAR
+        assert group.AngularToleranceValue.Value == SAVED_ANGULAR
+        assert (tight.LinearToleranceValue.Value, tight.AngularToleranceValue.Value) == (0.002, 0.01)
+        assert group.getEditorMode("LinearToleranceValue") == ["Hidden"]
+        assert group.getEditorMode("LinearTolerance") == ["ReadOnly"]
+        assert group.getEditorMode("LinearToleranceSetting") == []
+        before = {g.Name: sorted(o.Label for o in g.Group) for g in (group, tight)}
+        assert before == {"Contacts": LABELS, "Tight": ["CLJ 3: Plate \u2013 Shaft"]}
+        # recomputed: the same contacts, with the same tolerances
+        assert _recomputed(doc, ["Contacts", "Tight"]) == []
+        assert {g.Name: sorted(o.Label for o in g.Group) for g in (group, tight)} == before
+        assert group.LinearToleranceValue.Value == pytest.approx(SAVED_LINEAR, rel=1e-15)
+        assert group.AngularToleranceValue.Value == pytest.approx(SAVED_ANGULAR, rel=1e-15)
+        assert (tight.LinearToleranceValue.Value, tight.AngularToleranceValue.Value) == (0.002, 0.01)
+        assert tight.LinearTolerance == "0.002 mm" and group.LinearTolerance == "0.0005745 mm"
+    finally:
+        FreeCAD.closeDocument(doc.Name)
+
+
+def test_tolerance_settings_typed_in_any_unit_read_as_the_panel_writes_them(tmp_path):
+    doc = build_document(tmp_path / "contacts.FCStd")
+    try:
+        group = doc.Contacts
+        # typed in the property editor: rewritten as the panel writes them, used by the recompute
+        group.LinearToleranceSetting = "0.5 um"
+        group.AngularToleranceSetting = "2e-4 rad"
+        assert (group.LinearToleranceSetting, group.AngularToleranceSetting) == ("0.0005 mm", "0.0114591559026 \u00b0")
+        doc.recompute()
+        assert group.LinearToleranceValue.Value == pytest.approx(0.0005, abs=1e-15)
+        assert group.AngularToleranceValue.Value == pytest.approx(0.0114591559026, abs=1e-13)
+        assert (group.LinearTolerance, group.AngularTolerance) == ("0.0005 mm", "0.01146 \u00b0")
+        assert contact_objects.tolerance_settings(group) == (pytest.approx(0.0005), pytest.approx(2e-4, rel=1e-6))
+        # empty or zero: the default's words again
+        group.LinearToleranceSetting = ""
+        group.AngularToleranceSetting = "0"
+        assert (group.LinearToleranceSetting, group.AngularToleranceSetting) == ("scaled to the model", "default")
+        # not a tolerance: kept as typed, the recompute names the analysis and the text
+        group.LinearToleranceSetting = "2 mm^2"
+        assert group.LinearToleranceSetting == "2 mm^2"
+        with pytest.raises(contact_objects.core.ContactsError,
+                           match="analysis 'Contacts': LinearToleranceSetting: tolerance setting '2 mm\\^2' "
+                                 "is not a positive length"):
+            contact_objects.update_contact_analysis(group)
+        # saved and reopened: the text as it was, nothing to migrate or recompute
+        group.LinearToleranceSetting = "0.001"
+        assert group.LinearToleranceSetting == "0.001 mm"
+        doc.recompute()
+        doc.save()
+        name = doc.FileName
+        FreeCAD.closeDocument(doc.Name)
+        doc = FreeCAD.openDocument(name)
+        assert (doc.Contacts.LinearToleranceSetting, doc.Contacts.LinearTolerance) == ("0.001 mm", "0.001 mm")
+        assert doc.Contacts.LinearToleranceValue.Value == 0.001
+        assert not [o.Name for o in doc.Objects if "Touched" in o.State]
     finally:
         FreeCAD.closeDocument(doc.Name)

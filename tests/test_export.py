@@ -34,7 +34,8 @@ def test_json_has_the_cli_schema_and_values(stacked_boxes, tmp_path):
     data = json.loads(path.read_text())
     assert data["units"] == "mm"
     assert data["totals"] == {"PLF": 1}
-    assert data["tolerances"]["linear"] == pytest.approx(group.LinearTolerance.Value)
+    assert data["tolerances"]["linear"] == group.LinearToleranceValue.Value  # the exact value, not its text
+    assert group.LinearTolerance == f"{float(group.LinearTolerance.split()[0]):g} mm"
     (contact,) = data["contacts"]
     assert list(contact) == export.CONTACT_KEYS
     assert (contact["type"], contact["a"], contact["b"]) == ("PLF", "Base", "Top")

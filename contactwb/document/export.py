@@ -6,12 +6,12 @@
 The group is read back as a contactwb.core.analysis.Analysis (the CLI's
 data), so both write through the same schema (contactwb.core.export)."""
 import json
-from math import radians
 
 from contactwb.core.analysis import Analysis, BodyInfo, ContactRecord, StoredMass
 from contactwb.core.export import (CONTACT_KEYS, CSV_COLUMNS, FORMATS, check_format,  # noqa: F401
                                    write_analysis)
 from contactwb.core.export import contact_records as _records_of_document
+from contactwb.document.units import tolerances_used
 from contactwb.document.identify import (analyses, interferences_of, is_contact, is_contact_analysis,  # noqa: F401
                                          is_interference)
 
@@ -47,8 +47,8 @@ def as_analysis(group):
     stored = StoredMass([(b["volume"], tuple(b["center"])) for b in table])
     bodies = [BodyInfo(b["name"], b["path"], stored, index) for index, b in enumerate(table)]
     return Analysis(source=group.Document.Label, units="mm",
-                    linear_tolerance=group.LinearTolerance.Value,
-                    angular_tolerance=radians(group.AngularTolerance.Value),
+                    linear_tolerance=tolerances_used(group)[0],
+                    angular_tolerance=tolerances_used(group)[1],
                     bodies=bodies, contacts=contacts, messages=list(group.Messages),
                     interferences=[(o.BodyA, o.BodyB, o.Volume.Value) for o in interferences_of(group)])
 

@@ -7,7 +7,6 @@ contactwb.core.mechanism_export writes URDF or MJCF (docs/mechanism.md).
 
     from contactwb.document import mechanism
     model, paths = mechanism.export_analysis(group, "urdf", "/tmp/motor_urdf")"""
-import math
 import os
 
 from contactwb import core
@@ -15,6 +14,7 @@ from contactwb.core import joints
 from contactwb.core import mechanism_export
 from contactwb.core.mechanism import DEFAULT_DENSITY
 from contactwb.document import bodies as document_bodies
+from contactwb.document import units
 from contactwb.document.identify import is_contact_analysis
 from contactwb.document.shapes import assembly_from_shapes
 
@@ -52,8 +52,7 @@ def export_analysis(group, fmt, path, density=DEFAULT_DENSITY, ground=None, anno
         raise core.ArgumentError(f"'{path}': an MJCF file is an .xml file")
     bodies = analysis_bodies(group)
     assembly = assembly_from_shapes((b.name, b.shape) for b in bodies)
-    linear = group.LinearToleranceSetting.Value or None
-    angular = math.radians(group.AngularToleranceSetting.Value) or None
+    linear, angular = units.tolerance_settings(group)
     _, found = joints.joints_in_assembly(assembly, group.Document.Label, linear, angular,
                                          face_name=lambda body, index: bodies[body].object_face_name(index),
                                          annotations=annotations)

@@ -1,7 +1,9 @@
 """What the document objects' GUI hooks (contactwb.objects.gui_hooks) do in
 the GUI: view providers for new objects, the drawing of an analysis just
-found, view providers for a restored document's objects. Installed when
-contactwb.gui is imported (InitGui.py does at start-up)."""
+found, view providers for a restored document's objects; and the watch on
+the unit preferences that keeps the tree's quantities as the property editor
+writes them. Installed when contactwb.gui is imported (InitGui.py does at
+start-up)."""
 from contactwb.objects import gui_hooks
 
 
@@ -45,5 +47,45 @@ def attach_when_restored(doc_name):
     QtCore.QTimer.singleShot(0, attach_now)
 
 
+class UnitPreferencesObserver:
+    """Watches Preferences -> General -> Units (FreeCAD's parameter observer):
+    a new unit schema or number of decimals rewrites the quantities' texts the
+    recomputes wrote (the tree's description column) and refills the contact
+    table, so that they keep saying what the property editor says."""
+    PATH = "User parameter:BaseApp/Preferences/Units"
+
+    def onChange(self, group, name):
+        if name in ("UserSchema", "Decimals"):
+            from PySide2 import QtCore
+            # the dialog sets the schema after writing the parameters: relabel once it has
+            QtCore.QTimer.singleShot(0, relabel_documents)
+
+
+def relabel_documents():
+    import FreeCAD
+    try:
+        from contactwb.objects.contact_objects import relabel_quantities
+        for doc in FreeCAD.listDocuments().values():
+            relabel_quantities(doc)
+        from contactwb.gui.panels import contact_table
+        contact_table.refresh()
+    except Exception as error:  # a label left as it was must not break the preferences dialog
+        FreeCAD.Console.PrintError(f"Contacts: the quantities' texts were not rewritten: {error}\n")
+
+
+_unit_observer = None  # (the parameter group, the observer): FreeCAD detaches a group's observers
+                      # when its Python handle goes, so both are held
+
+
+def watch_unit_preferences():
+    global _unit_observer
+    if _unit_observer is None:
+        import FreeCAD
+        group, observer = FreeCAD.ParamGet(UnitPreferencesObserver.PATH), UnitPreferencesObserver()
+        group.Attach(observer)
+        _unit_observer = (group, observer)
+
+
 def install():
     gui_hooks.install(GuiHooks())
+    watch_unit_preferences()

@@ -2,22 +2,12 @@
 unit the designer thinks in, with the digits it needs ("0.0009751 mm",
 "0.00573 °"), where FreeCAD's unit schema would write "975.09 nm" and, with
 two decimals, "0.01 °". Other units may be typed ("0.5 um", "1e-3 in",
-"0.1 mrad"): FreeCAD's quantity parser converts them."""
+"2e-4 rad"): FreeCAD's quantity parser converts them (contactwb.document.units)."""
 import math
 
-import FreeCAD
 from PySide2 import QtGui, QtWidgets
 
-SIGNIFICANT_DIGITS = 4
-
-
-def plain_number(value, significant=SIGNIFICANT_DIGITS):
-    """`value` with `significant` digits, fixed-point (no exponent), trailing zeros dropped."""
-    if value == 0 or not math.isfinite(value):
-        return "0" if value == 0 else str(value)
-    decimals = max(0, significant - 1 - math.floor(math.log10(abs(value))))
-    text = f"{value:.{decimals}f}"
-    return text.rstrip("0").rstrip(".") if "." in text else text
+from contactwb.document.units import SIGNIFICANT_DIGITS, parse_measure, plain_number  # noqa: F401  (this module's API)
 
 
 class MeasureBox(QtWidgets.QDoubleSpinBox):
@@ -27,7 +17,6 @@ class MeasureBox(QtWidgets.QDoubleSpinBox):
     def __init__(self, unit, value=0.0, parent=None):
         super().__init__(parent)
         self.unit = unit
-        self._internal = "mm" if unit == "mm" else "deg"
         self.setDecimals(12)  # the value is kept to 1e-12 of its unit; the text shows what matters
         self.setRange(0.0, 1e9)
         self.setKeyboardTracking(False)
@@ -37,19 +26,7 @@ class MeasureBox(QtWidgets.QDoubleSpinBox):
         return f"{plain_number(value)} {self.unit}"
 
     def _parse(self, text):
-        text = text.strip()
-        if not text:
-            return None
-        try:
-            quantity = FreeCAD.Units.Quantity(text.replace("\u00b0", " deg"))
-        except Exception:
-            return None
-        if quantity.Unit == FreeCAD.Units.Quantity("1").Unit:  # a bare number: this field's unit
-            return quantity.Value
-        try:
-            return quantity.getValueAs(self._internal).Value
-        except Exception:  # another kind of quantity (an area typed in a length field)
-            return None
+        return parse_measure(text, self.unit)
 
     def valueFromText(self, text):
         value = self._parse(text)

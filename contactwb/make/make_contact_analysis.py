@@ -2,14 +2,13 @@
 one part against the rest) and record them in the tree as a ContactAnalysis
 group of Contact objects, headless. Finding them again in place is the
 group's own recompute (contactwb.objects.contact_objects.update_contact_analysis)."""
-from math import degrees
 
 import FreeCAD
 
 from contactwb.core.kinds import CONTACT_TYPES, SCOPES
 from contactwb.document.identify import is_contact, is_contact_analysis
 from contactwb.objects import gui_hooks
-from contactwb.objects.contact_objects import ContactAnalysis, update_contact_analysis
+from contactwb.objects.contact_objects import ContactAnalysis, set_tolerance_settings, update_contact_analysis
 from contactwb.objects.contact_objects import contact_label, contact_label2  # noqa: F401  (their old home)
 
 
@@ -78,8 +77,7 @@ def make_contact_analysis(doc=None, objects=None, linear=None, angular=None, pro
                  "ContactTypes", "ClearanceGap", "DeriveJoints")}
     group.Scope = scope
     group.Sources = entries
-    group.LinearToleranceSetting = linear or 0.0
-    group.AngularToleranceSetting = degrees(angular) if angular else 0.0
+    set_tolerance_settings(group, linear, angular)
     group.ContactTypes = list(types or [])
     group.ClearanceGap = clearance_gap or 0.0
     if derive_joints is not None:

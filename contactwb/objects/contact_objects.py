@@ -20,6 +20,8 @@ from contactwb import core
 from contactwb.core import analysis as contact_analysis
 from contactwb.core.kinds import CIRCLE_TYPES, CONTACT_TYPES, SCOPES  # noqa: F401  (SCOPES: this module's API)
 from contactwb.document import bodies as document_bodies
+from contactwb.document import units
+from contactwb.document.units import tolerance_settings  # noqa: F401  (this module's API)
 from contactwb.document.identify import (is_contact, is_contact_analysis, is_interference,  # noqa: F401
                                          is_interference_group, is_joint)
 from contactwb.document.shapes import assembly_from_shapes, shape_from_brep
@@ -33,6 +35,53 @@ from contactwb.objects.body_watcher import (pending_removal, remove_after_recomp
 
 # Inputs the user sets (task panel or property editor), results shown read-only.
 ANALYSIS_RESULTS = ("LinearTolerance", "AngularTolerance", "BodyCount", "Summary", "Messages")
+# The tolerance settings (text properties: the property editor shows them as typed, in any unit) and
+# their units; the tolerances used, as text, and their exact values (issue 21 item 11).
+TOLERANCE_SETTINGS = {"LinearToleranceSetting": units.LENGTH_UNIT, "AngularToleranceSetting": units.ANGLE_UNIT}
+TOLERANCES_USED = {"LinearTolerance": ("LinearToleranceValue", units.LENGTH_UNIT),
+                   "AngularTolerance": ("AngularToleranceValue", units.ANGLE_UNIT)}
+
+
+def _tolerances_as_text(obj):
+    """Files saved before 0.3 held the tolerances as quantities (App::PropertyLength and
+    App::PropertyAngle, 0: the default): their values become the text properties' (and the hidden
+    exact values'), so that such a file opens as it was and recomputes the same."""
+    for name, unit in TOLERANCE_SETTINGS.items():
+        if name in obj.PropertiesList and obj.getTypeIdOfProperty(name) != "App::PropertyString":
+            value = getattr(obj, name).Value
+            obj.removeProperty(name)
+            obj.addProperty("App::PropertyString", name, "Contacts", "")
+            setattr(obj, name, units.setting_text(value or None, unit))
+    for name, (value_name, unit) in TOLERANCES_USED.items():
+        if name in obj.PropertiesList and obj.getTypeIdOfProperty(name) != "App::PropertyString":
+            value = getattr(obj, name).Value
+            obj.removeProperty(name)
+            kind = "App::PropertyLength" if unit == units.LENGTH_UNIT else "App::PropertyAngle"
+            add_property(obj, kind, value_name, "Contacts", "", 2)
+            setattr(obj, value_name, value)
+            obj.addProperty("App::PropertyString", name, "Contacts", "")
+            setattr(obj, name, units.tolerance_text(value, unit))
+
+
+def set_tolerance_settings(group, linear, angular):
+    """Writes the settings (linear mm, angular rad; None: the default) as text."""
+    set_if_changed(group, "LinearToleranceSetting", units.setting_text(linear, units.LENGTH_UNIT))
+    set_if_changed(group, "AngularToleranceSetting",
+                   units.setting_text(degrees(angular) if angular else None, units.ANGLE_UNIT))
+
+
+def _normalize_setting(obj, name):
+    """A setting typed in the property editor ("0.5 um") rewritten as the panel
+    writes it ("0.0005 mm"), so that both say the same; text that is not a
+    tolerance is left as typed (the recompute names it)."""
+    unit = TOLERANCE_SETTINGS[name]
+    try:
+        value = units.parse_setting(getattr(obj, name), unit)
+    except ValueError:
+        return
+    text = units.setting_text(value, unit)
+    if getattr(obj, name) != text:
+        setattr(obj, name, text)
 
 
 def _analysis_properties(obj):
@@ -50,10 +99,16 @@ def _analysis_properties(obj):
     if not obj.Scope:
         obj.Scope = SCOPES
         obj.Scope = "Selection" if obj.Sources else "Document"
-    add_property(obj, "App::PropertyLength", "LinearToleranceSetting", "Contacts",
-         "Linear tolerance to use (0: scaled to the model)")
-    add_property(obj, "App::PropertyAngle", "AngularToleranceSetting", "Contacts",
-         "Angular tolerance to use (0: the default)")
+    _tolerances_as_text(obj)  # files saved before the tolerances were text (0.2)
+    add_property(obj, "App::PropertyString", "LinearToleranceSetting", "Contacts",
+         "Linear tolerance to use, in any length unit ('0.001 mm', '0.5 um'; "
+         f"'{units.DEFAULT_SETTING[units.LENGTH_UNIT]}': the core chooses)")
+    add_property(obj, "App::PropertyString", "AngularToleranceSetting", "Contacts",
+         "Angular tolerance to use, in any angle unit ('0.01 deg', '2e-4 rad'; "
+         f"'{units.DEFAULT_SETTING[units.ANGLE_UNIT]}': the core's)")
+    for name, unit in TOLERANCE_SETTINGS.items():
+        if not getattr(obj, name):
+            setattr(obj, name, units.setting_text(None, unit))
     add_property(obj, "App::PropertyStringList", "ContactTypes", "Contacts",
          "Contact types to look for (empty: all)")
     add_property(obj, "App::PropertyLength", "ClearanceGap", "Contacts",
@@ -62,8 +117,11 @@ def _analysis_properties(obj):
     add_property(obj, "App::PropertyBool", "UpdateOnRecompute", "Contacts",
          "Find the contacts again when the bodies move or change (off: a snapshot that "
          "follows the moved faces)")
-    add_property(obj, "App::PropertyLength", "LinearTolerance", "Contacts", "Linear tolerance used", 1)
-    add_property(obj, "App::PropertyAngle", "AngularTolerance", "Contacts", "Angular tolerance used", 1)
+    # the tolerances used: as the panel writes them, the exact values hidden (export, expressions)
+    add_property(obj, "App::PropertyString", "LinearTolerance", "Contacts", "Linear tolerance used", 1)
+    add_property(obj, "App::PropertyString", "AngularTolerance", "Contacts", "Angular tolerance used", 1)
+    add_property(obj, "App::PropertyLength", "LinearToleranceValue", "Contacts", "Linear tolerance used, exact", 2)
+    add_property(obj, "App::PropertyAngle", "AngularToleranceValue", "Contacts", "Angular tolerance used, exact", 2)
     add_property(obj, "App::PropertyInteger", "BodyCount", "Contacts", "Bodies analysed", 1)
     add_property(obj, "App::PropertyStringList", "Summary", "Contacts", "Counts by contact type", 1)
     add_property(obj, "App::PropertyStringList", "PairSummary", "Contacts", "Counts by body pair", 1)
@@ -138,6 +196,11 @@ class ContactAnalysis:
         obj.Proxy = self
         migrate_analysis(obj)
         watch_document(obj.Document)
+
+    def onChanged(self, obj, prop):
+        if prop in TOLERANCE_SETTINGS and not obj.Document.Restoring \
+                and obj.getTypeIdOfProperty(prop) == "App::PropertyString":
+            _normalize_setting(obj, prop)
 
     def execute(self, obj):
         if not obj.UpdateOnRecompute:
@@ -282,13 +345,28 @@ def contact_label(kind, number, a, b):
 
 def contact_label2(record):
     """The tree's description column: area, span or radius."""
-    from contactwb.document import units  # the property editor's units (FreeCAD's schema)
     if record.type in CIRCLE_TYPES:
         return f"circle r {units.length_text(record.radius)}"
     text = units.area_text(record.area)
     if record.partial:
         text += f", span {units.angle_text(record.span)}"
     return text
+
+
+def relabel_quantities(doc):
+    """The quantities' texts a recompute wrote (the tree's description column,
+    the interference lines) written again as the property editor now writes
+    them: the user changed the unit schema or the decimals
+    (contactwb.gui.units.watch_unit_preferences). Nothing is recomputed."""
+    from types import SimpleNamespace
+    from contactwb.objects import interferences
+    for group in [o for o in doc.Objects if is_contact_analysis(o)]:
+        for obj in group.Group:
+            if is_contact(obj):
+                record = SimpleNamespace(type=obj.ContactType, area=obj.Area.Value, partial=obj.Partial,
+                                         span=obj.Span.Value, radius=obj.Radius.Value)
+                set_if_changed(obj, "Label2", contact_label2(record))
+        interferences.relabel(group)
 
 
 def _choose_bodies(doc, group, messages):
@@ -370,8 +448,7 @@ def update_contact_analysis(group, progress=None):
     bodies, focus = _choose_bodies(doc, group, messages)
     if not bodies:
         raise core.ContactsError(f"no visible solid in document '{doc.Label}'")
-    linear = group.LinearToleranceSetting.Value or None
-    angular = radians(group.AngularToleranceSetting.Value) or None
+    linear, angular = tolerance_settings(group)
     settings = (linear, angular)
     result, assembly, raw = _find(bodies, doc.Label, linear, angular, progress,
                                   regions.region_bodies(group, bodies, settings))
@@ -386,8 +463,11 @@ def update_contact_analysis(group, progress=None):
     set_if_changed(group, "Bodies", [document_bodies.body_link(b) for b in bodies], ordered=False)
     set_if_changed(group, "BodyTable", json.dumps([{"name": b.name, "path": b.path, "volume": b.volume,
                                                     "center": list(b.center)} for b in result.bodies]))
-    set_if_changed(group, "LinearTolerance", result.linear_tolerance)
-    set_if_changed(group, "AngularTolerance", degrees(result.angular_tolerance))
+    set_if_changed(group, "LinearToleranceValue", result.linear_tolerance)
+    set_if_changed(group, "AngularToleranceValue", degrees(result.angular_tolerance))
+    set_if_changed(group, "LinearTolerance", units.tolerance_text(result.linear_tolerance, units.LENGTH_UNIT))
+    set_if_changed(group, "AngularTolerance", units.tolerance_text(degrees(result.angular_tolerance),
+                                                                   units.ANGLE_UNIT))
     set_if_changed(group, "BodyCount", len(result.bodies))
     shown = contact_analysis.Analysis(result.source, result.units, result.linear_tolerance,
                                       result.angular_tolerance, result.bodies, records)
@@ -419,8 +499,7 @@ def compute_regions(group):
     bodies, _ = _choose_bodies(group.Document, group, [])
     if not bodies:
         return None
-    linear = group.LinearToleranceSetting.Value or None
-    angular = radians(group.AngularToleranceSetting.Value) or None
+    linear, angular = tolerance_settings(group)
     settings = (linear, angular)
     result, assembly, raw = _find(bodies, group.Document.Label, linear, angular, None,
                                   regions.region_bodies(group, bodies, settings))

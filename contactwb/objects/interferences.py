@@ -15,6 +15,7 @@ Saved files name `contactwb.objects.interferences.InterferenceGroup` and
 `...Interference` (files saved before this module name
 `contactwb.objects.contact_objects.Interference`, which is the same class):
 permanent names."""
+from contactwb.document import units
 from contactwb.document.identify import interferences_of, is_contact, is_interference, is_interference_group
 from contactwb.document.shapes import shape_from_brep
 from contactwb.objects import gui_hooks
@@ -63,7 +64,20 @@ def interference_label(number, a, b):
 
 
 def volume_text(volume):
-    return f"{volume:.4g} mm\u00b3"
+    """As the property editor writes the Volume (the user's unit schema)."""
+    return units.volume_text(volume)
+
+
+def relabel(analysis):
+    """The interferences' volumes written again (the user changed the unit schema)."""
+    holders = [o for o in analysis.Group if is_interference_group(o)]
+    found = [o for o in interferences_of(analysis)]
+    for obj in found:
+        set_if_changed(obj, "Label2", volume_text(obj.Volume.Value))
+    for holder in holders:
+        set_if_changed(holder, "Label2", f"{holder.Count}, {volume_text(holder.TotalVolume.Value)}")
+    set_if_changed(analysis, "Interferences", [f"{o.BodyA} {EN_DASH} {o.BodyB}: {volume_text(o.Volume.Value)}"
+                                               for o in found])
 
 
 def _same_solid(old, new):

@@ -133,7 +133,7 @@ def test_interferences_are_shown_exported_and_undone(run):
         assert core_volume == pytest.approx(volume, rel=1e-3)
         assert solid == pytest.approx(volume, rel=1e-3)  # the shown solid is the overlap
         assert label.endswith(f"{pair[0]} \u2013 {pair[1]}") and label.startswith("I") and label[1:label.index(":")].isdigit()
-        assert label2.endswith("mm\u00b3")
+        assert label2 == f"{core_volume:.2f} mm^3"  # as the property editor writes it (Standard schema)
         assert colour == pytest.approx(rgb(INTERFERENCE_COLOUR), abs=0.5 / 255) and shown
     assert found["display_modes"] == ["Flat Lines"] * 3  # drawn
     assert found["count"] == 3 and len(found["lines"]) == 3

@@ -50,11 +50,11 @@ def test_the_group_holds_the_three_interferences(run):
         assert item["volume"] == pytest.approx(item["boolean"], rel=1e-6)  # the core's volume: OCCT's Boolean
         assert item["solid"] == pytest.approx(item["boolean"], rel=1e-6)  # the red solid is the overlap
         assert item["label"] == f"I{item['number']}: {a} {EN_DASH} {b}"
-        assert item["label2"] == f"{item['volume']:.4g} mm\u00b3"
+        assert item["label2"] == f"{item['volume']:.2f} mm^3"  # as the property editor writes it (Standard schema)
         assert item["colour"] == pytest.approx(rgb(INTERFERENCE_COLOUR), abs=0.5 / 255) and item["shown"]
         assert item["provider"] == "ViewProviderInterference"
     total = sum(i["volume"] for i in found.values())
-    assert holder["label2"] == f"3, {total:.4g} mm\u00b3"
+    assert holder["label2"] == f"3, {total:.2f} mm^3"
     assert pushed["count"] == 3 and pushed["undo"][:2] == ["Find contacts", "Move Screw-1"]
     assert sorted((i["a"], i["b"]) for i in pushed["export"]) == sorted(SCREW_INTERFERENCES)
 

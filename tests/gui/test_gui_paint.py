@@ -60,7 +60,7 @@ def test_interferences_are_first_class_results(run):
         boolean = found["booleans"][f"{a}|{b}"]  # OCCT's common of the two parts, in the test
         assert boolean == pytest.approx(figure, rel=5e-3)
         assert volume == pytest.approx(boolean, rel=1e-6) and solid == pytest.approx(boolean, rel=1e-6)
-        assert label.startswith("I") and label.endswith(f"{a} \u2013 {b}") and label2.endswith("mm\u00b3")
+        assert label.startswith("I") and label.endswith(f"{a} \u2013 {b}") and label2 == f"{volume:.2f} mm^3"
         assert colour == pytest.approx(rgb(INTERFERENCE_COLOUR), abs=0.5 / 255)
     rows = {(r[2], r[3]): r for r in found["rows"]}
     assert sorted(rows) == sorted(SCREW_INTERFERENCES)

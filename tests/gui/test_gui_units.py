@@ -62,6 +62,88 @@ def test_an_area_reads_alike_in_tree_property_editor_and_table(run):
     assert smallest["area"] < 100 and smallest["editor"] == f"{smallest['area']:.2f} mm^2"
 
 
+def test_every_quantity_reads_alike_in_property_editor_panel_tree_and_table(run):
+    """Issue 21 item 11: the tolerances, areas, spans and radii say the same thing wherever they show,
+    as the user's unit preferences say (FreeCAD's defaults here: the Standard schema, 2 decimals), never
+    rounded to zero or contradicting each other."""
+    no_error(run, "quantities_alike")
+    seen = run["quantities"]
+    assert (seen["schema"], seen["decimals"]) == (0, 2)
+    linear, angular = seen["used"]
+    # the tolerances in mm and degrees with their digits, the property editor as the panel (FreeCAD's
+    # quantity properties wrote "787.91 nm" and "0.01 °")
+    linear_text = f"{linear:.{3 - math.floor(math.log10(linear))}f}".rstrip("0") + " mm"
+    assert angular == pytest.approx(math.degrees(1e-4), rel=1e-12)  # the core's default, 1e-4 rad
+    assert seen["editor"] == {"Linear Tolerance": linear_text, "Angular Tolerance": "0.00573 °",
+                              "Linear Tolerance Setting": "scaled to the model",
+                              "Angular Tolerance Setting": "default"}
+    assert seen["panel"] == [linear_text, "0.00573 °"]
+    assert float(linear_text.split()[0]) == pytest.approx(linear, rel=5e-4)
+    # a setting typed in micrometres reads in mm, as the panel would write it
+    assert seen["typed_setting"] == "0.0005 mm"
+    assert seen["default_setting"] == "scaled to the model"
+    smallest, largest = seen["contacts"]
+    assert smallest["radius"] < largest["radius"]
+    for contact in (smallest, largest):
+        # the Standard schema: an area under 100 mm^2 in mm^2, above in cm^2; angles in degrees; lengths in mm
+        area = contact["area"]
+        area_text = f"{area:.2f} mm^2" if area < 100 else f"{area / 100:.2f} cm^2"
+        span_text, radius_text = f"{contact['span']:.2f} \u00b0", f"{contact['radius']:.2f} mm"
+        assert contact["editor"] == {"Area": area_text, "Span": span_text, "Radius": radius_text}, contact
+        assert contact["table"] == contact["editor"], contact
+        # the tree's description: the area (a full turn: no span)
+        assert not contact["partial"] and contact["label2"] == area_text
+        assert contact["span"] == pytest.approx(360)
+
+
+def test_a_new_unit_schema_rewrites_the_tree_as_the_property_editor(run):
+    """The user switches Preferences -> Units to "Metric small parts & CNC" and back: the tree's
+    description column follows the property editor at once (no recompute), the table too; nothing enters
+    the undo stack, nothing needs a recompute."""
+    no_error(run, "schema_changed")
+    seen = run["schema"]
+    area = seen["area"]
+    assert area > 100
+    assert seen["6"] == {"label2": f"{area:.2f} mm^2", "editor": f"{area:.2f} mm^2", "table": f"{area:.2f} mm^2"}
+    standard = f"{area / 100:.2f} cm^2"
+    assert seen["0"] == {"label2": standard, "editor": standard, "table": standard}
+    assert seen["undo_after"] == seen["undo"] and seen["touched"] == []
+
+
+def test_a_selections_tolerance_reads_alike_in_panel_and_property_editor(run):
+    """Each body's default tolerance is scaled to its own box and the coarsest analysed body's is reported:
+    for Screw-1 and Back-cover, smaller than the whole motor's. The panel shows that figure, not the
+    document's."""
+    no_error(run, "selection_tolerance_alike")
+    seen = run["selection_tolerance"]
+    assert seen["scope"] == "Selection" and seen["accepted"] is True
+    assert seen["panel"] == seen["editor"] == seen["reopened"]
+    assert seen["editor"] != seen["document"]
+    number, unit = seen["editor"].split()
+    assert unit == "mm" and float(number) == pytest.approx(seen["used"], rel=5e-4)
+    assert float(number) < float(seen["document"].split()[0])
+
+
+def test_a_partial_span_and_a_circle_radius_read_alike_in_tree_property_editor_and_table(run):
+    no_error(run, "cases_alike")
+    (cradle,), circles = run["cases"]["cradle_120"], run["cases"]["ball_in_bore"]
+    # the 120° cradle: a partial cylinder contact, its span in the tree as in the editor and the table
+    assert (cradle["type"], cradle["partial"]) == ("CLJ", True)
+    assert cradle["span"] == pytest.approx(120, abs=1e-6)
+    assert cradle["editor"] == {"Area": f"{cradle['area']:.2f} mm^2" if cradle["area"] < 100 else
+                                f"{cradle['area'] / 100:.2f} cm^2", "Span": "120.00 \u00b0",
+                                "Radius": f"{cradle['radius']:.2f} mm"}
+    assert cradle["table"] == cradle["editor"]
+    assert cradle["label2"] == f"{cradle['editor']['Area']}, span 120.00 \u00b0"
+    # the ball in its bore: a circle contact, its radius in the tree as in the editor and the table
+    assert [(c["type"], c["partial"]) for c in circles] == [("LAF", False)]  # the ball on the bore's edge
+    (circle,) = circles
+    assert circle["radius"] == pytest.approx(5.0) and circle["area"] == 0  # a circle: no area
+    assert circle["editor"]["Radius"] == f"{circle['radius']:.2f} mm" and circle["radius"] > 0
+    assert circle["table"] == circle["editor"]
+    assert circle["label2"] == f"circle r {circle['editor']['Radius']}"
+
+
 def test_step_import_names_parts_after_the_products(run):
     no_error(run, "imports")
     motor = run["imports"]["motor"]

@@ -145,10 +145,180 @@ def areas_alike():
                        "table": widget.table.item(rows[contact.Name], 4).text(),
                        "type_id": contact.getTypeIdOfProperty("Area")})
     report["areas"] = result
-    report["tolerance_editor"] = property_editor_text(group, "Linear Tolerance")
-    report["tolerance_value"] = group.LinearTolerance.Value
     FreeCADGui.Selection.clearSelection()
     widget.parent().hide()
+
+
+def quantities_alike():
+    """Every quantity the workbench shows, as the property editor, the task
+    panel, the tree's description column and the table write it: the
+    analysis' tolerances (used and set), a partial contact's area and span, a
+    cylinder contact's radius."""
+    from contactwb.document.identify import analyses, is_contact
+    from contactwb.gui.panels import contact_table, task_panel
+    doc = state["motor"]
+    (group,) = analyses(doc)
+    result = {"schema": FreeCAD.Units.getSchema(),
+              "decimals": FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Units").GetInt("Decimals", 2)}
+    # the tolerances: the property editor and the panel the analysis opens in (double-click, Find contacts
+    # with the analysis selected)
+    names = ("Linear Tolerance", "Angular Tolerance", "Linear Tolerance Setting", "Angular Tolerance Setting")
+    result["editor"] = {name: property_editor_text(group, name) for name in names}
+    result["used"] = [group.LinearToleranceValue.Value, group.AngularToleranceValue.Value]
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    FreeCADGui.runCommand("Contacts_FindContacts")
+    settle()
+    panel = task_panel.current
+    result["panel"] = [panel.linear.text(), panel.angular.text()]
+    FreeCADGui.Control.closeDialog()
+    settle()
+    # a setting typed in another unit, as the editor shows it then
+    group.LinearToleranceSetting = "0.5 um"
+    result["typed_setting"] = property_editor_text(group, "Linear Tolerance Setting")
+    group.LinearToleranceSetting = ""
+    result["default_setting"] = property_editor_text(group, "Linear Tolerance Setting")
+    doc.recompute()  # the setting back as it was: the analysis current again
+    # the contacts' quantities: tree (Label2), property editor, table
+    contacts = [c for c in group.Group if is_contact(c)]
+    FreeCADGui.runCommand("Contacts_ShowContactTable")
+    settle()
+    widget = contact_table.dock().widget()
+    rows = {widget.contact_of_row(r).Name: r for r in range(widget.table.rowCount())
+            if widget.contact_of_row(r) is not None}
+    # the motor's cylinder contacts of the smallest and the largest radius (full turns: no partial one)
+    cylinders = sorted((c for c in contacts if c.ContactType == "CLJ"), key=lambda c: (c.Radius.Value, c.Number))
+    seen = []
+    for contact in (cylinders[0], cylinders[-1]):
+        row = rows[contact.Name]
+        seen.append({"name": contact.Name, "label2": contact.Label2, "partial": contact.Partial,
+                     "area": contact.Area.Value, "span": contact.Span.Value, "radius": contact.Radius.Value,
+                     "editor": {n: property_editor_text(contact, n) for n in ("Area", "Span", "Radius")},
+                     "table": {"Area": widget.table.item(row, 4).text(), "Span": widget.table.item(row, 5).text(),
+                               "Radius": widget.table.item(row, 6).text()}})
+    result["contacts"] = seen
+    # the picture: the analysis selected (its tolerances in the property editor) beside the table
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    property_editor_text(group, "Linear Tolerance")
+    main = FreeCADGui.getMainWindow()
+    tree = next(t for t in main.findChildren(QtWidgets.QTreeWidget))
+    tree.expandAll()
+    widget.table.scrollToItem(widget.table.item(rows[cylinders[0].Name], 0))
+    # wide enough to read the properties' names and the table's Span and Radius
+    combo = next(d for d in main.findChildren(QtWidgets.QDockWidget) if d.objectName() == "Combo View")
+    main.resizeDocks([combo, widget.parent()], [440, 640], QtCore.Qt.Horizontal)
+    for view in main.findChildren(QtWidgets.QTreeView):
+        if "PropertyEditor" in type(view).__name__ + view.metaObject().className():
+            view.header().resizeSection(0, 210)
+    result["png"] = grab_window("gui_units_alike.png")
+    FreeCADGui.Selection.clearSelection()
+    widget.parent().hide()
+    report["quantities"] = result
+
+
+def schema_changed():
+    """Preferences -> General -> Units set to "Metric small parts & CNC" as the
+    dialog does (the parameter written, then the schema set): the largest
+    contact's area in the tree, the property editor and the table after it,
+    then back to the Standard schema."""
+    from contactwb.document.identify import analyses, is_contact
+    from contactwb.gui.panels import contact_table
+    doc = state["motor"]
+    (group,) = analyses(doc)
+    largest = max((c for c in group.Group if is_contact(c)), key=lambda c: c.Area.Value)
+    FreeCADGui.runCommand("Contacts_ShowContactTable")
+    settle()
+    widget = contact_table.dock().widget()
+    params = FreeCAD.ParamGet("User parameter:BaseApp/Preferences/Units")
+    result = {"area": largest.Area.Value, "undo": list(doc.UndoNames)}
+
+    def seen():
+        session_helpers.wait(0.3)
+        row = next(r for r in range(widget.table.rowCount()) if widget.contact_of_row(r) == largest)
+        return {"label2": largest.Label2, "editor": property_editor_text(largest, "Area"),
+                "table": widget.table.item(row, 4).text()}
+
+    for schema in (6, 0):
+        params.SetInt("UserSchema", schema)
+        FreeCAD.Units.setSchema(schema)
+        result[str(schema)] = seen()
+    result["undo_after"] = list(doc.UndoNames)
+    result["touched"] = [o.Name for o in doc.Objects if "Touched" in o.State]
+    FreeCADGui.Selection.clearSelection()
+    widget.parent().hide()
+    report["schema"] = result
+
+
+def selection_tolerance_alike():
+    """Find contacts on two parts of the motor (Screw-1 and Back-cover
+    selected: scope Selection): the linear tolerance the panel shows is the
+    one the new analysis reports in the property editor (the coarsest of the
+    two parts', not the document's)."""
+    from contactwb.document.identify import analyses
+    from contactwb.gui.panels import task_panel
+    doc = state["motor"]
+    before = {g.Name for g in analyses(doc)}
+    (whole,) = [g for g in analyses(doc)]
+    FreeCADGui.Selection.clearSelection()
+    for label in ("Screw-1", "Back-cover"):
+        FreeCADGui.Selection.addSelection(doc.getObjectsByLabel(label)[0])
+    FreeCADGui.runCommand("Contacts_FindContacts")
+    settle()
+    panel = task_panel.current
+    result = {"scope": panel.scope_value(), "panel": panel.linear.text(), "document": whole.LinearTolerance}
+    result["accepted"] = panel.accept()
+    settle()
+    (group,) = [g for g in analyses(doc) if g.Name not in before]
+    result["editor"] = property_editor_text(group, "Linear Tolerance")
+    result["used"] = group.LinearToleranceValue.Value
+    # the panel the new analysis opens in shows its figure too
+    FreeCADGui.Selection.clearSelection()
+    FreeCADGui.Selection.addSelection(group)
+    FreeCADGui.runCommand("Contacts_FindContacts")
+    settle()
+    result["reopened"] = task_panel.current.linear.text()
+    FreeCADGui.Control.closeDialog()
+    settle()
+    report["selection_tolerance"] = result
+
+
+def cases_alike():
+    """The bundled cases with a partial contact (cradle_120: a 120° cradle) and
+    a circle contact (ball_in_bore): each contact's area, span and radius in
+    the tree's description, the property editor and the table."""
+    from contactwb.document.identify import is_contact
+    from contactwb.gui.panels import contact_table
+    from contactwb.make import make_contact_analysis
+    result = {}
+    for name in ("cradle_120", "ball_in_bore"):
+        doc = FreeCAD.openDocument(os.path.join(repo, "Resources", "samples", "cases", name + ".FCStd"))
+        FreeCAD.setActiveDocument(doc.Name)
+        FreeCADGui.activateWorkbench("ContactsWorkbench")
+        group = make_contact_analysis(doc)
+        doc.recompute()
+        settle()
+        FreeCADGui.runCommand("Contacts_ShowContactTable")
+        settle()
+        widget = contact_table.dock().widget()
+        widget.fill(doc)
+        settle()
+        rows = {widget.contact_of_row(r).Name: r for r in range(widget.table.rowCount())
+                if widget.contact_of_row(r) is not None}
+        seen = []
+        for contact in (c for c in group.Group if is_contact(c)):
+            row = rows[contact.Name]
+            seen.append({"type": contact.ContactType, "partial": contact.Partial, "label2": contact.Label2,
+                         "area": contact.Area.Value, "span": contact.Span.Value, "radius": contact.Radius.Value,
+                         "editor": {n: property_editor_text(contact, n) for n in ("Area", "Span", "Radius")},
+                         "table": {"Area": widget.table.item(row, 4).text(), "Span": widget.table.item(row, 5).text(),
+                                   "Radius": widget.table.item(row, 6).text()}})
+        result[name] = seen
+        FreeCADGui.Selection.clearSelection()
+        widget.parent().hide()
+        FreeCAD.closeDocument(doc.Name)
+        settle()
+    report["cases"] = result
 
 
 def step_names(path):
@@ -245,6 +415,9 @@ def shared_imports():
     report["shared"] = result
 
 
-for function in (preferences_dialog, task_panel_units, areas_alike, imports, shared_imports):
+for function in (preferences_dialog, task_panel_units, areas_alike, quantities_alike, schema_changed,
+                 selection_tolerance_alike, imports,
+                 cases_alike,
+                 shared_imports):
     step(function)
 session_helpers.write_report_and_exit(report)

@@ -1,7 +1,6 @@
 """The workbench's analysis commands (one class each, FreeCAD Assembly style):
 find contacts, the contact table, isolate, show all, ghost, partitions,
 joints, export, the sample."""
-import math
 
 import FreeCAD
 import FreeCADGui
@@ -197,8 +196,10 @@ class Contacts_DeriveJoints:
         doc = group.Document
         doc.openTransaction("Derive joints")
         try:
-            make_contact_analysis(doc, list(group.Sources) or None, group.LinearToleranceSetting.Value or None,
-                                  math.radians(group.AngularToleranceSetting.Value) or None, scope=group.Scope, types=list(group.ContactTypes) or None,
+            from contactwb.document.units import tolerance_settings
+            linear, angular = tolerance_settings(group)
+            make_contact_analysis(doc, list(group.Sources) or None, linear, angular, scope=group.Scope,
+                                  types=list(group.ContactTypes) or None,
                                   clearance_gap=group.ClearanceGap.Value, group=group, derive_joints=True)
         except (core.ContactsError, ValueError) as error:
             doc.abortTransaction()

@@ -210,7 +210,7 @@ class ContactTable(QtWidgets.QWidget):
             type_cell.setData(SORT_KEY, _sort_key("Interference", overlap.BodyA, overlap.BodyB,
                                                   int(number[1:]) if number[1:].isdigit() else 0))
             cells = [_cell(number), type_cell, _cell(overlap.BodyA), _cell(overlap.BodyB),
-                     _cell(f"{volume:.4g} mm\u00b3", volume), _cell(""), _cell(""), _cell(""), _cell(""),
+                     _cell(units.volume_text(volume), volume), _cell(""), _cell(""), _cell(""), _cell(""),
                      _cell(group.Label if group else "")]
             for column, item in enumerate(cells):
                 item.setData(QtCore.Qt.UserRole, overlap.Name)

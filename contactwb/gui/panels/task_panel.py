@@ -46,19 +46,27 @@ def selected_analysis(doc):
     return None
 
 
-def model_tolerances(doc, entries=None):
-    """(linear mm, angular rad) the core would choose for the document's
-    visible solids: its defaults scaled to the model's box."""
+def model_tolerances(doc, entries=None, scope="Document"):
+    """(linear mm, angular rad) the core would choose for the bodies the scope
+    analyses (the document's visible solids; the selection `entries` for
+    scope "Selection") and report as used: each body's defaults are scaled to
+    its own box (contactcore.find_contacts), the coarsest body's linear one is
+    the analysis' LinearTolerance."""
     from contactwb import core
     from contactwb.document import bodies
-    box = FreeCAD.BoundBox()
-    for body in bodies.document_bodies(doc):
-        box.add(body.shape.BoundBox)
-    if not box.isValid():
-        return 1e-3, 1e-4
-    tolerances = core.contactcore.default_tolerances(box.XMin, box.YMin, box.ZMin,
-                                                     box.XMax, box.YMax, box.ZMax)
-    return tolerances.linear, tolerances.angular
+    linear, angular = None, 1e-4
+    analysed = bodies.document_bodies(doc)
+    if scope == "Selection" and entries:
+        analysed = bodies.bodies_of_selection(analysed, entries)
+    for body in analysed:
+        box = body.shape.BoundBox
+        if not box.isValid():
+            continue
+        tolerances = core.contactcore.default_tolerances(box.XMin, box.YMin, box.ZMin,
+                                                         box.XMax, box.YMax, box.ZMax)
+        linear = tolerances.linear if linear is None else max(linear, tolerances.linear)
+        angular = tolerances.angular
+    return (1e-3 if linear is None else linear), angular
 
 
 def _quantity_box(unit, value):
@@ -141,16 +149,22 @@ class FindContactsPanel:
         layout.addWidget(run_box)
         layout.addStretch(1)
         self.scope.currentIndexChanged.connect(self._show_parts)
+        self.scope.currentIndexChanged.connect(self._follow_model_defaults)
         return form
 
     def _load(self):
         group = self.group
         if group is not None:
             self.scope.setCurrentIndex(SCOPES.index(group.Scope))
-            if group.LinearToleranceSetting.Value:
-                self.linear.setValue(group.LinearToleranceSetting.Value)
-            if group.AngularToleranceSetting.Value:
-                self.angular.setValue(group.AngularToleranceSetting.Value)
+            from contactwb.document.units import tolerance_settings
+            try:
+                linear, angular = tolerance_settings(group)
+            except Exception:  # a setting typed wrong in the property editor: the model's shown, to correct
+                linear, angular = None, None
+            if linear:
+                self.linear.setValue(linear)
+            if angular:
+                self.angular.setValue(degrees(angular))
             self.gap.setValue(group.ClearanceGap.Value)
             for kind, check in self.types.items():
                 check.setChecked(not group.ContactTypes or kind in group.ContactTypes)
@@ -178,6 +192,18 @@ class FindContactsPanel:
             self.parts.setText("Parts: " + ", ".join(names))
         else:
             self.parts.setText("Select the parts in the tree or the 3D view first.")
+
+    def _follow_model_defaults(self, *_):
+        """The model's defaults for the scope chosen (a selection's coarsest body
+        may be smaller than the document's); a field left at the old default
+        follows, so that the panel shows what the analysis will report."""
+        linear, angular = model_tolerances(self.doc, self.entries, self.scope_value())
+        if abs(self.linear.value() - self.model_linear) <= 1e-12:
+            self.linear.setValue(linear)
+        if abs(radians(self.angular.value()) - self.model_angular) <= 1e-12:
+            self.angular.setValue(degrees(angular))
+        self.model_linear, self.model_angular = linear, angular
+        self.defaults.setToolTip(f"Scaled to the model: {linear:.3g} mm, {degrees(angular):.3g}\u00b0")
 
     def _set_model_defaults(self):
         self.linear.setValue(self.model_linear)

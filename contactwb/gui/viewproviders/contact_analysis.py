@@ -146,7 +146,8 @@ class ViewProviderContactAnalysis(ViewProvider):
         self._stale = False
         contacts = [c for c in self.Object.Group if is_contact(c) and c.FacesA and c.FacesB]
         self.update_switch()
-        fuzzy = max(10 * self.Object.LinearTolerance.Value, 1e-4)
+        from contactwb.document.units import tolerances_used
+        fuzzy = max(10 * tolerances_used(self.Object)[0], 1e-4)
         try:
             self.overlay.build(contacts, fuzzy=fuzzy, group=self.Object)
         except Exception as error:  # a drawing problem must not break the document
