@@ -7,12 +7,17 @@
 //  4. the proxy in contact: the collision stage's contact query (the proxy's
 //     constraint source) with the Axis seated and every partition switched on
 //     (in contact with all its neighbours), and the ticks of a trial where the
-//     Axis is pushed sideways in its bores, then pulled out (thread CPU time).
+//     Axis is pushed sideways in its bores, then pulled out (thread CPU time);
+//     and Screw-1 seated, the hand pushing 0.2 mm into the seat and circling
+//     0.3 mm sideways (bench_realtime_loop.py's hand), in lockstep: its ticks'
+//     CPU time and the contact queries each makes.
 //
-//   bench_haptics [--seconds S] [--triangles N] [--proxy-only] [MOTOR.step]
+//   bench_haptics [--seconds S] [--triangles N] [--proxy-only | --screw-only] [MOTOR.step]
+// (--proxy-only: sections 4 and 5; --screw-only: section 5)
 #include <time.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -48,6 +53,38 @@ TrialScript insertion() {
   return s;
 }
 
+// The loop's collision query, counted: contact queries per tick and their CPU time.
+class CountingQuery final : public CollisionQuery {
+ public:
+  explicit CountingQuery(CollisionQuery& inner) : inner_(inner) {}
+  bool collides(const Pose& pose, int group) noexcept override { return inner_.collides(pose, group); }
+  int contacts(const Pose& pose, int group, double reach, ContactPoint* out, int capacity) noexcept override {
+    ++queries;
+    const double t0 = bench::thread_cpu_seconds();
+    const int n = inner_.contacts(pose, group, reach, out, capacity);
+    query_seconds.push_back(bench::thread_cpu_seconds() - t0);
+    return n;
+  }
+  double radius_about(const Vec3& centre) const noexcept override { return inner_.radius_about(centre); }
+  long queries = 0;
+  std::vector<double> query_seconds;
+
+ private:
+  CollisionQuery& inner_;
+};
+
+// bench_realtime_loop.py's hand: the part starts seated, the hand pushes 0.2 mm
+// into the seat and circles 0.3 mm sideways (keys every 50 ms).
+std::vector<HandKey> pushing_hand(double seconds, const Vec3& centre) {
+  std::vector<HandKey> keys;
+  const int steps = static_cast<int>(std::lround(seconds / 0.05));
+  for (int i = 0; i <= steps; ++i) {
+    const double t = i * 0.05;
+    keys.push_back({t, offset_pose(Vec3(0.3 * std::sin(2 * t), 0.3 * std::cos(2 * t), -0.2), Vec3::Zero(), centre)});
+  }
+  return keys;
+}
+
 std::string load_average() {
   std::ifstream in("/proc/loadavg");
   std::string a;
@@ -61,11 +98,12 @@ int main(int argc, char** argv) {
   std::string path = std::string(CONTACTS_SAMPLES) + "/motor.step";
   double seconds = 10;
   std::size_t want_triangles = 100000;
-  bool proxy_only = false;
+  bool proxy_only = false, screw_only = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--triangles") && i + 1 < argc) want_triangles = std::atol(argv[++i]);
     else if (!std::strcmp(argv[i], "--proxy-only")) proxy_only = true;
+    else if (!std::strcmp(argv[i], "--screw-only")) proxy_only = screw_only = true;
     else path = argv[i];
   }
   const AssemblyResult read = read_step(path);
@@ -195,7 +233,7 @@ int main(int argc, char** argv) {
   }  // !proxy_only
 
   // 4. The proxy in contact (default scene: deflection 0.01 mm).
-  {
+  if (!screw_only) {
     ContactPoint contacts[kMaxContacts];
     std::vector<double> query_cpu;
     int touching = 0;
@@ -241,6 +279,48 @@ int main(int argc, char** argv) {
                   contact_tick_cpu.size(), percentile(contact_tick_cpu, 50) * 1e6, percentile(contact_tick_cpu, 99) * 1e6,
                   *std::max_element(contact_tick_cpu.begin(), contact_tick_cpu.end()) * 1e6);
     std::printf("\n");
+  }
+
+  // 5. Screw-1 seated, the realtime bench's pushing hand, in lockstep.
+  {
+    auto screw = TrialScene::build(read.assembly, "Screw-1", SceneOptions{}, status);
+    if (!screw) {
+      std::fprintf(stderr, "%s\n", status.describe().c_str());
+      return 1;
+    }
+    const Vec3 c = screw->centre();
+    SimulatedHand hand(HandScript(pushing_hand(3.0, c)), HandParameters{}, c, Pose::Identity());
+    ServoConfig config;
+    config.centre = c;
+    config.lockstep = true;
+    config.inertia_per_mass = screw->inertia_per_mass();
+    CountingQuery counted(screw->collision());
+    ServoLoop loop(hand, config, Pose::Identity());
+    loop.set_joint_finder(&screw->finder());
+    loop.set_collision(&counted);
+    std::vector<double> tick_cpu;
+    const int ticks = 3000;
+    int engaged = 0;
+    counted.query_seconds.reserve(20 * ticks);
+    for (int i = 0; i < ticks; ++i) {
+      const double t0 = cpu_seconds();
+      loop.step_lockstep();
+      tick_cpu.push_back(cpu_seconds() - t0);
+      engaged += loop.last().engaged;
+    }
+    std::printf("| Screw-1 seated, hand pushing 0.2 mm into the seat and circling 0.3 mm (lockstep, thread CPU time) "
+                "| samples | p50 | p99 | max |\n");
+    std::printf("|---|---|---|---|---|\n");
+    std::printf("| servo tick (%.2f contact queries per tick, end-pose query skipped on %llu ticks, engaged %d of %d "
+                "ticks) | %zu | %.1f us | %.1f us | %.0f us |\n",
+                double(counted.queries) / ticks, static_cast<unsigned long long>(loop.end_checks_skipped()), engaged, ticks, tick_cpu.size(), percentile(tick_cpu, 50) * 1e6,
+                percentile(tick_cpu, 99) * 1e6, *std::max_element(tick_cpu.begin(), tick_cpu.end()) * 1e6);
+    if (!counted.query_seconds.empty())
+      std::printf("| its contact queries | %zu | %.1f us | %.1f us | %.0f us |\n", counted.query_seconds.size(),
+                  percentile(counted.query_seconds, 50) * 1e6, percentile(counted.query_seconds, 99) * 1e6,
+                  *std::max_element(counted.query_seconds.begin(), counted.query_seconds.end()) * 1e6);
+    const Vec3 end = loop.last().proxy * c - c;
+    std::printf("| (final offset of the centre: %.6f, %.6f, %.6f mm) | | | | |\n\n", end.x(), end.y(), end.z());
   }
   std::printf("Machine load average at end: %s\n", load_average().c_str());
   return 0;

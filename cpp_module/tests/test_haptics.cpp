@@ -338,6 +338,42 @@ TEST(ServoLoop, CollisionHolds) {
   EXPECT_LT(loop.last().wrench.force.x(), -0.5);
 }
 
+// A part held still against a wall (the hand pushing it there) moves no point
+// at all: the end pose's query could only repeat the start's, so a tick makes
+// one contact query, not two. While it still moves towards the wall within
+// reach, its steps (0.15 mm a tick) are checked at their end pose as before.
+TEST(ServoLoop, PartHeldStillAgainstAWallMakesOneQueryPerTick) {
+  SimulatedHand hand(HandScript({{0.0, Pose::Identity()}, {0.5, offset_pose(Vec3(10, 0, 0), Vec3::Zero(), Vec3::Zero())}}),
+                     HandParameters{}, Vec3::Zero(), Pose::Identity());
+  ServoConfig config = lockstep_config();
+  ServoLoop loop(hand, config, Pose::Identity());
+  Wall wall(4.0);
+  loop.set_collision(&wall);
+  int approach_queries = 0, approach_ticks = 0;
+  for (int i = 0; i < 1500; ++i) {
+    const double x = loop.proxy().translation().x();
+    const int before = wall.queries;
+    loop.step_lockstep();
+    // The wall within the query's reach (0.044 mm: the step's 0.02 mm, the hand's speed, plus the
+    // push-out and skin), the part still 0.01 mm or more from its rest: its step moves it more
+    // than the 0.002 mm allowed (two such ticks, at x 3.960 and 3.980).
+    if (x > 4.0 - 0.04 && x < 4.0 - 0.01) {
+      approach_queries += wall.queries - before;
+      ++approach_ticks;
+    }
+  }
+  EXPECT_EQ(approach_ticks, 2);
+  EXPECT_EQ(approach_queries, 2 * approach_ticks);  // start and end pose of each step
+  EXPECT_NEAR(loop.proxy().translation().x(), 4.0 - config.contact_skin, 1e-9);
+  const int queries = wall.queries;
+  const std::uint64_t skipped = loop.end_checks_skipped();
+  for (int i = 0; i < 500; ++i) loop.step_lockstep();
+  EXPECT_EQ(wall.queries - queries, 500);
+  EXPECT_EQ(loop.end_checks_skipped() - skipped, 500u);
+  EXPECT_NEAR(loop.proxy().translation().x(), 4.0 - config.contact_skin, 1e-9);  // still resting there
+  EXPECT_LT(loop.last().wrench.force.x(), -0.5);                                 // pushed into it
+}
+
 TEST(ServoLoop, ForceAndStiffnessClampedToTheDevice) {
   HandParameters stiff_hand;
   stiff_hand.stiffness = 10;  // a hand pushing hard

@@ -159,6 +159,9 @@ class ServoLoop {
   // (more than config.late_wakeup_us after their absolute deadline; thread mode only).
   std::uint64_t overruns() const { return overruns_; }
   std::uint64_t long_steps() const { return long_steps_; }
+  // Steps whose end-pose contact query was not made: the step moved no point
+  // of the part further than the allowed depth left room for (move_proxy).
+  std::uint64_t end_checks_skipped() const { return end_checks_skipped_; }
   double step_percentile_us(double p) const;  // from a 0.25 us histogram
   double step_max_us() const { return step_max_us_; }
   // Measured from wall time between tick starts (thread mode); 0 in lockstep.
@@ -236,7 +239,7 @@ class ServoLoop {
   std::atomic<bool> memory_locked_{false};
   std::thread thread_;
 
-  std::uint64_t ticks_ = 0, overruns_ = 0, long_steps_ = 0;
+  std::uint64_t ticks_ = 0, overruns_ = 0, long_steps_ = 0, end_checks_skipped_ = 0;
   std::uint64_t late_wakeups_ = 0, wake_count_ = 0;
   double wake_latency_max_us_ = 0, wake_latency_sum_us_ = 0;
   std::vector<std::uint32_t> step_histogram_;  // allocated once: 0.25 us bins
