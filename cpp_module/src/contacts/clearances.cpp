@@ -17,11 +17,6 @@ namespace {
 
 constexpr double kNotAFit = std::numeric_limits<double>::quiet_NaN();
 
-double distance_to_line(const gp_Pnt& p, const gp_Pnt& on_line, const gp_Dir& dir) {
-  const gp_Vec v(on_line, p);
-  return v.Crossed(gp_Vec(dir)).Magnitude();
-}
-
 // The radial gap of a convex/concave pair of partitions on the same axis or
 // centre (negative: the convex one is the larger, they overlap), or NaN when
 // they do not form a fit.

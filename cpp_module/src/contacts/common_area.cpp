@@ -223,11 +223,6 @@ bool parallel(const gp_Dir& a, const gp_Dir& b, double angular) {
   return std::abs(a.Dot(b)) >= std::cos(angular);
 }
 
-double distance_to_line(const gp_Pnt& p, const gp_Pnt& origin, const gp_Dir& axis) {
-  const gp_Vec v(origin, p);
-  return v.Crossed(gp_Vec(axis)).Magnitude();
-}
-
 gp_Dir any_perpendicular(const gp_Dir& axis) {
   const gp_Dir trial = std::abs(axis.X()) < 0.9 ? gp_Dir(1, 0, 0) : gp_Dir(0, 1, 0);
   return gp_Dir(gp_Vec(axis).Crossed(gp_Vec(trial)));

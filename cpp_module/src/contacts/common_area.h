@@ -15,6 +15,7 @@
 #include <Geom_Surface.hxx>
 #include <Precision.hxx>
 #include <ShapeAnalysis_Surface.hxx>
+#include <gp_Vec.hxx>
 #include <cmath>
 
 #include "contactcore/contacts/contacts.h"
@@ -34,6 +35,12 @@ inline bool boxes_meet(const Bnd_Box& a, const Bnd_Box& b, double gap) {
   Bnd_Box grown = a;
   grown.Enlarge(gap);
   return !grown.IsOut(b);
+}
+
+// Distance from p to the line through `origin` along `axis`.
+inline double distance_to_line(const gp_Pnt& p, const gp_Pnt& origin, const gp_Dir& axis) {
+  const gp_Vec v(origin, p);
+  return v.Crossed(gp_Vec(axis)).Magnitude();
 }
 
 // A point on a face (within tolerance of its surface and inside its

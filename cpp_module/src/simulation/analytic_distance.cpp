@@ -3,6 +3,7 @@
 // signed gap across the common band), accepted only when both points lie in
 // the partitions' bounds; everything else goes back to the meshes.
 #include "contactcore/simulation/analytic_distance.h"
+#include "contactcore/common/angles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,15 +12,14 @@ namespace contactcore {
 
 namespace {
 
-using Vec3 = Eigen::Vector3d;
-constexpr double kTwoPi = 6.283185307179586;
+using Vector3 = Eigen::Vector3d;
 constexpr double kAngularSlack = 1e-9;  // rad, on the angular intervals
 
-Vec3 to_vec(const gp_XYZ& p) { return Vec3(p.X(), p.Y(), p.Z()); }
+Vector3 to_vec(const gp_XYZ& p) { return Vector3(p.X(), p.Y(), p.Z()); }
 
 // Any unit vector perpendicular to `axis`, preferring `ref` when it is.
-Vec3 perpendicular(const Vec3& axis, const Vec3& ref) {
-  Vec3 v = ref - ref.dot(axis) * axis;
+Vector3 perpendicular(const Vector3& axis, const Vector3& ref) {
+  Vector3 v = ref - ref.dot(axis) * axis;
   if (v.norm() < 1e-9) v = axis.unitOrthogonal();
   return v.normalized();
 }
@@ -53,7 +53,7 @@ bool inside_outline(const std::vector<std::vector<Point2>>& loops, double qx, do
 }
 
 // Cylinder axis points: a point on b's axis line at coordinate s.
-Vec3 on_axis(const AnalyticPatch& p, double s) { return p.location + s * p.axis; }
+Vector3 on_axis(const AnalyticPatch& p, double s) { return p.location + s * p.axis; }
 
 bool swap_result(bool ok, AnalyticContact& out) {
   if (ok) {
@@ -68,16 +68,16 @@ bool swap_result(bool ok, AnalyticContact& out) {
 bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
   if (a.axis.dot(b.axis) > -std::cos(tol.angle)) return false;  // not facing, or tilted: an edge is closest
   if (a.loops.empty() || b.loops.empty()) return false;
-  const Vec3& n = b.axis;
+  const Vector3& n = b.axis;
   out.gap = (a.location - b.location).dot(n);
   out.normal = n;
   // A point of one outline inside the other: the faces overlap there.
-  const Vec3 ax = a.ref_dir, ay = a.axis.cross(a.ref_dir);
-  const Vec3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
+  const Vector3 ax = a.ref_dir, ay = a.axis.cross(a.ref_dir);
+  const Vector3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
   for (const auto& loop : a.loops)
     for (const Point2& v : loop) {
-      const Vec3 p = a.location + v.x * ax + v.y * ay;
-      const Vec3 d = p - b.location;
+      const Vector3 p = a.location + v.x * ax + v.y * ay;
+      const Vector3 d = p - b.location;
       if (!inside_outline(b.loops, d.dot(bx), d.dot(by))) continue;
       out.point_a = p;
       out.point_b = p - out.gap * n;
@@ -85,8 +85,8 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
     }
   for (const auto& loop : b.loops)
     for (const Point2& v : loop) {
-      const Vec3 p = b.location + v.x * bx + v.y * by;
-      const Vec3 d = p - a.location;
+      const Vector3 p = b.location + v.x * bx + v.y * by;
+      const Vector3 d = p - a.location;
       if (!inside_outline(a.loops, d.dot(ax), d.dot(ay))) continue;
       out.point_b = p;
       out.point_a = p + out.gap * n;
@@ -98,14 +98,14 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
 // A convex cylinder or sphere (a) against a plane (b).
 bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
   if (a.side != MaterialSide::Convex) return false;
-  const Vec3& n = b.axis;
-  Vec3 lowest;
+  const Vector3& n = b.axis;
+  Vector3 lowest;
   if (a.kind == SurfaceKind::Sphere) {
     lowest = a.location - a.radius * n;
   } else {
-    const Vec3 w = n - n.dot(a.axis) * a.axis;
+    const Vector3 w = n - n.dot(a.axis) * a.axis;
     if (w.norm() < 1e-6) return false;  // axis along the normal: an end circle (an edge) is closest
-    const Vec3 down = w.normalized();
+    const Vector3 down = w.normalized();
     // Height along n is linear in the axial coordinate: lowest at an end, or anywhere when parallel.
     const double slope = a.axis.dot(n);
     double s;
@@ -130,16 +130,16 @@ bool shaft_in_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticConta
   const double lo = std::max(std::min(s1, s2), b.axial_min), hi = std::min(std::max(s1, s2), b.axial_max);
   if (hi - lo <= 1e-9) return false;  // no common band: rims are closest
   double best_offset = -1;
-  Vec3 best_u, best_shaft, best_s_point;
+  Vector3 best_u, best_shaft, best_s_point;
   double best_s = lo;
   for (double s : {lo, hi}) {
     const double t = (s - base) / c;
-    const Vec3 shaft = on_axis(a, t);
-    const Vec3 offset = shaft - on_axis(b, s);
+    const Vector3 shaft = on_axis(a, t);
+    const Vector3 offset = shaft - on_axis(b, s);
     const double e = offset.norm();
     if (e > best_offset) {
       best_offset = e;
-      best_u = e > 1e-12 ? Vec3(offset / e) : perpendicular(b.axis, b.ref_dir);
+      best_u = e > 1e-12 ? Vector3(offset / e) : perpendicular(b.axis, b.ref_dir);
       best_shaft = shaft;
       best_s = s;
     }
@@ -156,9 +156,9 @@ bool shaft_in_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticConta
 
 // Closest points of two segments p0 + s d0 (s in [0, l0]) and p1 + t d1; false
 // unless both lie strictly inside (else an end, a rim, is closest) or the lines are parallel.
-bool segment_closest(const Vec3& p0, const Vec3& d0, double l0, const Vec3& p1, const Vec3& d1, double l1,
+bool segment_closest(const Vector3& p0, const Vector3& d0, double l0, const Vector3& p1, const Vector3& d1, double l1,
                      double& s, double& t) {
-  const Vec3 r = p0 - p1;
+  const Vector3 r = p0 - p1;
   const double b = d0.dot(d1), c = d0.dot(r), f = d1.dot(r), denom = 1 - b * b;
   if (denom < 1e-12) {
     // Parallel: the middle of the common range.
@@ -176,7 +176,7 @@ bool segment_closest(const Vec3& p0, const Vec3& d0, double l0, const Vec3& p1, 
 
 // Two convex revolution primitives reduced to cores (a segment or a point) and radii.
 bool convex_cores(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
-  Vec3 ca, cb;
+  Vector3 ca, cb;
   if (a.kind == SurfaceKind::Sphere && b.kind == SurfaceKind::Sphere) {
     ca = a.location;
     cb = b.location;
@@ -197,10 +197,10 @@ bool convex_cores(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContac
   } else {
     return false;
   }
-  const Vec3 d = ca - cb;
+  const Vector3 d = ca - cb;
   const double dist = d.norm();
   if (dist < 1e-9) return false;  // concentric: every direction ties
-  const Vec3 u = d / dist;
+  const Vector3 u = d / dist;
   out.gap = dist - a.radius - b.radius;
   out.normal = u;
   out.point_a = ca - a.radius * u;
@@ -210,17 +210,17 @@ bool convex_cores(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContac
 
 // A ball (convex sphere a) in a cup (concave sphere) or a bore (concave cylinder b).
 bool ball_inside(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
-  Vec3 centre;
+  Vector3 centre;
   if (b.kind == SurfaceKind::Sphere) {
     centre = b.location;
   } else {
     const double t = (a.location - b.location).dot(b.axis);
     centre = on_axis(b, t);
   }
-  const Vec3 d = a.location - centre;
+  const Vector3 d = a.location - centre;
   const double e = d.norm();
   if (e > b.radius) return false;  // the ball's centre outside the cup or bore
-  const Vec3 u = e > 1e-12 ? Vec3(d / e) : perpendicular(b.axis, b.ref_dir);
+  const Vector3 u = e > 1e-12 ? Vector3(d / e) : perpendicular(b.axis, b.ref_dir);
   out.gap = b.radius - a.radius - e;
   out.normal = -u;
   out.point_a = a.location + a.radius * u;
@@ -233,11 +233,11 @@ bool cone_seat(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& 
   if (std::abs(a.half_angle - b.half_angle) > tol.angle) return false;
   if (a.axis.dot(b.axis) < std::cos(tol.parallel)) return false;  // one opening direction
   const double alpha = b.half_angle, sin_a = std::sin(alpha), cos_a = std::cos(alpha);
-  const Vec3 apart = a.location - b.location;
+  const Vector3 apart = a.location - b.location;
   const double delta = apart.dot(b.axis);
-  const Vec3 lateral = apart - delta * b.axis;
+  const Vector3 lateral = apart - delta * b.axis;
   const double e = lateral.norm();
-  const Vec3 u = e > 1e-12 ? Vec3(lateral / e) : perpendicular(b.axis, b.ref_dir);
+  const Vector3 u = e > 1e-12 ? Vector3(lateral / e) : perpendicular(b.axis, b.ref_dir);
   // a's band in b's axial coordinate (parallel axes: shifted by delta).
   const double lo = std::max(a.axial_min + delta, b.axial_min), hi = std::min(a.axial_max + delta, b.axial_max);
   if (hi - lo <= 1e-9) return false;  // chamfers at different radii: no band in common
@@ -245,12 +245,12 @@ bool cone_seat(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& 
   // The tilt between the axes moves a's generator on side u; take the end of the band nearer the seat.
   double best = 1e300;
   for (double s : {lo, hi}) {
-    const Vec3 seat = on_axis(b, s) + s * std::tan(alpha) * u;
-    const Vec3 n = -cos_a * u + sin_a * b.axis;  // the seat's normal into the cavity
+    const Vector3 seat = on_axis(b, s) + s * std::tan(alpha) * u;
+    const Vector3 n = -cos_a * u + sin_a * b.axis;  // the seat's normal into the cavity
     // a's surface point on side u at this height: its axis point plus its radius there.
     const double t = (on_axis(b, s) - a.location).dot(a.axis);
-    const Vec3 side = perpendicular(a.axis, u);
-    const Vec3 plug = a.location + t * a.axis + t * std::tan(a.half_angle) * side;
+    const Vector3 side = perpendicular(a.axis, u);
+    const Vector3 plug = a.location + t * a.axis + t * std::tan(a.half_angle) * side;
     const double gap = (plug - seat).dot(n);
     if (gap < best) {
       best = gap;
@@ -300,15 +300,15 @@ AnalyticPatch placed(const AnalyticPatch& patch, const Eigen::Isometry3d& motion
 }
 
 bool within_patch(const AnalyticPatch& patch, const Eigen::Vector3d& p, double slack) noexcept {
-  const Vec3 d = p - patch.location;
+  const Vector3 d = p - patch.location;
   if (patch.kind == SurfaceKind::Plane) {
-    const Vec3 y = patch.axis.cross(patch.ref_dir);
+    const Vector3 y = patch.axis.cross(patch.ref_dir);
     return inside_outline(patch.loops, d.dot(patch.ref_dir), d.dot(y));
   }
   if (!revolution(patch.kind)) return false;
   const double axial = d.dot(patch.axis);
   if (axial < patch.axial_min - slack || axial > patch.axial_max + slack) return false;
-  const Vec3 y = patch.axis.cross(patch.ref_dir);
+  const Vector3 y = patch.axis.cross(patch.ref_dir);
   const double x = d.dot(patch.ref_dir), yy = d.dot(y);
   if (std::hypot(x, yy) < 1e-12) return true;  // on the axis (a pole): every angle
   double angle = std::atan2(yy, x);

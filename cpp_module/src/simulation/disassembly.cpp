@@ -17,14 +17,13 @@
 #include "contactcore/joints/joints.h"
 #include "contactcore/common/occt_guard.h"
 #include "common/union_find.h"
+#include "simulation/point3.h"
 
 namespace contactcore {
 
 namespace {
 
 constexpr double kParallel = 1e-9;
-
-double dot(const Direction& a, const Direction& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 Direction unit(const Direction& d) {
   const double length = std::sqrt(dot(d, d));

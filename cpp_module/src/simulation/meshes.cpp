@@ -36,20 +36,13 @@
 #include <TopoDS_Vertex.hxx>
 
 #include "contactcore/common/angles.h"
+#include "simulation/point3.h"
 
 namespace contactcore {
 
 namespace {
 
-using Vec3 = std::array<double, 3>;
 using UV = std::array<double, 2>;
-
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
@@ -80,13 +73,13 @@ Status face_failure(int face, const std::string& message) {
 // so each triangle is cut from the midpoint of its longest edge and angles stay
 // bounded. A split edge is split in both its triangles (the midpoint is keyed
 // by the edge's two global vertices), so the mesh stays conforming.
-Status refine(std::vector<WorkTriangle>& triangles, std::vector<Vec3>& vertices,
+Status refine(std::vector<WorkTriangle>& triangles, std::vector<Point3>& vertices,
               const std::vector<BRepAdaptor_Surface>& surfaces, double max_edge, Progress* progress) {
   if (max_edge <= 0) return Status::success();
   constexpr std::size_t kMaxTriangles = 20'000'000;
   const double limit2 = max_edge * max_edge;
   auto length2 = [&](int a, int b) {
-    const Vec3 d = sub(vertices[a], vertices[b]);
+    const Point3 d = sub(vertices[a], vertices[b]);
     return dot(d, d);
   };
   // Index k of the longest edge (v[k], v[k+1]); ties broken by the edge key.
@@ -223,7 +216,7 @@ MeshResult mesh_body(const TopoDS_Shape& shape, const BodyPartitions& partitions
       return result;
     }
 
-    std::vector<Vec3> vertices;
+    std::vector<Point3> vertices;
     std::vector<WorkTriangle> work;
     std::vector<BRepAdaptor_Surface> surfaces;
     surfaces.reserve(faces.Extent());
@@ -473,11 +466,11 @@ MeshQuality mesh_quality(const TaggedMesh& mesh) {
   aspects.reserve(mesh.triangles.size());
   double min_angle = kPi;
   for (const auto& t : mesh.triangles) {
-    std::array<Vec3, 3> p{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
+    std::array<Point3, 3> p{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
     double longest = 0;
     for (int k = 0; k < 3; ++k) {
       ++uses[edge_key(t[k], t[(k + 1) % 3])];
-      const Vec3 e1 = sub(p[(k + 1) % 3], p[k]), e2 = sub(p[(k + 2) % 3], p[k]);
+      const Point3 e1 = sub(p[(k + 1) % 3], p[k]), e2 = sub(p[(k + 2) % 3], p[k]);
       const double l1 = norm(e1), l2 = norm(e2);
       longest = std::max(longest, l1);
       if (l1 > 0 && l2 > 0) min_angle = std::min(min_angle, std::acos(std::clamp(dot(e1, e2) / (l1 * l2), -1.0, 1.0)));
