@@ -126,6 +126,16 @@ def property_editor_text(obj, name):
     return None
 
 
+def contact_readings(contact, widget, row):
+    """A contact's area, span and radius: its values, and the texts the property
+    editor and the contact table's row `row` write for them."""
+    return {"label2": contact.Label2, "partial": contact.Partial,
+            "area": contact.Area.Value, "span": contact.Span.Value, "radius": contact.Radius.Value,
+            "editor": {n: property_editor_text(contact, n) for n in ("Area", "Span", "Radius")},
+            "table": {"Area": widget.table.item(row, 4).text(), "Span": widget.table.item(row, 5).text(),
+                      "Radius": widget.table.item(row, 6).text()}}
+
+
 def areas_alike():
     """One contact's area in the tree's description, the property editor and the table."""
     from contactwb.document.identify import analyses, is_contact
@@ -191,11 +201,7 @@ def quantities_alike():
     seen = []
     for contact in (cylinders[0], cylinders[-1]):
         row = rows[contact.Name]
-        seen.append({"name": contact.Name, "label2": contact.Label2, "partial": contact.Partial,
-                     "area": contact.Area.Value, "span": contact.Span.Value, "radius": contact.Radius.Value,
-                     "editor": {n: property_editor_text(contact, n) for n in ("Area", "Span", "Radius")},
-                     "table": {"Area": widget.table.item(row, 4).text(), "Span": widget.table.item(row, 5).text(),
-                               "Radius": widget.table.item(row, 6).text()}})
+        seen.append(dict(contact_readings(contact, widget, row), name=contact.Name))
     result["contacts"] = seen
     # the picture: the analysis selected (its tolerances in the property editor) beside the table
     FreeCADGui.Selection.clearSelection()
@@ -308,11 +314,7 @@ def cases_alike():
         seen = []
         for contact in (c for c in group.Group if is_contact(c)):
             row = rows[contact.Name]
-            seen.append({"type": contact.ContactType, "partial": contact.Partial, "label2": contact.Label2,
-                         "area": contact.Area.Value, "span": contact.Span.Value, "radius": contact.Radius.Value,
-                         "editor": {n: property_editor_text(contact, n) for n in ("Area", "Span", "Radius")},
-                         "table": {"Area": widget.table.item(row, 4).text(), "Span": widget.table.item(row, 5).text(),
-                                   "Radius": widget.table.item(row, 6).text()}})
+            seen.append(dict(contact_readings(contact, widget, row), type=contact.ContactType))
         result[name] = seen
         FreeCADGui.Selection.clearSelection()
         widget.parent().hide()
