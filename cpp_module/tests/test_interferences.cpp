@@ -541,7 +541,18 @@ TEST(Separation, ProvesR08sTubeOnItsNutApart) {
     if (read.assembly.bodies[i].name == "SOLID.5") tube = static_cast<int>(i);
     if (read.assembly.bodies[i].name == "PRT0001") nut = static_cast<int>(i);
   }
-  ASSERT_GE(tube, 0);
-  ASSERT_GE(nut, 0);
+  ASSERT_EQ(tube, 13);  // the file's order of products, as XDE reads it
+  ASSERT_EQ(nut, 14);
   EXPECT_TRUE(apart(result, tube, nut));
+  // Apart, yet touching: one plane contact between them, on y = 188.5, and no interference.
+  int touching = 0;
+  for (const Contact& contact : result.contacts) {
+    if (contact.body_a != tube || contact.body_b != nut) continue;
+    ++touching;
+    EXPECT_EQ(contact.type, ContactType::PLF);
+    EXPECT_NEAR(contact.point.Y(), 188.5, 1e-6);
+  }
+  EXPECT_EQ(touching, 1);
+  for (const Interference& interference : result.interferences)
+    EXPECT_FALSE(interference.body_a == tube && interference.body_b == nut);
 }
