@@ -7,6 +7,7 @@
 #include "bodies/open_wires.h"
 #include "bodies/step_products.h"
 #include "bodies/step_placement_lists.h"
+#include "bodies/step_scanner_input.h"
 
 #include "contactcore/bodies/instances.h"
 #include "contactcore/common/parallel.h"
@@ -408,19 +409,22 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
     ShortenedPlacementLists shortened;
     IFSelect_ReturnStatus parsed;
     if (mode == StepReadMode::Products) {
+      std::string text;
       {
         std::ifstream in(path, std::ios::binary);
-        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        shortened = shorten_placement_lists(text);
+        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
       }
-      if (shortened.changed()) {
-        TextBuffer buffer(shortened.text);
-        std::istream stream(&buffer);
+      shortened = shorten_placement_lists(text);
+      if (shortened.changed()) std::string().swap(text);
+      // OCCT's scanner fed in blocks, not a character per call (step_scanner_input.h).
+      TextBuffer buffer(shortened.changed() ? shortened.text : text);
+      std::istream stream(&buffer);
+      {
+        const detail::BlockReadScope blocks(buffer);
         parsed = reader.ChangeReader().ReadStream(path.c_str(), stream);
-        std::string().swap(shortened.text);  // parsed: the model holds it now
-      } else {
-        parsed = reader.ReadFile(path.c_str());
       }
+      std::string().swap(shortened.text);  // parsed: the model holds it now
+      std::string().swap(text);
     } else {
       parsed = reader.ReadFile(path.c_str());
     }
