@@ -7,6 +7,7 @@
 #include <random>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
@@ -17,7 +18,10 @@
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <GProp_GProps.hxx>
+#include <TopLoc_Location.hxx>
+#include <gp_Ax1.hxx>
 #include <gp_Ax2.hxx>
+#include <gp_Trsf.hxx>
 
 #include "contacts/boundary_crossing.h"
 #include "contactcore/contacts/contacts.h"
@@ -555,4 +559,56 @@ TEST(Separation, ProvesR08sTubeOnItsNutApart) {
   EXPECT_EQ(touching, 1);
   for (const Interference& interference : result.interferences)
     EXPECT_FALSE(interference.body_a == tube && interference.body_b == nut);
+}
+
+TEST(Interferences, PairsPlacedAlikeTakeTheOutcomeOfTheirFirst) {
+  // Four copies (shared shapes, one turned a quarter about z) of a plate
+  // with a press-fitted shaft (radius 5.05 in a bore of 5) and of a block
+  // crossed by a pin with no hole (a Boolean common): the pass tests one pair
+  // of each placement (pair_key.h) and gives the others its outcome; the
+  // same interferences, pairs and volumes, as testing every pair (instances
+  // not reused: every body its own source).
+  const TopoDS_Shape plate = BRepAlgoAPI_Cut(box(-20, -20, 0, 40, 40, 10), cylinder(5, 10, gp_Pnt(0, 0, 0))).Shape();
+  const TopoDS_Shape shaft = cylinder(5.05, 30, gp_Pnt(0, 0, -10));
+  const TopoDS_Shape block = box(30, -10, 0, 20, 20, 10);
+  const TopoDS_Shape pin = cylinder(2, 30, gp_Pnt(40, 0, -10));
+  std::vector<std::pair<std::string, TopoDS_Shape>> bodies;
+  for (int copy = 0; copy < 4; ++copy) {
+    gp_Trsf place;
+    place.SetTranslation(gp_Vec(0, 100.0 * copy, 0));
+    if (copy == 3) {
+      gp_Trsf turn;
+      turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp::DZ()), M_PI / 2);
+      place.Multiply(turn);
+    }
+    const TopLoc_Location at(place);
+    const std::string n = std::to_string(copy);
+    bodies.push_back({"plate" + n, plate.Moved(at)});
+    bodies.push_back({"shaft" + n, shaft.Moved(at)});
+    bodies.push_back({"block" + n, block.Moved(at)});
+    bodies.push_back({"pin" + n, pin.Moved(at)});
+  }
+  const Assembly assembly = make_assembly(bodies);
+  ContactOptions each_pair;
+  each_pair.reuse_instances = false;
+  const ContactsResult reused = find_contacts(assembly, ContactOptions{});
+  const ContactsResult reference = find_contacts(assembly, each_pair);
+  ASSERT_TRUE(reused.status.ok()) << reused.status.describe();
+  ASSERT_TRUE(reference.status.ok()) << reference.status.describe();
+  ASSERT_EQ(reused.interferences.size(), 8u);
+  ASSERT_EQ(reference.interferences.size(), 8u);
+  const double ring = M_PI * (5.05 * 5.05 - 5 * 5) * 10;
+  const double crossing = volume_of(BRepAlgoAPI_Common(block, pin).Shape());
+  for (std::size_t i = 0; i < 8; ++i) {
+    SCOPED_TRACE("interference " + std::to_string(i));
+    const Interference& got = reused.interferences[i];
+    const Interference& expected = reference.interferences[i];
+    EXPECT_EQ(got.body_a, expected.body_a);
+    EXPECT_EQ(got.body_b, expected.body_b);
+    EXPECT_EQ(got.body_a, static_cast<int>(i) * 2);  // plate k with shaft k, block k with pin k
+    EXPECT_EQ(got.body_b, static_cast<int>(i) * 2 + 1);
+    const double exact = i % 2 == 0 ? ring : crossing;
+    EXPECT_NEAR(got.volume, exact, 1e-6 * exact);
+    EXPECT_NEAR(got.volume, expected.volume, 1e-6 * exact);
+  }
 }

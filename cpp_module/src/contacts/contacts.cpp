@@ -6,6 +6,7 @@
 #include "contactcore/bodies/instances.h"
 #include "contacts/higher_pairs.h"
 #include "contacts/interferences.h"
+#include "contacts/pair_key.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/parallel.h"
 #include "contacts/validity.h"
@@ -117,37 +118,6 @@ std::string faces_text(const std::vector<int>& faces) {
   std::string text;
   for (int f : faces) text += (text.empty() ? "Face" : ",Face") + std::to_string(f);
   return text;
-}
-
-// Two bodies' shapes (their instance sources) and the placement of the
-// second relative to the first, rounded far below the tolerance: equal keys,
-// equal contacts up to a rigid motion.
-struct PairKey {
-  int source_a, source_b;
-  std::array<long long, 12> placement;
-  bool operator==(const PairKey& o) const {
-    return source_a == o.source_a && source_b == o.source_b && placement == o.placement;
-  }
-};
-struct PairKeyHash {
-  std::size_t operator()(const PairKey& key) const {
-    std::size_t h = std::hash<long long>()(key.source_a) * 1000003u ^ std::hash<long long>()(key.source_b);
-    for (long long v : key.placement) h = h * 1000003u ^ std::hash<long long>()(v);
-    return h;
-  }
-};
-
-PairKey pair_key(int source_a, int source_b, const Body& a, const Body& b, double linear) {
-  const gp_Trsf relative =
-      a.shape.Location().Transformation().Inverted().Multiplied(b.shape.Location().Transformation());
-  PairKey key{source_a, source_b, {}};
-  for (int row = 1; row <= 3; ++row) {
-    for (int col = 1; col <= 4; ++col) {
-      const double quantum = col == 4 ? linear * 1e-3 : 1e-10;
-      key.placement[(row - 1) * 4 + col - 1] = std::llround(relative.Value(row, col) / quantum);
-    }
-  }
-  return key;
 }
 
 // Span of a box along each axis, grown by `gap`, for the sweep.

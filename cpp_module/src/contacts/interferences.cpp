@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <tuple>
+#include <unordered_map>
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
@@ -26,6 +27,7 @@
 
 #include "contacts/boundary_crossing.h"
 #include "contacts/coaxial_overlap.h"
+#include "contacts/pair_key.h"
 #include "contactcore/common/angles.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/parallel.h"
@@ -285,8 +287,20 @@ double region_common_volume(const TopoDS_Shape& a, const Bnd_Box& box_a, const T
 struct PairOutcome {
   enum Kind { None, PressFit, Overlap, Failed } kind = None;
   double volume = 0;
-  std::string message;
+  // Failed: the test itself failed (an OCCT exception or signal, `failure`
+  // its text), or else the common volume of bodies that seem to overlap could not be computed.
+  bool test_failed = false;
+  std::string failure;
 };
+
+// What a failed outcome says, naming the pair's bodies.
+std::string failure_message(const Assembly& assembly, int a, int b, const PairOutcome& outcome) {
+  if (outcome.test_failed)
+    return "interference test of '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
+           "' failed: " + outcome.failure;
+  return "bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
+         "' seem to overlap but their common volume could not be computed";
+}
 
 // A ball (one convex sphere partition) shares no material with a body whose
 // boundary stays at least its radius (less the tolerance) from its centre,
@@ -352,8 +366,6 @@ PairOutcome test_pair(const Assembly& assembly, const ContactsResult& result, in
   const double common = region_common_volume(shape_a, pa.box, shape_b, pb.box, tol.linear);
   if (common < 0) {
     out.kind = PairOutcome::Failed;
-    out.message = "bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
-                  "' seem to overlap but their common volume could not be computed";
     return out;
   }
   const double smaller = std::min(std::abs(shape_volume(shape_a)), std::abs(shape_volume(shape_b)));
@@ -446,21 +458,44 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
   deep.erase(std::remove_if(deep.begin(), deep.end(), [&](const auto& p) { return dropped[p.first] || dropped[p.second]; }),
              deep.end());
 
+  // Pairs placed alike (pair_key.h: the same two shapes, the second placed
+  // the same way relative to the first: a bolt in each of 5,000 plates)
+  // share material alike: the first pair of each key is tested, the others
+  // take its outcome (volumes are the same under a rigid motion).
+  std::vector<std::size_t> representative(deep.size());
+  std::vector<std::size_t> tested;
+  {
+    const auto source = [&result](int body) {
+      return body < static_cast<int>(result.instance_of.size()) ? result.instance_of[body] : body;
+    };
+    std::unordered_map<PairKey, std::size_t, PairKeyHash> first;
+    first.reserve(deep.size());
+    for (std::size_t k = 0; k < deep.size(); ++k) {
+      const auto [a, b] = deep[k];
+      const double linear = pair_tolerances(result.partitions[a], result.partitions[b]).linear;
+      representative[k] = first.try_emplace(pair_key(source(a), source(b), assembly.bodies[a], assembly.bodies[b], linear), k)
+                              .first->second;
+      if (representative[k] == k) tested.push_back(k);
+    }
+  }
   std::vector<PairOutcome> outcomes(deep.size());
   // OCCT 7.6's Boolean common dereferences a null common block on some damaged
   // shapes (make fuzz, fuzz_brep): its signal handler makes that a failure of
   // the pair (OCC_CATCH_SIGNALS in each worker), not a crash.
   const OcctGuard guard;
-  if (!parallel_for(deep.size(), threads, progress, "interferences", [&](std::size_t k) {
+  if (!parallel_for(tested.size(), threads, progress, "interferences", [&](std::size_t t) {
+        const std::size_t k = tested[t];
         const auto a = deep[k].first, b = deep[k].second;  // not a structured binding: the lambda below captures them (clang 14)
         std::string failure;
         if (!run_guarded([&] { outcomes[k] = test_pair(assembly, result, a, b); }, failure)) {
           outcomes[k].kind = PairOutcome::Failed;
-          outcomes[k].message = "interference test of '" + assembly.bodies[a].name + "' and '" +
-                                assembly.bodies[b].name + "' failed: " + failure;
+          outcomes[k].test_failed = true;
+          outcomes[k].failure = failure;
         }
       }))
     return Status::failure(StatusCode::Cancelled, "cancelled");
+  for (std::size_t k = 0; k < deep.size(); ++k)
+    if (representative[k] != k) outcomes[k] = outcomes[representative[k]];
   std::vector<std::string> copy_failures(copies.size());
   if (!parallel_for(copies.size(), threads, progress, "interferences", [&](std::size_t k) {
         run_guarded([&] { copies[k].volume = std::abs(shape_volume(assembly.bodies[copies[k].body_a].shape)); },
@@ -477,7 +512,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
   for (const Interference& copy : copies) result.interferences.push_back(copy);
   for (std::size_t k = 0; k < deep.size(); ++k) {
     const PairOutcome& o = outcomes[k];
-    if (o.kind == PairOutcome::Failed) result.messages.push_back(o.message);
+    if (o.kind == PairOutcome::Failed) result.messages.push_back(failure_message(assembly, deep[k].first, deep[k].second, o));
     if (o.kind != PairOutcome::PressFit && o.kind != PairOutcome::Overlap) continue;
     result.interferences.push_back({deep[k].first, deep[k].second, o.volume});
   }
