@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <memory>
+#include <string>
+#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -30,6 +33,8 @@
 #include <StepShape_GeometricSet.hxx>
 #include <StepRepr_AssemblyComponentUsage.hxx>
 #include <TCollection_HAsciiString.hxx>
+
+#include "contactcore/common/occt_guard.h"
 
 namespace contactcore {
 
@@ -305,10 +310,45 @@ void check_reference_graph(const Handle(StepData_StepModel)& model, const Interf
 StepModelCheck check_step_model(const Handle(StepData_StepModel)& model, const Interface_Graph& graph) {
   StepModelCheck out;
   if (model.IsNull()) return out;
-  find_damaged(model, out);
-  find_non_finite(model, out);
-  check_assembly_graph(model, out);
+  // The per-entity checks only read the model: they run on a second thread
+  // beside the walk of the reference graph (OCCT's graph, on this thread).
+  // Should they fail there (an OCCT exception or signal on a damaged model),
+  // they run again here, so the read reports the failure as before.
+  StepModelCheck entities;
+  const auto check_entities = [&model](StepModelCheck& into) {
+    find_damaged(model, into);
+    find_non_finite(model, into);
+    check_assembly_graph(model, into);
+  };
+  std::exception_ptr thrown;
+  bool failed = false;
+  std::thread worker([&] {
+    try {
+      std::string failure;
+      failed = !run_guarded([&] { check_entities(entities); }, failure);
+    } catch (...) {
+      thrown = std::current_exception();  // out of memory: rethrown here
+    }
+  });
+  struct Join {
+    std::thread& thread;
+    ~Join() {
+      if (thread.joinable()) thread.join();
+    }
+  } join{worker};
   check_reference_graph(model, graph, out);
+  worker.join();
+  if (thrown) std::rethrow_exception(thrown);
+  if (failed) {
+    entities = StepModelCheck{};
+    check_entities(entities);
+  }
+  out.damaged = std::move(entities.damaged);
+  out.damaged_count = entities.damaged_count;
+  out.non_finite = std::move(entities.non_finite);
+  out.cycle = std::move(entities.cycle);
+  out.assembly_depth = entities.assembly_depth;
+  out.assembly_instances = entities.assembly_instances;
   return out;
 }
 
