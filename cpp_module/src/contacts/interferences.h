@@ -15,7 +15,10 @@ namespace contactcore {
 // second copies (they repeat the first copy's). An overlapping pair keeps
 // every contact it has (a press-fitted tongue seated on its slot's floor, a
 // shoulder on its seat); the interference is reported beside them. Only pairs whose boxes overlap deeper than the tolerance are looked
-// at, on `threads` threads (0: all cores; the result is the same), each by:
+// at, on `threads` threads (0: all cores; the result is the same); of the pairs
+// placed alike (pair_key.h: instances of the same two shapes in the same
+// relative placement, through instance_of) only the first is tested, the
+// others take its outcome. Each tested pair goes through:
 //  1. the same solid twice at one place: its volume;
 //  2. a coaxial press fit (a shaft larger than its bore by at most 50 % of the
 //     bore's radius, over a common axial range): proven by the ring between
