@@ -14,11 +14,19 @@ sys) on JOBS idle cores, the way the generator runs them:
 - Ninja: one pool; a source waits only for its own target's precompiled header.
 
 Then the link (--link-seconds, not in the log: the linker is no compiler
-launch) on one core.
+launch) on one core. Two bounds beside the estimate: the CPU bound (all the
+CPU spread evenly on the cores) and the critical path (the longest chain of
+compiles that wait for each other: a target's precompiled header, then its
+most expensive source), and the time the Ninja schedule leaves a core idle at
+the end (the last compile finishing alone).
 
-    python3 bench/build_cost.py LOG [--jobs 2] [--link-seconds 3]"""
+With --compare OTHER_LOG: the two builds side by side, per object (e.g. the
+same sources before and after a change, or g++ against clang).
+
+    python3 bench/build_cost.py LOG [--jobs 2] [--link-seconds 3] [--compare OTHER_LOG]"""
 import argparse
 import heapq
+import re
 
 
 def read_log(path):
@@ -31,6 +39,12 @@ def read_log(path):
         user, system, _, output = parts
         rows.append((output, float(user) + float(system)))
     return rows
+
+
+def object_key(output):
+    """The object's name without the compiler's suffix for a precompiled
+    header (g++ writes .gch, clang .pch), so two builds' logs line up."""
+    return re.sub(r"cmake_pch\.hxx\.(gch|pch)$", "cmake_pch.hxx", output)
 
 
 def target_of(output):
@@ -71,6 +85,12 @@ def make_estimate(rows, cores):
 
 
 def ninja_estimate(rows, cores):
+    return ninja_schedule(rows, cores)[0]
+
+
+def ninja_schedule(rows, cores):
+    """(end, idle tail): when the last compile ends, and for how long before
+    that at least one core has nothing left to do."""
     # The three headers first (nothing else is ready before them), each
     # target's sources as soon as its header is there.
     free = [0.0] * cores
@@ -89,7 +109,31 @@ def ninja_estimate(rows, cores):
         start = max(heapq.heappop(free), pch_done.get(target_of(output), 0.0))
         heapq.heappush(free, start + seconds)
         end = max(end, start + seconds)
-    return end
+    # A core is idle from the moment it finishes its last compile.
+    return end, end - min(free)
+
+
+def cpu_bound(rows, cores):
+    return sum(s for _, s in rows) / cores
+
+
+def critical_path(rows):
+    """(seconds, target): the longest chain, a target's precompiled header
+    then its most expensive source."""
+    best = (0.0, "")
+    for target in TARGETS:
+        mine = [(o, s) for o, s in rows if target_of(o) == target]
+        pch = sum(s for o, s in mine if is_pch(o))
+        longest = max((s for o, s in mine if not is_pch(o)), default=0.0)
+        best = max(best, (pch + longest, target))
+    return best
+
+
+def compare(rows, other_rows):
+    """[(object, seconds here, seconds there)] for the objects of both logs, in
+    this log's order."""
+    there = {object_key(o): s for o, s in other_rows}
+    return [(object_key(o), s, there[object_key(o)]) for o, s in rows if object_key(o) in there]
 
 
 def main():
@@ -98,6 +142,7 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--link-seconds", type=float, default=3.0)
     parser.add_argument("--top", type=int, default=12, help="the most expensive compiles listed")
+    parser.add_argument("--compare", help="a second log: both builds' CPU per object")
     args = parser.parse_args()
     rows = read_log(args.log)
     total = sum(s for _, s in rows)
@@ -110,6 +155,20 @@ def main():
     for name, estimate in (("Make", make_estimate), ("Ninja", ninja_estimate)):
         wall = estimate(rows, args.jobs) + args.link_seconds
         print(f"idle wall at -j{args.jobs}, {name}: {wall:.0f} s ({wall / 60:.1f} min)")
+    _, tail = ninja_schedule(rows, args.jobs)
+    print(f"  Ninja's last {tail:.0f} s with a core idle")
+    path, target = critical_path(rows)
+    print(f"bounds: CPU / {args.jobs} cores + link {cpu_bound(rows, args.jobs) + args.link_seconds:.0f} s;"
+          f" critical path {path + args.link_seconds:.0f} s ({target}: header, its most expensive source, link)")
+    if args.compare:
+        pairs = compare(rows, read_log(args.compare))
+        print(f"per object: {args.log}, {args.compare}, the second's change:")
+        for output, here, there in pairs:
+            print(f"  {here:6.1f} s  {there:6.1f} s  {there / here - 1:+6.0%}  {output}" if here
+                  else f"  {here:6.1f} s  {there:6.1f} s  {output}")
+        here_total, there_total = sum(p[1] for p in pairs), sum(p[2] for p in pairs)
+        print(f"  {here_total:6.1f} s  {there_total:6.1f} s  {there_total / here_total - 1:+6.0%}  "
+              f"all {len(pairs)} objects of both")
 
 
 if __name__ == "__main__":
