@@ -310,3 +310,4 @@ TEST(AnalyticDistance, MotorAxisPosesMatchOcct) {
   EXPECT_EQ(compared, 2);
   EXPECT_EQ(handled_touching, 10);
 }
+
