@@ -310,4 +310,3 @@ TEST(AnalyticDistance, MotorAxisPosesMatchOcct) {
   EXPECT_EQ(compared, 2);
   EXPECT_EQ(handled_touching, 10);
 }
-
