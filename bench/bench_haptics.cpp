@@ -12,8 +12,9 @@
 //     0.3 mm sideways (bench_realtime_loop.py's hand), in lockstep: its ticks'
 //     CPU time and the contact queries each makes.
 //
-//   bench_haptics [--seconds S] [--triangles N] [--proxy-only | --screw-only] [MOTOR.step]
-// (--proxy-only: sections 4 and 5; --screw-only: section 5)
+//   bench_haptics [--seconds S] [--triangles N] [--proxy-only | --screw-only] [--meshes-only] [MOTOR.step]
+// (--proxy-only: sections 4 and 5; --screw-only: section 5; --meshes-only: the
+// trial scenes without the closed forms, SceneOptions::analytic off: the baseline)
 #include <time.h>
 
 #include <algorithm>
@@ -99,11 +100,13 @@ int main(int argc, char** argv) {
   double seconds = 10;
   std::size_t want_triangles = 100000;
   bool proxy_only = false, screw_only = false;
+  SceneOptions scene_options;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = std::atof(argv[++i]);
     else if (!std::strcmp(argv[i], "--triangles") && i + 1 < argc) want_triangles = std::atol(argv[++i]);
     else if (!std::strcmp(argv[i], "--proxy-only")) proxy_only = true;
     else if (!std::strcmp(argv[i], "--screw-only")) proxy_only = screw_only = true;
+    else if (!std::strcmp(argv[i], "--meshes-only")) scene_options.analytic = false;
     else path = argv[i];
   }
   const AssemblyResult read = read_step(path);
@@ -115,7 +118,9 @@ int main(int argc, char** argv) {
 
   // 1. Incremental contact update vs the batch stage.
   Status status;
-  auto scene = TrialScene::build(read.assembly, "Axis", SceneOptions{}, status);
+  std::printf("Contact queries: %s\n\n", scene_options.analytic ? "closed forms between analytic partitions, meshes for the rest"
+                                                                : "meshes only (--meshes-only)");
+  auto scene = TrialScene::build(read.assembly, "Axis", scene_options, status);
   if (!scene) {
     std::fprintf(stderr, "%s\n", status.describe().c_str());
     return 1;
@@ -147,7 +152,7 @@ int main(int argc, char** argv) {
               batch_ms * 1e3 / (percentile(updates, 50) * 1e6));
 
   // 2. Servo steps with >= 100,000 triangles of collision models.
-  SceneOptions fine;
+  SceneOptions fine = scene_options;
   double deflection = 0.01;
   std::unique_ptr<TrialScene> dense;
   for (int attempt = 0; attempt < 8; ++attempt) {
@@ -283,7 +288,7 @@ int main(int argc, char** argv) {
 
   // 5. Screw-1 seated, the realtime bench's pushing hand, in lockstep.
   {
-    auto screw = TrialScene::build(read.assembly, "Screw-1", SceneOptions{}, status);
+    auto screw = TrialScene::build(read.assembly, "Screw-1", scene_options, status);
     if (!screw) {
       std::fprintf(stderr, "%s\n", status.describe().c_str());
       return 1;

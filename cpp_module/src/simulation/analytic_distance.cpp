@@ -26,30 +26,50 @@ Vector3 perpendicular(const Vector3& axis, const Vector3& ref) {
 
 bool revolution(SurfaceKind k) { return k == SurfaceKind::Cylinder || k == SurfaceKind::Cone || k == SurfaceKind::Sphere; }
 
-// Even-odd test of the plane-frame point q against the loops; false when q is
-// within a chord's possible arc swing of it (the arcs are not known exactly here).
-bool inside_outline(const std::vector<std::vector<Point2>>& loops, double qx, double qy) {
+// Even-odd test of the plane-frame point q against the patch's outline; false
+// when q is within a chord's possible arc swing of it (the arcs are not known
+// exactly here). Outside the outline's box no point is inside; inside it only
+// the chords of q's slab can cross q's horizontal ray or lie within their swing
+// of q (prepare_outline), so the others are not looked at.
+bool inside_outline(const AnalyticPatch& patch, double qx, double qy) {
+  if (qx < patch.outline_x0 || qx > patch.outline_x1 || qy < patch.outline_y0 || qy > patch.outline_y1) return false;
+  if (patch.slab_count <= 0) return false;
+  const int slab = std::clamp(static_cast<int>(std::floor((qy - patch.slab_y0) / patch.slab_height)), 0,
+                              patch.slab_count - 1);
   bool in = false;
-  for (const auto& loop : loops) {
-    const std::size_t n = loop.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Point2& p = loop[i];
-      const Point2& r = loop[(i + 1) % n];
-      const double ex = r.x - p.x, ey = r.y - p.y, len = std::hypot(ex, ey);
-      // Distance of q from the chord; the arc bulges at most ~3|bulge| / (4 len) off it
-      // (the sagitta of a circular arc up to a half circle, from its area).
-      double t = len > 0 ? ((qx - p.x) * ex + (qy - p.y) * ey) / (len * len) : 0.0;
+  const int* index = patch.slab_chords.data();
+  for (int k = patch.slab_first[slab], end = patch.slab_first[slab + 1]; k < end; ++k) {
+    const AnalyticPatch::Chord& c = patch.chords[index[k]];
+    if (qx >= c.x0 && qx <= c.x1) {  // (its slab already bounds the y-range)
+      double t = c.length2 > 0 ? ((qx - c.x) * c.ex + (qy - c.y) * c.ey) / c.length2 : 0.0;
       t = std::clamp(t, 0.0, 1.0);
-      const double dist = std::hypot(qx - (p.x + t * ex), qy - (p.y + t * ey));
-      const double swing = len > 0 ? 0.75 * std::abs(p.bulge) / len : std::abs(p.bulge);
-      if (dist <= swing + 1e-9) return false;
-      if ((p.y > qy) != (r.y > qy)) {
-        const double x = p.x + (qy - p.y) / (r.y - p.y) * ex;
-        if (qx < x) in = !in;
-      }
+      const double dx = qx - (c.x + t * c.ex), dy = qy - (c.y + t * c.ey);
+      if (dx * dx + dy * dy <= c.reach2) return false;
+    }
+    if ((c.y > qy) != (c.y + c.ey > qy)) {
+      const double x = c.x + (qy - c.y) / c.ey * c.ex;
+      if (qx < x) in = !in;
     }
   }
   return in;
+}
+
+// Whether a chord of the patch's outline (its box grown by its reach) meets the
+// plane-frame box [x0, x1] x [y0, y1]. None: the box lies in one region of the
+// outline (inside or outside, away from every edge), so every point in it has
+// the status of any one of them.
+bool chord_meets_box(const AnalyticPatch& patch, double x0, double y0, double x1, double y1) {
+  if (patch.slab_count <= 0) return false;
+  auto slab_of = [&](double y) {
+    return std::clamp(static_cast<int>(std::floor((y - patch.slab_y0) / patch.slab_height)), 0, patch.slab_count - 1);
+  };
+  const int* index = patch.slab_chords.data();
+  for (int s = slab_of(y0), last = slab_of(y1); s <= last; ++s)
+    for (int k = patch.slab_first[s], end = patch.slab_first[s + 1]; k < end; ++k) {
+      const AnalyticPatch::Chord& c = patch.chords[index[k]];
+      if (c.x0 <= x1 && c.x1 >= x0 && c.y0 <= y1 && c.y1 >= y0) return true;
+    }
+  return false;
 }
 
 // Cylinder axis points: a point on b's axis line at coordinate s.
@@ -69,27 +89,62 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   if (a.axis.dot(b.axis) > -std::cos(tol.angle)) return false;  // not facing, or tilted: an edge is closest
   if (a.loops.empty() || b.loops.empty()) return false;
   const Vector3& n = b.axis;
-  out.gap = (a.location - b.location).dot(n);
-  out.normal = n;
-  // A point of one outline inside the other: the faces overlap there.
+  const double gap = (a.location - b.location).dot(n);
+  // Back to back deeper than any contact (analytic_contact refuses it): no outline test.
+  if (gap < -tol.max_depth) return false;
   const Vector3 ax = a.ref_dir, ay = a.axis.cross(a.ref_dir);
   const Vector3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
+  // a's plane frame into b's (q = o + M v) and back (planes parallel within
+  // the angle tolerance: both maps are the exact dot products, linear in v).
+  const Vector3 o_ab = a.location - b.location;
+  const double ox = o_ab.dot(bx), oy = o_ab.dot(by);
+  const double m00 = ax.dot(bx), m01 = ay.dot(bx), m10 = ax.dot(by), m11 = ay.dot(by);
+  const Vector3 o_ba = b.location - a.location;
+  const double px = o_ba.dot(ax), py = o_ba.dot(ay);
+  const double n00 = bx.dot(ax), n01 = by.dot(ax), n10 = bx.dot(ay), n11 = by.dot(ay);
+  // The outlines' boxes first: a's box mapped into b's plane frame (the
+  // parallelogram's corners, bounded by their box) against b's box. Apart, no
+  // vertex of either outline lies inside the other.
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (double u : {a.outline_x0, a.outline_x1})
+    for (double v : {a.outline_y0, a.outline_y1}) {
+      const double x = ox + m00 * u + m01 * v, y = oy + m10 * u + m11 * v;
+      x0 = std::min(x0, x);
+      x1 = std::max(x1, x);
+      y0 = std::min(y0, y);
+      y1 = std::max(y1, y);
+    }
+  constexpr double kSlack = 1e-9;  // the mapped vertices round differently from the box's corners
+  x0 -= kSlack, y0 -= kSlack, x1 += kSlack, y1 += kSlack;
+  if (x1 < b.outline_x0 || x0 > b.outline_x1 || y1 < b.outline_y0 || y0 > b.outline_y1) return false;
+  out.gap = gap;
+  out.normal = n;
+  // No edge of b near a's box: all of a's vertices lie in one region of b's
+  // outline (the first one says which), and no vertex of b lies in a's box, so
+  // none inside a. The scan below would give the same answer, vertex by vertex.
+  if (!chord_meets_box(b, x0, y0, x1, y1)) {
+    const Point2* first = nullptr;
+    for (const auto& loop : a.loops)
+      if (!loop.empty() && !first) first = &loop.front();
+    if (!first || !inside_outline(b, ox + m00 * first->x + m01 * first->y, oy + m10 * first->x + m11 * first->y))
+      return false;
+    out.point_a = a.location + first->x * ax + first->y * ay;
+    out.point_b = out.point_a - out.gap * n;
+    return true;
+  }
+  // A point of one outline inside the other: the faces overlap there.
   for (const auto& loop : a.loops)
     for (const Point2& v : loop) {
-      const Vector3 p = a.location + v.x * ax + v.y * ay;
-      const Vector3 d = p - b.location;
-      if (!inside_outline(b.loops, d.dot(bx), d.dot(by))) continue;
-      out.point_a = p;
-      out.point_b = p - out.gap * n;
+      if (!inside_outline(b, ox + m00 * v.x + m01 * v.y, oy + m10 * v.x + m11 * v.y)) continue;
+      out.point_a = a.location + v.x * ax + v.y * ay;
+      out.point_b = out.point_a - out.gap * n;
       return true;
     }
   for (const auto& loop : b.loops)
     for (const Point2& v : loop) {
-      const Vector3 p = b.location + v.x * bx + v.y * by;
-      const Vector3 d = p - a.location;
-      if (!inside_outline(a.loops, d.dot(ax), d.dot(ay))) continue;
-      out.point_b = p;
-      out.point_a = p + out.gap * n;
+      if (!inside_outline(a, px + n00 * v.x + n01 * v.y, py + n10 * v.x + n11 * v.y)) continue;
+      out.point_b = b.location + v.x * bx + v.y * by;
+      out.point_a = out.point_b + out.gap * n;
       return true;
     }
   return false;  // only edges crossing, or apart in the plane: the meshes decide
@@ -287,8 +342,78 @@ AnalyticPatch analytic_patch(const Partition& partition) {
   for (const AngularInterval& i : partition.extent.angular) p.angular.push_back({i.start, i.span});
   for (const Polygon2& loop : partition.extent.outline) p.loops.push_back(loop);
   if (s.kind == SurfaceKind::Plane && p.loops.empty()) p.kind = SurfaceKind::Other;  // no outline: no bounds
+  prepare_outline(p);
   if (revolution(s.kind) && p.angular.empty()) p.kind = SurfaceKind::Other;
   return p;
+}
+
+void prepare_outline(AnalyticPatch& patch) {
+  patch.chords.clear();
+  patch.slab_first.clear();
+  patch.slab_chords.clear();
+  patch.slab_count = 0;
+  patch.outline_x0 = patch.outline_y0 = 1e300;
+  patch.outline_x1 = patch.outline_y1 = -1e300;
+  std::vector<double> reaches;
+  for (const auto& loop : patch.loops) {
+    const std::size_t n = loop.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2& p = loop[i];
+      const Point2& r = loop[(i + 1) % n];
+      AnalyticPatch::Chord c;
+      c.x = p.x;
+      c.y = p.y;
+      c.ex = r.x - p.x;
+      c.ey = r.y - p.y;
+      c.length2 = c.ex * c.ex + c.ey * c.ey;
+      // The arc bulges at most ~3|bulge| / (4 len) off its chord (the sagitta of a
+      // circular arc up to a half circle, from its area).
+      const double len = std::sqrt(c.length2);
+      const double reach = (len > 0 ? 0.75 * std::abs(p.bulge) / len : std::abs(p.bulge)) + 1e-9;
+      c.reach2 = reach * reach;
+      c.x0 = std::min(p.x, r.x) - reach;
+      c.x1 = std::max(p.x, r.x) + reach;
+      c.y0 = std::min(p.y, r.y) - reach;
+      c.y1 = std::max(p.y, r.y) + reach;
+      reaches.push_back(reach);
+      patch.chords.push_back(c);
+      patch.outline_x0 = std::min(patch.outline_x0, p.x);
+      patch.outline_x1 = std::max(patch.outline_x1, p.x);
+      patch.outline_y0 = std::min(patch.outline_y0, p.y);
+      patch.outline_y1 = std::max(patch.outline_y1, p.y);
+    }
+  }
+  if (patch.chords.empty()) {
+    patch.outline_x0 = 0, patch.outline_x1 = -1, patch.outline_y0 = 0, patch.outline_y1 = -1;
+    return;
+  }
+  // Slabs over the vertices' y-range (points outside it are rejected by the box):
+  // two slabs a chord, each chord in every slab its grown y-range meets.
+  const std::size_t n = patch.chords.size();
+  patch.slab_count = static_cast<int>(std::clamp<std::size_t>(2 * n, 1, 8192));
+  patch.slab_y0 = patch.outline_y0;
+  const double height = (patch.outline_y1 - patch.outline_y0) / patch.slab_count;
+  patch.slab_height = height > 0 ? height : 1.0;
+  auto slab_of = [&](double y) {
+    return std::clamp(static_cast<int>(std::floor((y - patch.slab_y0) / patch.slab_height)), 0, patch.slab_count - 1);
+  };
+  std::vector<int> count(patch.slab_count + 1, 0);
+  std::vector<std::pair<int, int>> span(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const AnalyticPatch::Chord& c = patch.chords[i];
+    // Grown beyond rounding too: a y within rounding of a slab boundary may land in either slab.
+    const double round = 1e-12 * (std::abs(c.y) + std::abs(c.ey) + patch.slab_height) + 1e-12;
+    const double lo = std::min(c.y, c.y + c.ey) - reaches[i] - round,
+                 hi = std::max(c.y, c.y + c.ey) + reaches[i] + round;
+    span[i] = {slab_of(lo), slab_of(hi)};
+    for (int s = span[i].first; s <= span[i].second; ++s) ++count[s + 1];
+  }
+  for (int s = 0; s < patch.slab_count; ++s) count[s + 1] += count[s];
+  patch.slab_first = count;
+  patch.slab_chords.assign(count[patch.slab_count], 0);
+  std::vector<int> fill(count.begin(), count.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int s = span[i].first; s <= span[i].second; ++s) patch.slab_chords[fill[s]++] = static_cast<int>(i);
 }
 
 AnalyticPatch placed(const AnalyticPatch& patch, const Eigen::Isometry3d& motion) {
@@ -303,7 +428,7 @@ bool within_patch(const AnalyticPatch& patch, const Eigen::Vector3d& p, double s
   const Vector3 d = p - patch.location;
   if (patch.kind == SurfaceKind::Plane) {
     const Vector3 y = patch.axis.cross(patch.ref_dir);
-    return inside_outline(patch.loops, d.dot(patch.ref_dir), d.dot(y));
+    return inside_outline(patch, d.dot(patch.ref_dir), d.dot(y));
   }
   if (!revolution(patch.kind)) return false;
   const double axial = d.dot(patch.axis);

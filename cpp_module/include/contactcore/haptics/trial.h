@@ -25,9 +25,9 @@ struct SceneOptions {
   // another body mid-way (a pin's side across a bore's rim); 0: no bound.
   double moving_max_edge = 1.0;
   // Closed-form contacts between analytic partitions in the loop's contact
-  // query, the meshes for the rest (StageCollision::use_analytic). Off by
-  // default until the proxy's acceptance tests have been run with it on.
-  bool analytic = false;
+  // query, the meshes for the rest (StageCollision::use_analytic). On by
+  // default; off: the meshes alone (benchmarks' baseline, tests comparing).
+  bool analytic = true;
 };
 
 // Everything the loop needs about the assembly, built once (OCCT here only).

@@ -36,7 +36,29 @@ struct AnalyticPatch {
   // with each chord's bulge (Point2): a point is judged inside only when it is
   // farther from every chord than that chord's arc can swing.
   std::vector<std::vector<Point2>> loops;
+  // Plane: the outline made ready for the point-in-outline test (prepare_outline,
+  // called by analytic_patch; in the plane frame, so placed() keeps it): every
+  // chord with its squared length and squared reach (the arc's swing), flat (an
+  // even-odd count needs no loop structure); horizontal slabs over the outline,
+  // each listing the chords whose y-range grown by their reach meets it (every
+  // chord a horizontal ray from q can cross, or q can lie within the swing of,
+  // is in q's slab: a point costs the chords near its height, not the whole
+  // outline); and the box of all the outline's vertices (outside it no point is
+  // inside).
+  struct Chord {
+    double x = 0, y = 0, ex = 0, ey = 0, length2 = 0, reach2 = 0;
+    double x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // its box grown by the reach (no swing test beyond)
+  };
+  std::vector<Chord> chords;
+  double slab_y0 = 0, slab_height = 1;
+  int slab_count = 0;
+  std::vector<int> slab_first;   // slab_count + 1 offsets into slab_chords
+  std::vector<int> slab_chords;  // chord indices, slab by slab
+  double outline_x0 = 0, outline_y0 = 0, outline_x1 = -1, outline_y1 = -1;  // empty when x0 > x1
 };
+
+// Fills the patch's chords and boxes from its loops (set-up: allocates).
+void prepare_outline(AnalyticPatch& patch);
 
 // The patch of a partition (kind Other when it has no closed form here).
 AnalyticPatch analytic_patch(const Partition& partition);
