@@ -66,6 +66,70 @@ def test_assembly_of_bodies_names_and_refusals():
     assert len(cc.assembly_of_bodies([], [])) == 0
 
 
+def everything(result):
+    """All of a find_contacts result a caller reads, exactly."""
+    return {"contacts": raw_contacts(result),
+            "regions": [(c.has_region, c.region_area if c.has_region else 0.0) for c in result.contacts],
+            "higher": [(h.type, h.kind, h.body_a, h.body_b, h.partition_a, h.partition_b, tuple(h.faces_a),
+                        tuple(h.faces_b), tuple(h.point), tuple(h.normal), tuple(h.start), tuple(h.end))
+                       for h in result.higher_pairs],
+            "interferences": [(i.body_a, i.body_b, i.volume, i.has_solid) for i in result.interferences],
+            "pairs": list(result.body_pairs), "candidates": result.candidates, "messages": list(result.messages),
+            "partitions": [[(p.id, tuple(p.faces)) for p in b.partitions] for b in result.partitions],
+            "tolerances": (result.tolerances.linear, result.tolerances.angular),
+            "invalid": [(b.body, tuple(b.faces), b.reason) for b in result.invalid_bodies],
+            "regions_computed": result.regions_computed}
+
+
+def test_memo_reuses_the_unchanged_bodies_search_and_finds_what_a_fresh_search_finds():
+    """find_contacts(memo=...) on the motor with Back-cover moved 40 mm off
+    (its Body read again, the 17 others the same Body objects): the 17
+    bodies' partitions, the candidate tests and the point and line contacts
+    of every body pair without Back-cover are the last run's, and the result
+    is a fresh search's on the whole compound read anew, to the last bit.
+    Nothing changed: every body's and pair's reused. Other tolerances:
+    nothing reused. Two bodies that trade places: neither reused."""
+    named = motor_shapes()
+    names = [n for n, _ in named]
+    cover = names.index("Back-cover")
+    whole = assembly_from_shapes(named)
+    memo = cc.ContactsMemo()
+    assert memo.bodies == 0
+    first = cc.find_contacts(whole, regions=True, memo=memo)
+    assert everything(first) == everything(cc.find_contacts(whole, regions=True))
+    assert (memo.bodies, memo.reused_bodies, memo.reused_tested_pairs, memo.reused_higher_pairs) == (18, 0, 0, 0)
+
+    moved_shape = named[cover][1].copy()
+    moved_shape.translate(FreeCAD.Vector(0, 0, -40))
+    moved_named = [(n, moved_shape if i == cover else s) for i, (n, s) in enumerate(named)]
+    moved_read = assembly_from_shapes([moved_named[cover]])
+    gathered = cc.assembly_of_bodies(
+        [moved_read.bodies[0] if i == cover else b for i, b in enumerate(whole.bodies)], names)
+    second = cc.find_contacts(gathered, regions=[cover], memo=memo)
+    fresh = cc.find_contacts(assembly_from_shapes(moved_named), regions=[cover])
+    assert everything(second) == everything(fresh)
+    assert len(second.contacts) == 28 and len(first.contacts) == 35
+    unchanged_pairs = [p for p in second.body_pairs if cover not in p]
+    assert memo.reused_bodies == 17
+    assert memo.reused_tested_pairs == memo.reused_higher_pairs == len(unchanged_pairs) > 0
+
+    third = cc.find_contacts(gathered, memo=memo)  # nothing changed
+    assert everything(third) == everything(cc.find_contacts(gathered))
+    assert (memo.reused_bodies, memo.reused_tested_pairs, memo.reused_higher_pairs) == \
+        (18, len(second.body_pairs), len(second.body_pairs))
+
+    coarser = cc.find_contacts(gathered, linear=0.05, memo=memo)  # other tolerances: nothing reused
+    assert everything(coarser) == everything(cc.find_contacts(gathered, linear=0.05))
+    assert (memo.reused_bodies, memo.reused_tested_pairs, memo.reused_higher_pairs) == (0, 0, 0)
+
+    cc.find_contacts(gathered, memo=memo)
+    swapped = list(gathered.bodies)  # two bodies trade places: neither is the same body at its index
+    swapped[0], swapped[1] = swapped[1], swapped[0]
+    reordered = cc.assembly_of_bodies(swapped, [names[1], names[0]] + names[2:])
+    assert everything(cc.find_contacts(reordered, memo=memo)) == everything(cc.find_contacts(reordered))
+    assert memo.reused_bodies == 16
+
+
 def snapshot(group):
     """What an analysis holds, apart from its numbering: every contact's
     figures exactly, the bodies' table, the summaries, the interferences."""

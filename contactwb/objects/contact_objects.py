@@ -390,12 +390,14 @@ def _find(bodies, source, linear, angular, progress, region_bodies=False, group=
     """(analysis.Analysis, contactcore.Assembly, contactcore.ContactsResult);
     `region_bodies`: the common regions to compute (contactwb.objects.regions);
     `group`: the analysis whose unchanged core bodies are reused (its
-    regions.assembly_of), else every body crosses as BRep."""
+    regions.assembly_of), with what the core's last search found for them
+    (regions.memo_of), else every body crosses as BRep and is searched anew."""
     assembly = regions.assembly_of(group, bodies) if group is not None else \
         assembly_from_shapes((b.name, b.shape) for b in bodies)
     face_name = lambda body, index: bodies[body].object_face_name(index)  # noqa: E731
     raw = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress,
-                                         regions=region_bodies)
+                                         regions=region_bodies,
+                                         memo=regions.memo_of(group) if group is not None else None)
     return contact_analysis.analysis_of_result(source, assembly, raw, face_name), assembly, raw
 
 

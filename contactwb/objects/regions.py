@@ -51,6 +51,7 @@ class RegionCache:
         self.generation = 0  # stored results so far: a paint built from an older one is redrawn
         self.masses = None  # (body names, their stamps, lone flags, (volume, centre) each): reuse_masses
         self.core_bodies = CoreBodyCache()  # the core's bodies, kept: only changed ones cross as BRep
+        self.memo = None  # contactcore.ContactsMemo: what the core reuses of the last search (memo_of)
 
     def changed_bodies(self, bodies, settings):
         """Indices of the bodies whose regions must be computed again (every
@@ -94,6 +95,16 @@ def assembly_of(group, bodies):
     cache = cache_of(group)
     stamps = [cache.pending.get(b.name) or fingerprint(b) for b in bodies]
     return cache.core_bodies.assembly(bodies, stamps)
+
+
+def memo_of(group):
+    """The contactcore.ContactsMemo of `group`'s searches: find_contacts
+    reuses what depends only on the bodies whose core Body is the last
+    search's (assembly_of keeps them), and checks that itself."""
+    cache = cache_of(group)
+    if cache.memo is None:
+        cache.memo = core.contactcore.ContactsMemo()
+    return cache.memo
 
 
 def store(group, bodies, settings, assembly, raw, records, contact_key):
