@@ -84,8 +84,8 @@ def everything(result):
 def test_memo_reuses_the_unchanged_bodies_search_and_finds_what_a_fresh_search_finds():
     """find_contacts(memo=...) on the motor with Back-cover moved 40 mm off
     (its Body read again, the 17 others the same Body objects): the 17
-    bodies' partitions, the candidate tests and the point and line contacts
-    of every body pair without Back-cover are the last run's, and the result
+    bodies' partitions and solid checks, the candidate tests and the point
+    and line contacts of every body pair without Back-cover are the last run's, and the result
     is a fresh search's on the whole compound read anew, to the last bit.
     Nothing changed: every body's and pair's reused. Other tolerances:
     nothing reused. Two bodies that trade places: neither reused."""
@@ -110,7 +110,7 @@ def test_memo_reuses_the_unchanged_bodies_search_and_finds_what_a_fresh_search_f
     assert everything(second) == everything(fresh)
     assert len(second.contacts) == 28 and len(first.contacts) == 35
     unchanged_pairs = [p for p in second.body_pairs if cover not in p]
-    assert memo.reused_bodies == 17
+    assert memo.reused_bodies == memo.reused_solid_checks == 17
     assert memo.reused_tested_pairs == memo.reused_higher_pairs == len(unchanged_pairs) > 0
 
     third = cc.find_contacts(gathered, memo=memo)  # nothing changed

@@ -235,7 +235,9 @@ void bind_contacts(py::module_& m) {
       .def_property_readonly("reused_tested_pairs", read_only(&ContactsMemo::reused_tested_pairs),
                              "body pairs whose candidate tests the last run reused")
       .def_property_readonly("reused_higher_pairs", read_only(&ContactsMemo::reused_higher_pairs),
-                             "body pairs whose point and line contacts the last run reused");
+                             "body pairs whose point and line contacts the last run reused")
+      .def_property_readonly("reused_solid_checks", read_only(&ContactsMemo::reused_solid_checks),
+                             "bodies (instance sources) whose solid checks the last run reused");
 
   m.def(
       "find_contacts",

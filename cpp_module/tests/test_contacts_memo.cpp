@@ -98,6 +98,7 @@ TEST(ContactsMemo, MovedBodyAloneSearchedAgainSameResultAsWithout) {
   const ContactsResult second = find_contacts(assembly, ContactOptions{}, nullptr, &memo);
   expect_same(second, find_contacts(assembly, ContactOptions{}));
   EXPECT_EQ(memo.reused_bodies, 5u);
+  EXPECT_EQ(memo.reused_solid_checks, 4u);  // pad2 shares pad1's verdict
   std::size_t without_plate = 0;
   for (const auto& [a, b] : second.body_pairs) without_plate += a != 2 && b != 2 ? 1 : 0;
   // pad2's pair with the block is pad1's moved (placed alike? no: the block sees
@@ -127,6 +128,36 @@ TEST(ContactsMemo, MovedBodyAloneSearchedAgainSameResultAsWithout) {
   expect_same(fifth, find_contacts(assembly, coarser));
   EXPECT_EQ(memo.reused_bodies, 0u);
   EXPECT_EQ(memo.reused_tested_pairs, 0u);
+  EXPECT_EQ(memo.reused_solid_checks, 0u);
+
+  // The full solid checks: not the quick ones' verdicts.
+  ContactOptions full;
+  full.linear = 0.05;
+  full.solid_checks = SolidChecks::Full;
+  const ContactsResult sixth = find_contacts(assembly, full, nullptr, &memo);
+  expect_same(sixth, find_contacts(assembly, full));
+  EXPECT_EQ(memo.reused_bodies, 6u);
+  EXPECT_EQ(memo.reused_solid_checks, 0u);
+  const ContactsResult seventh = find_contacts(assembly, full, nullptr, &memo);
+  expect_same(seventh, find_contacts(assembly, full));
+  EXPECT_EQ(memo.reused_solid_checks, 6u);  // every source (pad2 its own since pad1 was replaced)
+}
+
+// A body the solid checks find faulty keeps its verdict and message when reused.
+TEST(ContactsMemo, AnInvalidBodysVerdictIsReused) {
+  Assembly assembly = workshop();
+  // A box whose faces all point inward: inside out (validity.h), found by the quick checks.
+  assembly.bodies.push_back({"inside_out", "inside_out", BRepPrimAPI_MakeBox(gp_Pnt(100, 0, 0), 5, 5, 5).Shape().Reversed()});
+  ContactsMemo memo;
+  const ContactsResult first = find_contacts(assembly, ContactOptions{}, nullptr, &memo);
+  ASSERT_EQ(first.invalid_bodies.size(), 1u);
+  EXPECT_EQ(first.invalid_bodies[0].body, 6);
+  assembly.bodies[2].shape = moved(assembly.bodies[2].shape, 0, 2, 0);
+  const ContactsResult second = find_contacts(assembly, ContactOptions{}, nullptr, &memo);
+  expect_same(second, find_contacts(assembly, ContactOptions{}));
+  EXPECT_EQ(memo.reused_solid_checks, 5u);
+  ASSERT_EQ(second.invalid_bodies.size(), 1u);
+  EXPECT_EQ(second.invalid_bodies[0].reason, first.invalid_bodies[0].reason);
 }
 
 TEST(ContactsMemo, AFailedRunLeavesItEmpty) {

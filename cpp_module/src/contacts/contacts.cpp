@@ -275,11 +275,22 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     // box moved (exact for translations, a little larger when turned).
     std::vector<Bnd_Box> boxes(n);
     std::vector<std::string> box_failures(n);
+    // A source body whose shape is the memo's (the same OCCT shape, location
+    // and orientation), a source then too: the memo's box.
+    std::vector<char> known_box(n, 0);
+    if (last.shapes.size() == n && last.shape_boxes.size() == n)
+      for (std::size_t i = 0; i < n; ++i)
+        known_box[i] = sources[i] == static_cast<int>(i) && last.sources[i] == sources[i] &&
+                       last.shapes[i].IsEqual(assembly.bodies[i].shape) && !last.shape_boxes[i].IsVoid();
     if (!parallel_for(n, threads, progress, "partitions", [&](std::size_t i) {
-          if (sources[i] == static_cast<int>(i))
+          if (known_box[i]) {
+            boxes[i] = last.shape_boxes[i];
+          } else if (sources[i] == static_cast<int>(i)) {
             run_guarded([&] { BRepBndLib::Add(assembly.bodies[i].shape, boxes[i], false); }, box_failures[i], "OCCT: ");
+          }
         }, 16))
       return cancelled();
+    if (memo) next.shape_boxes = boxes;
     for (std::size_t i = 0; i < n; ++i) {
       if (box_failures[i].empty()) continue;
       result.status = Status::failure(StatusCode::GeometryError, box_failures[i]);
@@ -567,7 +578,14 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     }
     result.times.area = seconds_since(start);
     start = Clock::now();
-    const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks);
+    const bool known_checks = last.checks == options.solid_checks;
+    if (memo) {
+      next.checks = options.solid_checks;
+      for (std::size_t i = 0; i < n; ++i)
+        next.reused_solid_checks += known_checks && reused[i] && result.instance_of[i] == static_cast<int>(i) ? 1 : 0;
+    }
+    const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks,
+                                        known_checks ? &reused : nullptr, &last.solids, memo ? &next.solids : nullptr);
     result.times.validity = seconds_since(start);
     if (!checked.ok()) {
       result.status = checked;
