@@ -73,6 +73,16 @@ def run_session(build_dir, repeat, profile, panel_seconds=5.0, sources=REPO):
             return json.load(stream)
 
 
+def crossed_text(crossed):
+    """The bodies whose BRep text crossed into the core at each recompute
+    after the move (the others' core bodies kept), '' when not reported."""
+    if not crossed:
+        return ""
+    names = sorted({name for names in crossed for name in names})
+    return (f"; bodies whose BRep text crossed into the core at each: {[len(n) for n in crossed]} "
+            f"({', '.join(names)})")
+
+
 def table(report, load):
     lines = [f"FreeCAD 0.20.2 under Xvfb, {platform.machine()} {os.cpu_count()} cores, load average "
              f"{load[0]:.1f} / {load[1]:.1f} before the run (the machine is shared: other engineers' "
@@ -121,7 +131,8 @@ def table(report, load):
     lines.append(f"Motor: {report.get('motor_contacts')} contacts, {report.get('motor_core_painted')} painted "
                  f"from the core's regions; Back-cover has {report.get('motor_cover_contacts')} contacts; "
                  f"common regions the core computed at each recompute after the move: "
-                 f"{report['regions'].get('motor_recompute_after_move')} (the moved part's contacts only). "
+                 f"{report['regions'].get('motor_recompute_after_move')} (the moved part's contacts only)"
+                 + crossed_text(report.get("crossed")) + ". "
                  f"Bearings: {report.get('bearing_bodies', '–')} bodies, {report.get('bearing_contacts', '–')} contacts.")
     if report["errors"]:
         lines.append("")

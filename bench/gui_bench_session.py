@@ -5,7 +5,8 @@ issue 21's GUI targets, timed as the designer meets them.
    toolbar command, OK), until the paint is drawn; then again (in place).
 2. Recompute after moving one motor part (Back-cover 40 mm, then back, then
    again: three recomputes), until the paint is drawn; the number of common
-   regions the core computed each time.
+   regions the core computed each time, and the bodies whose BRep text
+   crossed into the core (the others' core bodies kept).
 3. The haptic trial panel on the motor with its contact analysis present
    (issue 20 item 6): the simulated hand's Z slider moved back and forth for
    PANEL_SECONDS, the Axis following along its bores; the 3D view's renders
@@ -132,6 +133,9 @@ def motor():
             FreeCADGui.runCommand("Std_Refresh")
         timed("motor_recompute_after_move", recompute, doc)
         report["regions"].setdefault("motor_recompute_after_move", []).append(regions.cache_of(group).computed)
+        core_bodies = getattr(regions.cache_of(group), "core_bodies", None)  # absent from older workbenches
+        if core_bodies is not None:
+            report.setdefault("crossed", []).append(list(core_bodies.crossed))
     doc.openTransaction("Move Back-cover")
     cover.Placement = home
     doc.commitTransaction()

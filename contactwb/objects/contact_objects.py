@@ -386,13 +386,18 @@ def _choose_bodies(doc, group, messages):
     return everything, {id(b) for b in picked}
 
 
-def _find(bodies, source, linear, angular, progress, region_bodies=False):
+def _find(bodies, source, linear, angular, progress, region_bodies=False, group=None):
     """(analysis.Analysis, contactcore.Assembly, contactcore.ContactsResult);
-    `region_bodies`: the common regions to compute (contactwb.objects.regions)."""
-    assembly = assembly_from_shapes((b.name, b.shape) for b in bodies)
+    `region_bodies`: the common regions to compute (contactwb.objects.regions);
+    `group`: the analysis whose unchanged core bodies are reused (its
+    regions.assembly_of), with what the core's last search found for them
+    (regions.memo_of), else every body crosses as BRep and is searched anew."""
+    assembly = regions.assembly_of(group, bodies) if group is not None else \
+        assembly_from_shapes((b.name, b.shape) for b in bodies)
     face_name = lambda body, index: bodies[body].object_face_name(index)  # noqa: E731
     raw = core.contactcore.find_contacts(assembly, linear=linear, angular=angular, progress=progress,
-                                         regions=region_bodies)
+                                         regions=region_bodies,
+                                         memo=regions.memo_of(group) if group is not None else None)
     return contact_analysis.analysis_of_result(source, assembly, raw, face_name), assembly, raw
 
 
@@ -451,7 +456,7 @@ def update_contact_analysis(group, progress=None):
     linear, angular = tolerance_settings(group)
     settings = (linear, angular)
     result, assembly, raw = _find(bodies, doc.Label, linear, angular, progress,
-                                  regions.region_bodies(group, bodies, settings))
+                                  regions.region_bodies(group, bodies, settings), group)
     painted = regions.store(group, bodies, settings, assembly, raw, result.contacts, key_of_record)
     regions.reuse_masses(group, bodies, assembly, result)  # the unchanged bodies' volumes and centres kept
     result.messages.extend(messages)
@@ -502,7 +507,7 @@ def compute_regions(group):
     linear, angular = tolerance_settings(group)
     settings = (linear, angular)
     result, assembly, raw = _find(bodies, group.Document.Label, linear, angular, None,
-                                  regions.region_bodies(group, bodies, settings))
+                                  regions.region_bodies(group, bodies, settings), group)
     return regions.store(group, bodies, settings, assembly, raw, result.contacts, key_of_record)
 
 

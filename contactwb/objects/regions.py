@@ -13,6 +13,7 @@ import math
 
 from contactwb import core
 from contactwb.core.kinds import CIRCLE_TYPES
+from contactwb.document.shapes import CoreBodyCache, ShapeStamp
 
 # The deflection of the regions' triangles: FreeCAD's for a body's view
 # (ViewProviderPartExt: the box's size sum / 300 * Deviation %, Deviation 0.5
@@ -27,33 +28,6 @@ def body_deflection(shape, deviation=DEFAULT_DEVIATION):
     box = shape.BoundBox
     size = box.XLength + box.YLength + box.ZLength if box.isValid() else 1.0
     return max(size / 300.0 * deviation, 1e-4)
-
-
-class ShapeStamp:
-    """Where a body is and what it is, in a few calls: its path in the
-    document, its placed shape and that shape's placement. Equal to another
-    when the path is, the shape is the same OCCT shape (isPartner: the same
-    geometry object; a recomputed feature gets a new one) and the placement
-    is (a move). The shape is held, so that its geometry stays alive and a
-    new shape can never take its place in memory. Replaces a fingerprint of
-    the box and the area (OCCT's surface integration of every face: most of
-    the cost of looking, at each recompute)."""
-    __slots__ = ("path", "shape", "placement")
-
-    def __init__(self, body):
-        shape = body.shape
-        self.path = (body.root.Name, body.subname, body.name)
-        self.shape = shape
-        self.placement = tuple(shape.Placement.toMatrix().A)
-
-    def __eq__(self, other):
-        return (isinstance(other, ShapeStamp) and self.path == other.path and self.placement == other.placement
-                and self.shape.isPartner(other.shape))
-
-    def __ne__(self, other):
-        return not self.__eq__(other)
-
-    __hash__ = None
 
 
 def fingerprint(body):
@@ -76,6 +50,8 @@ class RegionCache:
         self.pending = {}  # the fingerprints of the bodies of the recompute under way
         self.generation = 0  # stored results so far: a paint built from an older one is redrawn
         self.masses = None  # (body names, their stamps, lone flags, (volume, centre) each): reuse_masses
+        self.core_bodies = CoreBodyCache()  # the core's bodies, kept: only changed ones cross as BRep
+        self.memo = None  # contactcore.ContactsMemo: what the core reuses of the last search (memo_of)
 
     def changed_bodies(self, bodies, settings):
         """Indices of the bodies whose regions must be computed again (every
@@ -109,6 +85,26 @@ def region_bodies(group, bodies, settings):
     """find_contacts' `regions` for a recompute of `group` on `bodies`."""
     changed = cache_of(group).changed_bodies(bodies, settings)
     return True if len(changed) == len(bodies) else changed
+
+
+def assembly_of(group, bodies):
+    """The contactcore.Assembly of a recompute of `group` on `bodies` (after
+    region_bodies, whose stamps it uses): the unchanged bodies' core Body
+    kept from the last recompute, only the moved and changed ones read from
+    BRep text (contactwb.document.shapes.CoreBodyCache)."""
+    cache = cache_of(group)
+    stamps = [cache.pending.get(b.name) or fingerprint(b) for b in bodies]
+    return cache.core_bodies.assembly(bodies, stamps)
+
+
+def memo_of(group):
+    """The contactcore.ContactsMemo of `group`'s searches: find_contacts
+    reuses what depends only on the bodies whose core Body is the last
+    search's (assembly_of keeps them), and checks that itself."""
+    cache = cache_of(group)
+    if cache.memo is None:
+        cache.memo = core.contactcore.ContactsMemo()
+    return cache.memo
 
 
 def store(group, bodies, settings, assembly, raw, records, contact_key):

@@ -2,6 +2,7 @@
 #include "common.h"
 
 #include "contactcore/bodies/bodies.h"
+#include "contactcore/bodies/assembly_of_bodies.h"
 #include "contactcore/bodies/inertia.h"
 #include "contactcore/common/occt_guard.h"
 
@@ -116,6 +117,21 @@ void bind_bodies(py::module_& m) {
       },
       py::arg("brep"), py::arg("names"),
       "Bodies from one BRep compound (one child per body, named in order).");
+
+  m.def(
+      "assembly_of_bodies",
+      [](const std::vector<Body>& bodies, const std::vector<std::string>& names) {
+        AssemblyResult result;
+        raise_if_failed(guarded([&] {
+          result = assembly_of_bodies(bodies, names);
+          return result.status;
+        }));
+        return result.assembly;
+      },
+      py::arg("bodies"), py::arg("names"),
+      "An Assembly of Body objects read before (from other Assemblies: their shapes and computed volumes "
+      "shared, not copied), named in order and made unique as bodies_from_brep does: what bodies_from_brep "
+      "gives for the compound of their shapes, without the BRep text.");
 }
 
 }  // namespace contactcore::bindings

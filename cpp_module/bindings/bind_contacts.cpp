@@ -10,6 +10,7 @@
 
 #include "contactcore/common/angles.h"
 #include "contactcore/contacts/contacts.h"
+#include "contactcore/contacts/contacts_memo.h"
 
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
@@ -222,11 +223,27 @@ void bind_contacts(py::module_& m) {
                " candidates>";
       });
 
+  py::class_<ContactsMemo>(m, "ContactsMemo",
+                           "What find_contacts(memo=...) keeps of its run for the next one (a recompute): "
+                           "each body's shape, tolerances and partitions, each tested body pair's contacts, "
+                           "each body pair's point and line contacts. Opaque; its counts say what the last run reused.")
+      .def(py::init<>())
+      .def_property_readonly("bodies", [](const ContactsMemo& m) { return m.shapes.size(); },
+                             "bodies of the run it holds (0: none held)")
+      .def_property_readonly("reused_bodies", read_only(&ContactsMemo::reused_bodies),
+                             "bodies whose partitions the last run reused")
+      .def_property_readonly("reused_tested_pairs", read_only(&ContactsMemo::reused_tested_pairs),
+                             "body pairs whose candidate tests the last run reused")
+      .def_property_readonly("reused_higher_pairs", read_only(&ContactsMemo::reused_higher_pairs),
+                             "body pairs whose point and line contacts the last run reused")
+      .def_property_readonly("reused_solid_checks", read_only(&ContactsMemo::reused_solid_checks),
+                             "bodies (instance sources) whose solid checks the last run reused");
+
   m.def(
       "find_contacts",
       [](const Assembly& assembly, std::optional<double> linear, std::optional<double> angular,
          py::object progress, int threads, std::optional<std::size_t> max_pairs, bool reuse_instances,
-         double clearance_gap, const std::string& check_solids, py::object regions) {
+         double clearance_gap, const std::string& check_solids, py::object regions, ContactsMemo* memo) {
         ContactOptions options;
         set_regions(options, regions);
         if (check_solids != "quick" && check_solids != "full")
@@ -242,7 +259,7 @@ void bind_contacts(py::module_& m) {
         if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
         ContactsResult result;
         const Status status = guarded([&] {
-          result = find_contacts(assembly, options, reporter.get());
+          result = find_contacts(assembly, options, reporter.get(), memo);
           return result.status;
         });
         if (reporter) reporter->rethrow_if_raised();
@@ -252,7 +269,7 @@ void bind_contacts(py::module_& m) {
       py::arg("assembly"), py::arg("linear") = py::none(), py::arg("angular") = py::none(),
       py::arg("progress") = py::none(), py::arg("threads") = 0, py::arg("max_pairs") = py::none(),
       py::arg("reuse_instances") = true, py::arg("clearance_gap") = 0.0, py::arg("check_solids") = "quick",
-      py::arg("regions") = false,
+      py::arg("regions") = false, py::arg("memo") = nullptr,
       "Partitions every body, then finds contacts, on `threads` threads (0: all cores; the result "
       "is the same for any number). `progress(stage, fraction)` returning False cancels (raises "
       "contactcore.Cancelled); it is called from the calling thread. Tolerances default to the "
@@ -261,7 +278,10 @@ void bind_contacts(py::module_& m) {
       "`check_solids`: 'quick' (default) or 'full' (also OCCT's BRepCheck_Analyzer and faces crossing "
       "each other: seconds on a large model). `regions`: True computes every contact's common region "
       "(Contact.region_brep, region_mesh) and every interference's overlapping solid (Interference.solid_brep); "
-      "a list of body indices, only those touching these bodies (counted in regions_computed).");
+      "a list of body indices, only those touching these bodies (counted in regions_computed). `memo` "
+      "(ContactsMemo): what the last run with it kept is reused for the bodies that did not change since "
+      "(the same Body shapes at the same indices: contactcore.assembly_of_bodies), the result the same to "
+      "the last bit; then it keeps this run.");
 
   m.def(
       "find_common_regions",

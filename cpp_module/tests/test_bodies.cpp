@@ -15,6 +15,7 @@
 #include <gp_Ax1.hxx>
 #include <gp_Trsf.hxx>
 
+#include "contactcore/bodies/assembly_of_bodies.h"
 #include "contactcore/bodies/bodies.h"
 #include "test_helpers.h"
 
@@ -69,6 +70,43 @@ TEST(Bodies, CompoundChildrenBecomeNamedBodies) {
   EXPECT_EQ(result.assembly.bodies[0].name, "first");
   EXPECT_EQ(result.assembly.bodies[1].name, "first.2");
   EXPECT_NEAR(mass_properties(result.assembly.bodies[1].shape).volume, 8.0, 1e-9);
+}
+
+// Bodies read before, gathered (a recompute's unchanged bodies): the shapes
+// and their mass caches kept as they are, named as bodies_from_brep names the
+// children of a compound; a count that differs or a body without a shape is
+// an error value naming it.
+TEST(Bodies, AssemblyOfBodiesKeepsShapesAndNamesThemAsACompoundRead) {
+  Assembly source;
+  source.bodies.push_back({"a", "a", BRepPrimAPI_MakeBox(1, 1, 1).Shape()});
+  source.bodies.push_back({"b", "b", BRepPrimAPI_MakeBox(2, 2, 2).Shape()});
+  const AssemblyResult read = bodies_from_brep(shape_to_brep(assembly_compound(source)), {"x", "y"});
+  ASSERT_TRUE(read.status.ok());
+  EXPECT_NEAR(read.assembly.bodies[1].mass().volume, 8.0, 1e-9);  // filled once, shared by the copies below
+  const AssemblyResult gathered =
+      assembly_of_bodies({read.assembly.bodies[1], read.assembly.bodies[0], read.assembly.bodies[1]}, {"first", "first", "first"});
+  ASSERT_TRUE(gathered.status.ok());
+  ASSERT_EQ(gathered.assembly.bodies.size(), 3u);
+  const AssemblyResult compound = bodies_from_brep(
+      shape_to_brep(assembly_compound(gathered.assembly)), {"first", "first", "first"});
+  ASSERT_TRUE(compound.status.ok());
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(gathered.assembly.bodies[i].name, compound.assembly.bodies[i].name);
+    EXPECT_EQ(gathered.assembly.bodies[i].path, "first");
+  }
+  EXPECT_EQ(gathered.assembly.bodies[2].name, "first.3");
+  EXPECT_TRUE(gathered.assembly.bodies[0].shape.IsEqual(read.assembly.bodies[1].shape));
+  EXPECT_TRUE(gathered.assembly.bodies[1].shape.IsEqual(read.assembly.bodies[0].shape));
+  EXPECT_EQ(gathered.assembly.bodies[0].mass_cache.get(), read.assembly.bodies[1].mass_cache.get());
+  EXPECT_EQ(gathered.assembly.units, "mm");
+  EXPECT_TRUE(gathered.assembly.messages.empty());
+
+  const AssemblyResult miscounted = assembly_of_bodies(read.assembly.bodies, {"only"});
+  EXPECT_EQ(miscounted.status.code, StatusCode::InvalidArgument);
+  EXPECT_EQ(miscounted.status.message, "2 bodies but 1 names");
+  const AssemblyResult empty = assembly_of_bodies({read.assembly.bodies[0], Body{}}, {"a", "hollow"});
+  EXPECT_EQ(empty.status.code, StatusCode::InvalidArgument);
+  EXPECT_EQ(empty.status.body, "hollow");
 }
 
 TEST(Bodies, NamesMadeUniqueWithoutClashes) {

@@ -1,4 +1,5 @@
 #include "contactcore/bodies/bodies.h"
+#include "contactcore/bodies/assembly_of_bodies.h"
 #include "contactcore/common/occt_guard.h"
 #include "contactcore/common/out_of_memory.h"
 #include "bodies/step_check.h"
@@ -636,6 +637,26 @@ std::string shape_to_brep(const TopoDS_Shape& shape) {
   std::ostringstream stream;
   BRepTools::Write(shape, stream);
   return stream.str();
+}
+
+AssemblyResult assembly_of_bodies(std::vector<Body> bodies, const std::vector<std::string>& names) {
+  AssemblyResult result;
+  if (bodies.size() != names.size()) {
+    result.status = Status::failure(StatusCode::InvalidArgument,
+                                    std::to_string(bodies.size()) + " bodies but " + std::to_string(names.size()) + " names");
+    return result;
+  }
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (bodies[i].shape.IsNull()) {
+      result.status = Status::failure(StatusCode::InvalidArgument, "a body without a shape");
+      result.status.body = names[i];
+      return result;
+    }
+    bodies[i].name = bodies[i].path = names[i];  // as bodies_from_brep names a child
+  }
+  result.assembly.bodies = std::move(bodies);
+  make_names_unique(result.assembly.bodies);
+  return result;
 }
 
 AssemblyResult bodies_from_brep(const std::string& brep, const std::vector<std::string>& names) {

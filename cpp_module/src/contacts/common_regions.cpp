@@ -16,6 +16,7 @@
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <Poly_Triangulation.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopLoc_Location.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
@@ -141,8 +142,18 @@ Status contact_region(const Contact& contact, const std::vector<BodyPartitions>&
 }
 
 // The material two bodies share (OCCT's Boolean common of the two solids).
+// Non-destructive: OCCT copies what it would otherwise change in the
+// arguments (their sub-shapes' tolerances), so the bodies stay as they were
+// read: other threads read them, and a recompute reuses them as they are.
 Status common_solid(const TopoDS_Shape& a, const TopoDS_Shape& b, TopoDS_Shape& solid) {
-  BRepAlgoAPI_Common common(a, b);
+  BRepAlgoAPI_Common common;
+  TopTools_ListOfShape arguments, tools;
+  arguments.Append(a);
+  tools.Append(b);
+  common.SetArguments(arguments);
+  common.SetTools(tools);
+  common.SetNonDestructive(Standard_True);
+  common.Build();
   if (!common.IsDone()) return Status::failure(StatusCode::GeometryError, "OCCT: Boolean common of two solids failed");
   solid = common.Shape();
   return Status::success();

@@ -1,4 +1,5 @@
 #include "contactcore/contacts/contacts.h"
+#include "contactcore/contacts/contacts_memo.h"
 #include "contactcore/common/out_of_memory.h"
 #include "contactcore/contacts/clearances.h"
 
@@ -197,7 +198,28 @@ BroadPhase broad_phase(const std::vector<Bnd_Box>& boxes, const std::vector<doub
 }
 
 ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& options, Progress* progress) {
+  return find_contacts(assembly, options, progress, nullptr);
+}
+
+namespace {
+
+bool same_tolerances(const Tolerances& a, const Tolerances& b) {
+  return a.linear == b.linear && a.angular == b.angular;
+}
+
+}  // namespace
+
+ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& options, Progress* progress,
+                             ContactsMemo* memo) {
   ContactsResult result;
+  // The memo of the last run, taken (this run refills it on success only).
+  ContactsMemo last, next;
+  std::vector<int> memo_sources;      // this run's instance sources, for the memo
+  std::size_t memo_reused_bodies = 0;
+  if (memo) {
+    last = std::move(*memo);
+    *memo = ContactsMemo{};
+  }
   const auto cancelled = [&result]() {
     result.status = Status::failure(StatusCode::Cancelled, "cancelled");
     return result;
@@ -223,11 +245,22 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     // box moved (exact for translations, a little larger when turned).
     std::vector<Bnd_Box> boxes(n);
     std::vector<std::string> box_failures(n);
+    // A source body whose shape is the memo's (the same OCCT shape, location
+    // and orientation), a source then too: the memo's box.
+    std::vector<char> known_box(n, 0);
+    if (last.shapes.size() == n && last.shape_boxes.size() == n)
+      for (std::size_t i = 0; i < n; ++i)
+        known_box[i] = sources[i] == static_cast<int>(i) && last.sources[i] == sources[i] &&
+                       last.shapes[i].IsEqual(assembly.bodies[i].shape) && !last.shape_boxes[i].IsVoid();
     if (!parallel_for(n, threads, progress, "partitions", [&](std::size_t i) {
-          if (sources[i] == static_cast<int>(i))
+          if (known_box[i]) {
+            boxes[i] = last.shape_boxes[i];
+          } else if (sources[i] == static_cast<int>(i)) {
             run_guarded([&] { BRepBndLib::Add(assembly.bodies[i].shape, boxes[i], false); }, box_failures[i], "OCCT: ");
+          }
         }, 16))
       return cancelled();
+    if (memo) next.shape_boxes = boxes;
     for (std::size_t i = 0; i < n; ++i) {
       if (box_failures[i].empty()) continue;
       result.status = Status::failure(StatusCode::GeometryError, box_failures[i]);
@@ -277,14 +310,34 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     result.partitions.resize(n);
     result.instance_of.resize(n);
     for (std::size_t i = 0; i < n; ++i) result.instance_of[i] = static_cast<int>(i);
+    // The bodies that did not change since the memo's run (the same shape at
+    // the same index, the same tolerances, the same instance source), and
+    // those whose partitions are reused: unchanged, as their source is.
+    std::vector<char> unchanged(n, 0), reused(n, 0);
+    if (last.shapes.size() == n) {
+      for (std::size_t i = 0; i < n; ++i)
+        unchanged[i] = last.shapes[i].IsEqual(assembly.bodies[i].shape) &&
+                       same_tolerances(last.body_tolerances[i], body_tol[i]) && last.sources[i] == sources[i] &&
+                       last.partitions[i].status.ok();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!unchanged[i] || !unchanged[sources[i]]) continue;
+        reused[i] = 1;
+        result.partitions[i] = last.partitions[i];
+        result.instance_of[i] = last.instance_of[i];
+      }
+    }
+    if (memo) {
+      memo_sources = sources;
+      for (std::size_t i = 0; i < n; ++i) memo_reused_bodies += reused[i] ? 1 : 0;
+    }
     std::vector<std::vector<CandidateKey>> keys(n);
     if (!parallel_for(n, threads, progress, "partitions", [&](std::size_t i) {
-          if (sources[i] == static_cast<int>(i)) partition_body(i);
+          if (sources[i] == static_cast<int>(i) && !reused[i]) partition_body(i);
         }))
       return cancelled();
     if (!parallel_for(n, threads, progress, "partitions", [&](std::size_t i) {
           const int source = sources[i];
-          if (source != static_cast<int>(i)) {
+          if (source != static_cast<int>(i) && !reused[i]) {
             const BodyPartitions& original = result.partitions[source];
             if (original.status.ok()) {
               std::string failure;
@@ -344,15 +397,28 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     std::vector<std::size_t> tested;  // the pairs whose candidates are tested, in order
     for (std::size_t k = 0; k < pairs.size(); ++k)
       if (representative[k] == k) tested.push_back(k);
+    // A pair of two bodies whose partitions are reused, tested itself in the
+    // memo's run too: its contacts and failures are the memo's.
+    std::vector<const ContactsMemo::PairTests*> known(pairs.size(), nullptr);
+    if (!options.candidate_hook && last.min_area_ratio == options.min_area_ratio) {
+      for (std::size_t k : tested) {
+        if (!reused[pairs[k].first] || !reused[pairs[k].second]) continue;
+        const auto found = last.tested.find(pairs[k]);
+        if (found != last.tested.end()) known[k] = &found->second;
+      }
+    }
     start = Clock::now();
     std::vector<std::vector<Candidate>> pair_candidates_of(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "candidates", [&](std::size_t t) {
+          if (known[tested[t]]) return;  // counted below from the memo's
           const auto [ia, ib] = pairs[tested[t]];
           pair_candidates(ia, ib, keys, result.partitions, pair_tolerances(result.partitions[ia], result.partitions[ib]),
                           pair_candidates_of[tested[t]]);
         }, 64))
       return cancelled();
-    for (std::size_t k = 0; k < pairs.size(); ++k) result.candidates += pair_candidates_of[representative[k]].size();
+    std::vector<std::size_t> candidate_counts(pairs.size(), 0);
+    for (std::size_t k : tested) candidate_counts[k] = known[k] ? known[k]->candidates : pair_candidates_of[k].size();
+    for (std::size_t k = 0; k < pairs.size(); ++k) result.candidates += candidate_counts[representative[k]];
     result.times.candidates = seconds_since(start);
 
     // The tests; a pair whose test fails is skipped and recorded, the rest kept.
@@ -361,6 +427,11 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     std::vector<std::vector<SkippedPair>> pair_skipped(pairs.size());
     if (!parallel_for(tested.size(), threads, progress, "contacts", [&](std::size_t t) {
           const std::size_t k = tested[t];
+          if (known[k]) {
+            pair_contacts[k] = known[k]->contacts;
+            pair_skipped[k] = known[k]->skipped;
+            return;
+          }
           const Tolerances pair_tol = pair_tolerances(result.partitions[pairs[k].first], result.partitions[pairs[k].second]);
           const PairContext ctx{result.partitions, pair_tol, options.min_area_ratio};
           std::vector<Contact>& out = pair_contacts[k];
@@ -402,6 +473,12 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
           std::vector<Candidate>().swap(pair_candidates_of[k]);
         }, 4))
       return cancelled();
+    if (memo) {
+      for (std::size_t k : tested) {
+        next.reused_tested_pairs += known[k] ? 1 : 0;
+        next.tested[pairs[k]] = ContactsMemo::PairTests{pair_contacts[k], pair_skipped[k], candidate_counts[k]};
+      }
+    }
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const std::size_t r = representative[k];
       const auto [ia, ib] = pairs[k];
@@ -433,7 +510,22 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     {
       std::vector<std::vector<HigherPair>> higher(pairs.size());
       std::vector<std::string> higher_failures(pairs.size());
+      // A pair of two bodies whose partitions are reused, with the same
+      // tolerances as the memo's run: its point and line contacts are the memo's.
+      std::vector<const ContactsMemo::PairHigher*> known_higher(pairs.size(), nullptr);
+      if (same_tolerances(last.tolerances, result.tolerances)) {
+        for (std::size_t k = 0; k < pairs.size(); ++k) {
+          if (!reused[pairs[k].first] || !reused[pairs[k].second]) continue;
+          const auto found = last.higher.find(pairs[k]);
+          if (found != last.higher.end()) known_higher[k] = &found->second;
+        }
+      }
       if (!parallel_for(pairs.size(), threads, progress, "contacts", [&](std::size_t k) {
+            if (known_higher[k]) {
+              higher[k] = known_higher[k]->pairs;
+              higher_failures[k] = known_higher[k]->failure;
+              return;
+            }
             // Plain variables: clang 14 cannot capture a structured binding (make fuzz builds with it).
             const std::size_t ia = pairs[k].first, ib = pairs[k].second;
             run_guarded([&] { higher[k] = find_higher_pairs(ia, result.partitions[ia], ib, result.partitions[ib],
@@ -441,6 +533,12 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
                         higher_failures[k], "OCCT: ");
           }, 16))
         return cancelled();
+      if (memo) {
+        for (std::size_t k = 0; k < pairs.size(); ++k) {
+          next.reused_higher_pairs += known_higher[k] ? 1 : 0;
+          next.higher[pairs[k]] = ContactsMemo::PairHigher{higher[k], higher_failures[k]};
+        }
+      }
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         if (!higher_failures[k].empty())
           result.messages.push_back("skipped the point and line contacts of '" + assembly.bodies[pairs[k].first].name +
@@ -450,7 +548,14 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     }
     result.times.area = seconds_since(start);
     start = Clock::now();
-    const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks);
+    const bool known_checks = last.checks == options.solid_checks;
+    if (memo) {
+      next.checks = options.solid_checks;
+      for (std::size_t i = 0; i < n; ++i)
+        next.reused_solid_checks += known_checks && reused[i] && result.instance_of[i] == static_cast<int>(i) ? 1 : 0;
+    }
+    const Status checked = check_solids(assembly, result, progress, threads, options.solid_checks,
+                                        known_checks ? &reused : nullptr, &last.solids, memo ? &next.solids : nullptr);
     result.times.validity = seconds_since(start);
     if (!checked.ok()) {
       result.status = checked;
@@ -478,6 +583,21 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     result.status = Status::failure(StatusCode::GeometryError, "OCCT: " + occt_failure_text(failure));
   }
   if (result.status.ok()) result.clearances = find_clearances(result.partitions, options.clearance_gap);
+  if (memo && result.status.ok()) {
+    // Kept for the next run: every body's shape, tolerances, source and partitions.
+    const std::size_t n = assembly.bodies.size();
+    next.shapes.reserve(n);
+    for (const Body& body : assembly.bodies) next.shapes.push_back(body.shape);
+    next.body_tolerances.reserve(n);
+    for (const BodyPartitions& body : result.partitions) next.body_tolerances.push_back(body.tolerances);
+    next.sources = std::move(memo_sources);
+    next.partitions = result.partitions;
+    next.instance_of = result.instance_of;
+    next.min_area_ratio = options.min_area_ratio;
+    next.tolerances = result.tolerances;
+    next.reused_bodies = memo_reused_bodies;
+    *memo = std::move(next);
+  }
   if (progress) progress->report("contacts", 1.0);
   return result;
 }

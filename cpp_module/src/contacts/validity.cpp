@@ -371,7 +371,8 @@ std::string face_list(const std::vector<int>& faces) {
 }  // namespace
 
 Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* progress, int threads,
-                    SolidChecks checks) {
+                    SolidChecks checks, const std::vector<char>* reusable, const SolidVerdicts* known,
+                    SolidVerdicts* kept) {
   const std::size_t n = result.partitions.size();
   const auto source_of = [&](std::size_t i) {
     return i < result.instance_of.size() ? static_cast<std::size_t>(result.instance_of[i]) : i;
@@ -385,6 +386,11 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
   detail::CancelWatch watch(progress, kStage);
   if (!parallel_for(n, threads, &watch, kStage, [&](std::size_t i) {
         if (source_of(i) != i || watch.cancelled()) return;
+        if (reusable && known && (*reusable)[i] && known->verdicts.size() == n && known->failures.size() == n) {
+          verdicts[i] = known->verdicts[i];
+          failures[i] = known->failures[i];
+          return;
+        }
         std::string failure;
         if (!run_guarded(
                 [&] { verdicts[i] = check_one(assembly.bodies[i], result.partitions[i], result.partitions[i].tolerances, checks, watch); },
@@ -393,6 +399,7 @@ Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* 
       }) ||
       watch.cancelled())
     return Status::failure(StatusCode::Cancelled, "cancelled");
+  if (kept) *kept = SolidVerdicts{verdicts, failures};
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t source = source_of(i);
     const std::string& name = assembly.bodies[i].name;

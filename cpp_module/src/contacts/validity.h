@@ -4,6 +4,7 @@
 #pragma once
 
 #include "contactcore/contacts/contacts.h"
+#include "contactcore/contacts/contacts_memo.h"
 
 namespace contactcore {
 
@@ -29,7 +30,11 @@ inline constexpr const char* kFacesCrossing = "faces crossing each other";  // S
 // (BOPAlgo_ArgumentAnalyzer's self-interference; together many times the
 // cost of the quick checks). Fills `invalid_bodies` (body
 // order; faces empty: the whole solid) and one message per invalid body.
+// `known`: verdicts of an earlier run taken for the bodies whose `reusable`
+// flag is set (their shape, partitions and checks the same); `kept`: this
+// run's verdicts, per body (for find_contacts' memo).
 Status check_solids(const Assembly& assembly, ContactsResult& result, Progress* progress = nullptr, int threads = 0,
-                    SolidChecks checks = SolidChecks::Quick);
+                    SolidChecks checks = SolidChecks::Quick, const std::vector<char>* reusable = nullptr,
+                    const SolidVerdicts* known = nullptr, SolidVerdicts* kept = nullptr);
 
 }  // namespace contactcore
