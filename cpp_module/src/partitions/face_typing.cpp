@@ -7,6 +7,7 @@
 #include "partitions/outlines.h"
 #include "contactcore/common/out_of_memory.h"
 #include "common/quadrature.h"
+#include "common/xyz_components.h"
 #include "partitions/surface_fitting.h"
 
 #include <algorithm>
@@ -275,12 +276,13 @@ Bnd_Box swept_box(const std::vector<gp_XYZ>& meridian, const gp_Ax1& axis, doubl
     const gp_XYZ radial = meridian[i] - centre, turned = axis_dir ^ radial;
     double lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
-      const double a = radial.Coord(k + 1), b = turned.Coord(k + 1);
-      auto value = [&](double u) { return centre.Coord(k + 1) + a * std::cos(u) + b * std::sin(u); };
+      // Not Coord(k + 1): common/xyz_components.h.
+      const double a = xyz_component(radial, k), b = xyz_component(turned, k), mid = xyz_component(centre, k);
+      auto value = [&](double u) { return mid + a * std::cos(u) + b * std::sin(u); };
       if (!(u2 - u1 < 2 * kPi)) {  // a whole turn or more (a damaged range of 6.8e6 rad: make fuzz), NaN too
         const double reach = std::hypot(a, b);
-        lo[k] = centre.Coord(k + 1) - reach;
-        hi[k] = centre.Coord(k + 1) + reach;
+        lo[k] = mid - reach;
+        hi[k] = mid + reach;
         continue;
       }
       lo[k] = std::min(value(u1), value(u2));

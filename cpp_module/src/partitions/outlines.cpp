@@ -16,6 +16,7 @@
 #include <gp_Circ.hxx>
 
 #include "common/quadrature.h"
+#include "common/xyz_components.h"
 #include "contactcore/common/angles.h"
 
 namespace contactcore {
@@ -282,8 +283,7 @@ gp_Dir canonical_plane_ref(const gp_Dir& normal) {
     if (std::fabs(c[i]) < std::fabs(c[smallest])) smallest = i;
   }
   const gp_XYZ line = normal.XYZ() * (c[largest] > 0 ? 1.0 : -1.0);
-  gp_XYZ towards(0, 0, 0);
-  towards.SetCoord(smallest + 1, 1.0);
+  const gp_XYZ towards = xyz_unit(smallest);  // not SetCoord: common/xyz_components.h
   const gp_XYZ ref = towards - line * (towards * line);
   return gp_Dir(ref);
 }
