@@ -22,6 +22,7 @@
 #include <gp_Trsf.hxx>
 
 #include "contactcore/bodies/bodies.h"
+#include "contactcore/common/angles.h"
 #include "contactcore/simulation/analytic_distance.h"
 #include "test_helpers.h"
 
@@ -29,8 +30,6 @@ using namespace contactcore;
 using Eigen::Vector3d;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Partitioned {
   TopoDS_Shape shape;

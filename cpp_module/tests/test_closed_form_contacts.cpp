@@ -20,6 +20,7 @@
 #include <gp_Ax2.hxx>
 
 #include "contactcore/bodies/bodies.h"
+#include "contactcore/common/angles.h"
 #include "contactcore/haptics/trial.h"
 #include "contactcore/simulation/analytic_distance.h"
 #include "contactcore/simulation/collision.h"
@@ -30,8 +31,6 @@ using namespace contactcore;
 using Eigen::Vector3d;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Partitioned {
   TopoDS_Shape shape;

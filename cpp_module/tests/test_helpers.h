@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +31,14 @@ inline void dereference_null_inside_occt() {
 }
 
 inline std::string sample(const std::string& name) { return std::string(CONTACTS_SAMPLES) + "/" + name; }
+
+// A file's whole text, as written (binary: no newline translation).
+inline std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // An assembly of named shapes placed as they are (name doubles as path).
 inline Assembly make_assembly(std::vector<std::pair<std::string, TopoDS_Shape>> shapes) {

@@ -125,10 +125,7 @@ struct StageLog : Progress {
 TEST(StepRead, UnknownProductStructureFallsBackToXdeAndSaysSo) {
   // pin_block.step with a placement (CONTEXT_DEPENDENT_SHAPE_REPRESENTATION)
   // of a product rather than of an occurrence: the fast read does not know it.
-  std::ifstream in(contactcore::testing::sample("cases/pin_block.step"));
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string step = text.str();
+  std::string step = contactcore::testing::file_text(contactcore::testing::sample("cases/pin_block.step"));
   const std::size_t end = step.rfind("ENDSEC;");
   ASSERT_NE(end, std::string::npos);
   step.insert(end, "#99990 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#461,#34);\n");
@@ -161,20 +158,12 @@ TEST(StepRead, InstancesOfOneProductShareItsShape) {
   EXPECT_EQ(shapes.size(), 2u);
 }
 
-namespace {
-std::string text_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-}  // namespace
 
 TEST(StepPlacementLists, TheGridsAssemblyListIsShortenedToItsFirstItem) {
   // bolted_grid_100.step (FreeCAD's export): the assembly's #10 lists its
   // origin #11 and the 100 parts' placements #15, #19, ... #411; nothing else
   // is a list of placements only (the parts' representations hold a solid).
-  const std::string text = text_of(contactcore::testing::sample("families/bolted_grid_100.step"));
+  const std::string text = contactcore::testing::file_text(contactcore::testing::sample("families/bolted_grid_100.step"));
   const ShortenedPlacementLists shortened = shorten_placement_lists(text);
   ASSERT_TRUE(shortened.changed());
   ASSERT_EQ(shortened.removed.size(), 1u);
@@ -224,7 +213,7 @@ TEST(StepRead, AShortenedListOutsideAnAssemblyIsReadAsWritten) {
   // pin_block.step with a second representation of the part Plate holding
   // two placements only: the list is shortened, it is no assembly's, so the
   // read by products parses the file as written and reads it as XDE does.
-  std::string step = text_of(contactcore::testing::sample("cases/pin_block.step"));
+  std::string step = contactcore::testing::file_text(contactcore::testing::sample("cases/pin_block.step"));
   const std::size_t end = step.rfind("ENDSEC;");
   ASSERT_NE(end, std::string::npos);
   step.insert(end,
@@ -253,7 +242,7 @@ TEST(StepRead, BigGridReadsTheSameWithItsPlacementListShortened) {
   const std::string command = "/usr/bin/python3 " + std::string(CONTACTS_SOURCE_DIR) + "/bench/big_grid_step.py 3000 " +
                               path + " --template " + contactcore::testing::sample("families/bolted_grid_100.step");
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
-  const ShortenedPlacementLists shortened = shorten_placement_lists(text_of(path));
+  const ShortenedPlacementLists shortened = shorten_placement_lists(contactcore::testing::file_text(path));
   ASSERT_EQ(shortened.removed.size(), 1u);
   EXPECT_EQ(shortened.removed.begin()->second.size(), 3000u);
   const AssemblyResult as_written = read_step(path, nullptr, StepReadMode::ProductsAsWritten);

@@ -25,13 +25,6 @@ using namespace contactcore;
 
 namespace {
 
-std::string text_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // A buffer without a get area: a character taken alone goes through uflow
 // (counted), a block through xsgetn (counted, with the characters it gave).
 class CountingText : public std::streambuf {
@@ -84,7 +77,7 @@ Parsed parse(CountingText& text, bool in_blocks) {
 }  // namespace
 
 TEST(StepScannerInput, TheScannerTakesEveryCharacterInBlocksUnderTheScope) {
-  const std::string text = text_of(contactcore::testing::sample("families/bolted_grid_100.step"));
+  const std::string text = contactcore::testing::file_text(contactcore::testing::sample("families/bolted_grid_100.step"));
   ASSERT_GT(text.size(), 10000u);
   const std::size_t before = detail::step_scanner_block_reads();
   CountingText counted(text);
@@ -97,7 +90,7 @@ TEST(StepScannerInput, TheScannerTakesEveryCharacterInBlocksUnderTheScope) {
 }
 
 TEST(StepScannerInput, WithoutTheScopeOcctsOwnInputReadsACharacterPerCall) {
-  const std::string text = text_of(contactcore::testing::sample("families/bolted_grid_100.step"));
+  const std::string text = contactcore::testing::file_text(contactcore::testing::sample("families/bolted_grid_100.step"));
   const std::size_t before = detail::step_scanner_block_reads();
   CountingText counted(text);
   const Parsed parsed = parse(counted, false);
@@ -121,7 +114,7 @@ TEST(StepScannerInput, BundledFilesParseToTheSameModelsEitherWay) {
   ASSERT_EQ(files.size(), 17u);
   for (const std::string& path : files) {
     SCOPED_TRACE(path);
-    const std::string text = text_of(path);
+    const std::string text = contactcore::testing::file_text(path);
     CountingText by_blocks(text), by_characters(text);
     const Parsed blocks = parse(by_blocks, true), characters = parse(by_characters, false);
     ASSERT_TRUE(blocks.ok);

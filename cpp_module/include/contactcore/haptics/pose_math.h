@@ -9,6 +9,8 @@
 
 #include <Eigen/Geometry>
 
+#include "contactcore/common/angles.h"
+
 namespace contactcore::haptics {
 
 using Vec3 = Eigen::Vector3d;
@@ -16,7 +18,7 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat3 = Eigen::Matrix3d;
 using Pose = Eigen::Isometry3d;
 
-constexpr double kPi = 3.14159265358979323846;
+using contactcore::kPi;  // the one pi (common/angles.h), also as haptics::kPi
 inline double deg(double radians) { return radians * 180.0 / kPi; }
 inline double rad(double degrees) { return degrees * kPi / 180.0; }
 
