@@ -12,9 +12,9 @@
 //     0.3 mm sideways (bench_realtime_loop.py's hand), in lockstep: its ticks'
 //     CPU time and the contact queries each makes.
 //
-//   bench_haptics [--seconds S] [--triangles N] [--proxy-only | --screw-only] [--meshes-only] [MOTOR.step]
-// (--proxy-only: sections 4 and 5; --screw-only: section 5; --meshes-only: the
-// trial scenes without the closed forms, SceneOptions::analytic off: the baseline)
+//   bench_haptics [--seconds S] [--triangles N] [--proxy-only | --screw-only] [--closed-forms | --meshes-only] [MOTOR.step]
+// (--proxy-only: sections 4 and 5; --screw-only: section 5; --closed-forms: the
+// trial scenes with SceneOptions::analytic on; --meshes-only: off, the default)
 #include <time.h>
 
 #include <algorithm>
@@ -107,6 +107,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--proxy-only")) proxy_only = true;
     else if (!std::strcmp(argv[i], "--screw-only")) proxy_only = screw_only = true;
     else if (!std::strcmp(argv[i], "--meshes-only")) scene_options.analytic = false;
+    else if (!std::strcmp(argv[i], "--closed-forms")) scene_options.analytic = true;
     else path = argv[i];
   }
   const AssemblyResult read = read_step(path);
@@ -119,7 +120,7 @@ int main(int argc, char** argv) {
   // 1. Incremental contact update vs the batch stage.
   Status status;
   std::printf("Contact queries: %s\n\n", scene_options.analytic ? "closed forms between analytic partitions, meshes for the rest"
-                                                                : "meshes only (--meshes-only)");
+                                                                : "meshes only (the default; --closed-forms for the closed forms)");
   auto scene = TrialScene::build(read.assembly, "Axis", scene_options, status);
   if (!scene) {
     std::fprintf(stderr, "%s\n", status.describe().c_str());

@@ -3,7 +3,7 @@
 // collision stage (collision.h) on the motor's plane and cylinder pairs, with
 // the tolerances derived from the meshes themselves; and a coplanar pair off
 // the outline, which must report no contact, in closed form and through the
-// loop's contact query (StageCollision, the trial's default scene).
+// loop's contact query (StageCollision, a trial scene with the closed forms on).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -310,10 +310,12 @@ TEST(AnalyticDistance, CoplanarFacesOffTheOutlineReportNoContact) {
   EXPECT_NEAR(c.gap, 0.001, 1e-12);
   EXPECT_NEAR((c.normal - Vector3d(0, 0, 1)).norm(), 0.0, 1e-15);
 
-  // The loop's query on the trial scene (SceneOptions' default: closed forms on).
+  // The loop's query on a trial scene with the closed forms on (off by default).
   contactcore::Status status;
   const contactcore::Assembly assembly = contactcore::testing::make_assembly({{"Plate", plate}, {"Block", block}});
-  auto scene = haptics::TrialScene::build(assembly, "Block", haptics::SceneOptions{}, status);
+  haptics::SceneOptions closed_forms;
+  closed_forms.analytic = true;
+  auto scene = haptics::TrialScene::build(assembly, "Block", closed_forms, status);
   ASSERT_TRUE(scene) << status.describe();
   ASSERT_TRUE(scene->collision().analytic());
   haptics::ContactPoint contacts[haptics::kMaxContacts];

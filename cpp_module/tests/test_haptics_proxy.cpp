@@ -470,11 +470,7 @@ TEST(ProxyAcceptance, BallHeldToItsSpherePlaneJointSlidesTurnsAndLiftsOff) {
   std::printf("[ figures ] at t = %.3f: %.6f %.6f %.6f mm, %.3f %.3f %.3f deg; lowest z offset %.9f\n", on_plate->t,
               on_plate->translate.x(), on_plate->translate.y(), on_plate->translate.z(), on_plate->rotate_deg.x(),
               on_plate->rotate_deg.y(), on_plate->rotate_deg.z(), lowest);
-  // Never below its start on the plate: it rests a contact skin above it. The
-  // ball's closed form on the plate (analytic_distance.h, the trial's default)
-  // sees it touching exactly (gap 0), so the proxy keeps the skin, as for a
-  // screw seated on its cover; the meshes alone saw the tessellated ball's gap.
-  EXPECT_NEAR(lowest, ServoConfig{}.contact_skin, 1e-9);
+  EXPECT_NEAR(lowest, 0.0, 1e-9);  // never below its start on the plate
   EXPECT_NEAR(on_plate->translate.z(), 0, 0.05);
   EXPECT_NEAR(on_plate->translate.x(), 12, 0.1);
   EXPECT_NEAR(on_plate->translate.y(), 6, 0.1);
