@@ -25,6 +25,7 @@
 #include "contactcore/simulation/analytic_distance.h"
 #include "contactcore/simulation/collision.h"
 #include "contactcore/simulation/meshes.h"
+#include "path_checker.h"
 #include "test_helpers.h"
 
 using namespace contactcore;
@@ -330,4 +331,115 @@ TEST(AnalyticDistance, CoplanarFacesOffTheOutlineReportNoContact) {
   EXPECT_NEAR(contacts[0].gap, 0.001, 1e-12);
   EXPECT_NEAR((contacts[0].normal - Vector3d(0, 0, 1)).norm(), 0.0, 1e-12);
   EXPECT_EQ(scene->collision().last_closed_form_pairs(), 1);
+}
+
+// The motor's Axis pulled 15 mm straight up along its bores with the closed
+// forms on (the hand 0 -> +15 mm in z over 3 s, then held): nothing blocks it,
+// so it ends at the hand, as with the meshes alone; judged by OCCT along the
+// path. With motor.FCStd's shapes it stopped at z = 4.999: a phantom
+// plane-pair contact (OutlineVertexOnTheRayCountsOnce holds its numbers; the
+// STEP sample's frames round differently and never hit it). Printed: every
+// closed-form pair within 0.05 mm with the Axis 5 mm up.
+TEST(AnalyticDistance, MotorAxisPulled15mmUpAlongItsBoresComesOut) {
+  const auto read = read_step(contactcore::testing::sample("motor.step"));
+  ASSERT_TRUE(read.status.ok()) << read.status.describe();
+  const contactcore::Assembly& assembly = read.assembly;
+  contactcore::Status status;
+  haptics::SceneOptions closed_forms;
+  closed_forms.analytic = true;
+  auto scene = haptics::TrialScene::build(assembly, "Axis", closed_forms, status);
+  ASSERT_TRUE(scene) << status.describe();
+  ASSERT_TRUE(scene->collision().analytic());
+
+  // Every closed-form pair of the Axis's partitions with a neighbour's, Axis 5 mm up.
+  std::vector<BodyPartitions> parts;
+  int axis = -1;
+  for (std::size_t i = 0; i < assembly.bodies.size(); ++i) {
+    parts.push_back(partition_shape(assembly.bodies[i].shape, Tolerances{}));
+    if (assembly.bodies[i].name == "Axis") axis = static_cast<int>(i);
+  }
+  ASSERT_GE(axis, 0);
+  Eigen::Isometry3d up5 = Eigen::Isometry3d::Identity();
+  up5.translation() = Vector3d(0, 0, 5.0);
+  for (std::size_t j = 0; j < assembly.bodies.size(); ++j) {
+    if (static_cast<int>(j) == axis) continue;
+    for (const Partition& a : parts[axis].partitions)
+      for (const Partition& b : parts[j].partitions) {
+        AnalyticContact c;
+        if (!analytic_contact(placed(analytic_patch(a), up5), analytic_patch(b), c) || c.gap > 0.05) continue;
+        std::printf("[ z = 5 ] Axis p%d (kind %d) / %s p%d (kind %d): gap %.6f normal %.3f %.3f %.3f at %.3f %.3f %.3f\n",
+                    a.id, static_cast<int>(a.params.kind), assembly.bodies[j].name.c_str(), b.id,
+                    static_cast<int>(b.params.kind), c.gap, c.normal.x(), c.normal.y(), c.normal.z(), c.point_b.x(),
+                    c.point_b.y(), c.point_b.z());
+      }
+  }
+
+  haptics::TrialScript script;
+  script.start = haptics::ScriptKey{0, haptics::Vec3::Zero(), haptics::Vec3::Zero()};
+  script.hand = {haptics::ScriptKey{0.0, haptics::Vec3::Zero(), haptics::Vec3::Zero()},
+                 haptics::ScriptKey{3.0, haptics::Vec3(0, 0, 15), haptics::Vec3::Zero()},
+                 haptics::ScriptKey{4.0, haptics::Vec3(0, 0, 15), haptics::Vec3::Zero()}};
+  haptics::TrialOptions options;
+  options.record_every = 10;
+  const haptics::TrialResult r = haptics::run_trial(*scene, script, options);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  std::printf("[ figures ] final %.6f %.6f %.6f mm\n", r.final_translate.x(), r.final_translate.y(),
+              r.final_translate.z());
+  EXPECT_NEAR(r.final_translate.z(), 15.0, 0.05) << r.final_translate.transpose();
+  EXPECT_LT(r.final_translate.head<2>().norm(), 0.05) << r.final_translate.transpose();
+  EXPECT_LT(r.final_rotate_deg.norm(), 0.1) << r.final_rotate_deg.transpose();
+  const contactcore::testing::PathOverlap o =
+      contactcore::testing::check_path(assembly, "Axis", scene->centre(), r.path, 15);
+  std::printf("[ judge ] deepest %.6f mm with %s at t = %.3f (%d samples)\n", o.max_depth, o.worst_body.c_str(),
+              o.worst_t, o.samples_checked);
+  EXPECT_LE(o.max_depth, 0.01) << o.worst_body << " at t = " << o.worst_t;
+  EXPECT_GE(o.samples_checked, 10);
+}
+
+// The even-odd count at a vertex on the query point's ray, with the numbers of
+// the phantom contact that stopped the motor's Axis at z = 4.999 (motor.FCStd,
+// closed forms on): Rotor-back's downward face (partition 0) has its bore's rim
+// vertex at (4, 5e-17) in its plane frame, and the Axis's upward shoulder
+// annulus (partition 3, 5 mm below it assembled) a vertex mapped to y = 5e-17
+// exactly, left of the rim, in the bore: outside the face. The chord into the
+// rim vertex rebuilt as start + delta ends at y = 5.55e-17, above the ray,
+// while the next chord starts at 5e-17, on it: neither crossed, the point came
+// out inside, and the plane pair reported a contact 0.0005 mm apart 5 mm out.
+// Here a quadrilateral notched at that vertex (the rim's chords exactly): left
+// of the vertex is outside, right of it inside.
+TEST(AnalyticDistance, OutlineVertexOnTheRayCountsOnce) {
+  AnalyticPatch face;
+  face.kind = SurfaceKind::Plane;
+  face.location = Vector3d(0, 0, 0);
+  face.axis = Vector3d(0, 0, 1);
+  face.ref_dir = Vector3d(1, 0, 0);  // plane frame = world x, y
+  const double rim_y = 4.9999999999999999e-17;
+  const Point2 below{3.998795274784817, -0.098164914091649097}, rim{4.0, rim_y},
+      above{3.998795274784817, 0.098164914091649846};
+  face.loops = {{below, Point2{10, -1}, Point2{10, 1}, above, rim}};  // counter-clockwise
+  prepare_outline(face);
+  // The premise: the chord above -> rim rebuilt by its delta misses the rim's y.
+  ASSERT_NE(above.y + (rim.y - above.y), rim.y);
+  EXPECT_FALSE(within_patch(face, Vector3d(3.999, rim_y, 0))) << "left of the rim vertex: outside";
+  EXPECT_FALSE(within_patch(face, Vector3d(3.999, 0.01, 0)));
+  EXPECT_TRUE(within_patch(face, Vector3d(5, rim_y, 0))) << "right of it: inside";
+  EXPECT_TRUE(within_patch(face, Vector3d(5, 0.01, 0)));
+
+  // The plane pair: a small face 0.001 above, facing down, one vertex at
+  // (3.999, rim_y) in the lower face's frame; none of its vertices is inside
+  // the face and none of the face's inside it: no closed-form contact.
+  AnalyticPatch pad;
+  pad.kind = SurfaceKind::Plane;
+  pad.location = Vector3d(0, 0, 0.001);
+  pad.axis = Vector3d(0, 0, -1);
+  pad.ref_dir = Vector3d(1, 0, 0);  // its frame's y is world -y
+  pad.loops = {{Point2{3.9985, -rim_y}, Point2{3.9985, -0.0005}, Point2{3.999, -0.0005}, Point2{3.999, -rim_y}}};
+  prepare_outline(pad);
+  AnalyticContact c;
+  EXPECT_FALSE(analytic_contact(pad, face, c)) << "phantom contact, gap " << c.gap;
+  // Slid 1.5 mm right (x 5.4985..5.5), it is on the face: the contact at 0.001.
+  Eigen::Isometry3d slide = Eigen::Isometry3d::Identity();
+  slide.translation() = Vector3d(1.5, 0, 0);
+  ASSERT_TRUE(analytic_contact(placed(pad, slide), face, c));
+  EXPECT_NEAR(c.gap, 0.001, 1e-12);
 }

@@ -46,8 +46,10 @@ bool inside_outline(const AnalyticPatch& patch, double qx, double qy) {
       const double dx = qx - (c.x + t * c.ex), dy = qy - (c.y + t * c.ey);
       if (dx * dx + dy * dy <= c.reach2) return false;
     }
-    if ((c.y > qy) != (c.y + c.ey > qy)) {
-      const double x = c.x + (qy - c.y) / c.ey * c.ex;
+    // The exact end, not c.y + c.ey: rounded, a vertex at q's height would lie
+    // above the ray for one of its chords and below it for the other.
+    if ((c.y > qy) != (c.y_end > qy)) {
+      const double x = c.x + (qy - c.y) / (c.y_end - c.y) * (c.x_end - c.x);
       if (qx < x) in = !in;
     }
   }
@@ -365,6 +367,8 @@ void prepare_outline(AnalyticPatch& patch) {
       c.y = p.y;
       c.ex = r.x - p.x;
       c.ey = r.y - p.y;
+      c.x_end = r.x;
+      c.y_end = r.y;
       c.length2 = c.ex * c.ex + c.ey * c.ey;
       // The arc bulges at most ~3|bulge| / (4 len) off its chord (the sagitta of a
       // circular arc up to a half circle, from its area).

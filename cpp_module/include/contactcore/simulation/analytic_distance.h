@@ -47,6 +47,9 @@ struct AnalyticPatch {
   // inside).
   struct Chord {
     double x = 0, y = 0, ex = 0, ey = 0, length2 = 0, reach2 = 0;
+    // Its end exactly as the next chord's start (x + ex may round off it: the
+    // even-odd count must see a shared vertex on one side of q's ray for both chords).
+    double x_end = 0, y_end = 0;
     double x0 = 0, x1 = 0, y0 = 0, y1 = 0;  // its box grown by the reach (no swing test beyond)
   };
   std::vector<Chord> chords;
