@@ -28,17 +28,11 @@
 
 using namespace contactcore;
 using Eigen::Vector3d;
+using contactcore::testing::Partitioned;
+using contactcore::testing::partitioned;
+using contactcore::testing::plane_facing;
 
 namespace {
-
-struct Partitioned {
-  TopoDS_Shape shape;
-  BodyPartitions parts;
-};
-
-Partitioned partitioned(const TopoDS_Shape& shape) {
-  return {shape, partition_shape(shape, Tolerances{})};
-}
 
 // The faces of a partition as one compound (what OCCT measures).
 TopoDS_Shape faces_of(const BodyPartitions& parts, const Partition& p) {
@@ -56,13 +50,6 @@ const Partition& find(const BodyPartitions& parts, SurfaceKind kind, MaterialSid
   return parts.partitions.front();
 }
 
-// The plane partition whose outward normal is `normal`.
-const Partition& plane_facing(const BodyPartitions& parts, const gp_Dir& normal) {
-  for (const Partition& p : parts.partitions)
-    if (p.params.kind == SurfaceKind::Plane && p.params.axis.IsEqual(normal, 1e-9)) return p;
-  ADD_FAILURE() << "no such plane";
-  return parts.partitions.front();
-}
 
 Eigen::Isometry3d isometry(const gp_Trsf& t) {
   Eigen::Isometry3d m = Eigen::Isometry3d::Identity();

@@ -30,25 +30,9 @@
 
 using namespace contactcore;
 using Eigen::Vector3d;
-
-namespace {
-
-struct Partitioned {
-  TopoDS_Shape shape;
-  BodyPartitions parts;
-};
-
-Partitioned partitioned(const TopoDS_Shape& shape) { return {shape, partition_shape(shape, Tolerances{})}; }
-
-// The plane partition whose outward normal is `normal`.
-const Partition& plane_facing(const BodyPartitions& parts, const gp_Dir& normal) {
-  for (const Partition& p : parts.partitions)
-    if (p.params.kind == SurfaceKind::Plane && p.params.axis.IsEqual(normal, 1e-9)) return p;
-  ADD_FAILURE() << "no such plane";
-  return parts.partitions.front();
-}
-
-}  // namespace
+using contactcore::testing::Partitioned;
+using contactcore::testing::partitioned;
+using contactcore::testing::plane_facing;
 
 // ---- The closed forms against the mesh query (collision.h) on the motor.
 //

@@ -12,8 +12,11 @@
 
 #include <BRep_Tool.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <gp_Dir.hxx>
 
 #include "contactcore/contacts/contacts.h"
+#include "contactcore/partitions/partitions.h"
 
 namespace contactcore::testing {
 
@@ -38,6 +41,22 @@ inline std::string file_text(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// A shape with its partitions at the default tolerances.
+struct Partitioned {
+  TopoDS_Shape shape;
+  BodyPartitions parts;
+};
+
+inline Partitioned partitioned(const TopoDS_Shape& shape) { return {shape, partition_shape(shape, Tolerances{})}; }
+
+// The plane partition whose outward normal is `normal`.
+inline const Partition& plane_facing(const BodyPartitions& parts, const gp_Dir& normal) {
+  for (const Partition& p : parts.partitions)
+    if (p.params.kind == SurfaceKind::Plane && p.params.axis.IsEqual(normal, 1e-9)) return p;
+  ADD_FAILURE() << "no such plane";
+  return parts.partitions.front();
 }
 
 // An assembly of named shapes placed as they are (name doubles as path).

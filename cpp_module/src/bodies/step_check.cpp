@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <exception>
 #include <memory>
 #include <string>
-#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -35,6 +33,7 @@
 #include <TCollection_HAsciiString.hxx>
 
 #include "contactcore/common/occt_guard.h"
+#include "contactcore/common/parallel.h"
 
 namespace contactcore {
 
@@ -320,25 +319,13 @@ StepModelCheck check_step_model(const Handle(StepData_StepModel)& model, const I
     find_non_finite(model, into);
     check_assembly_graph(model, into);
   };
-  std::exception_ptr thrown;
   bool failed = false;
-  std::thread worker([&] {
-    try {
-      std::string failure;
-      failed = !run_guarded([&] { check_entities(entities); }, failure);
-    } catch (...) {
-      thrown = std::current_exception();  // out of memory: rethrown here
-    }
-  });
-  struct Join {
-    std::thread& thread;
-    ~Join() {
-      if (thread.joinable()) thread.join();
-    }
-  } join{worker};
-  check_reference_graph(model, graph, out);
-  worker.join();
-  if (thrown) std::rethrow_exception(thrown);
+  run_beside(
+      [&] {
+        std::string failure;
+        failed = !run_guarded([&] { check_entities(entities); }, failure);
+      },
+      [&] { check_reference_graph(model, graph, out); });
   if (failed) {
     entities = StepModelCheck{};
     check_entities(entities);

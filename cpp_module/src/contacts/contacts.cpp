@@ -19,7 +19,6 @@
 #include <exception>
 #include <sstream>
 #include <tuple>
-#include <unordered_map>
 
 #include <BRepBndLib.hxx>
 #include <Standard_Failure.hxx>
@@ -382,17 +381,14 @@ ContactsResult find_contacts(const Assembly& assembly, const ContactOptions& opt
     // same contacts, moved: each such group is tested once, on its first pair.
     const std::vector<std::pair<int, int>>& pairs = result.body_pairs;
     std::vector<std::size_t> representative(pairs.size());
-    {
-      std::unordered_map<PairKey, std::size_t, PairKeyHash> first;
-      if (options.reuse_instances) first.reserve(pairs.size());
-      for (std::size_t k = 0; k < pairs.size(); ++k) {
-        representative[k] = k;
-        if (!options.reuse_instances) continue;
+    if (options.reuse_instances) {
+      representative = first_pairs_placed_alike(pairs.size(), [&](std::size_t k) {
         const auto [ia, ib] = pairs[k];
-        const PairKey key = pair_key(sources[ia], sources[ib], assembly.bodies[ia], assembly.bodies[ib],
-                                     std::max(body_tol[ia].linear, body_tol[ib].linear));
-        representative[k] = first.try_emplace(key, k).first->second;
-      }
+        return pair_key(sources[ia], sources[ib], assembly.bodies[ia], assembly.bodies[ib],
+                        std::max(body_tol[ia].linear, body_tol[ib].linear));
+      });
+    } else {
+      for (std::size_t k = 0; k < pairs.size(); ++k) representative[k] = k;
     }
     std::vector<std::size_t> tested;  // the pairs whose candidates are tested, in order
     for (std::size_t k = 0; k < pairs.size(); ++k)

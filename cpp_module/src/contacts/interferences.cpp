@@ -4,7 +4,6 @@
 #include <cmath>
 #include <memory>
 #include <tuple>
-#include <unordered_map>
 
 #include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Surface.hxx>
@@ -462,22 +461,17 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
   // the same way relative to the first: a bolt in each of 5,000 plates)
   // share material alike: the first pair of each key is tested, the others
   // take its outcome (volumes are the same under a rigid motion).
-  std::vector<std::size_t> representative(deep.size());
+  const auto source = [&result](int body) {
+    return body < static_cast<int>(result.instance_of.size()) ? result.instance_of[body] : body;
+  };
+  const std::vector<std::size_t> representative = first_pairs_placed_alike(deep.size(), [&](std::size_t k) {
+    const auto [a, b] = deep[k];
+    const double linear = pair_tolerances(result.partitions[a], result.partitions[b]).linear;
+    return pair_key(source(a), source(b), assembly.bodies[a], assembly.bodies[b], linear);
+  });
   std::vector<std::size_t> tested;
-  {
-    const auto source = [&result](int body) {
-      return body < static_cast<int>(result.instance_of.size()) ? result.instance_of[body] : body;
-    };
-    std::unordered_map<PairKey, std::size_t, PairKeyHash> first;
-    first.reserve(deep.size());
-    for (std::size_t k = 0; k < deep.size(); ++k) {
-      const auto [a, b] = deep[k];
-      const double linear = pair_tolerances(result.partitions[a], result.partitions[b]).linear;
-      representative[k] = first.try_emplace(pair_key(source(a), source(b), assembly.bodies[a], assembly.bodies[b], linear), k)
-                              .first->second;
-      if (representative[k] == k) tested.push_back(k);
-    }
-  }
+  for (std::size_t k = 0; k < deep.size(); ++k)
+    if (representative[k] == k) tested.push_back(k);
   std::vector<PairOutcome> outcomes(deep.size());
   // OCCT 7.6's Boolean common dereferences a null common block on some damaged
   // shapes (make fuzz, fuzz_brep): its signal handler makes that a failure of

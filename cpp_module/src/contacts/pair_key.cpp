@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <functional>
+#include <unordered_map>
 
 #include <gp_Trsf.hxx>
 
@@ -24,6 +25,14 @@ PairKey pair_key(int source_a, int source_b, const Body& a, const Body& b, doubl
     }
   }
   return key;
+}
+
+std::vector<std::size_t> first_pairs_placed_alike(std::size_t count, const std::function<PairKey(std::size_t)>& key_of) {
+  std::vector<std::size_t> first_of(count);
+  std::unordered_map<PairKey, std::size_t, PairKeyHash> first;
+  first.reserve(count);
+  for (std::size_t k = 0; k < count; ++k) first_of[k] = first.try_emplace(key_of(k), k).first->second;
+  return first_of;
 }
 
 }  // namespace contactcore

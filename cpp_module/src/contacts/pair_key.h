@@ -8,6 +8,8 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <vector>
 
 #include "contactcore/bodies/bodies.h"
 
@@ -27,5 +29,9 @@ struct PairKeyHash {
 // `linear`: the pair's linear tolerance (the translation is rounded to a
 // thousandth of it, the rotation to 1e-10).
 PairKey pair_key(int source_a, int source_b, const Body& a, const Body& b, double linear);
+
+// For each of `count` pairs, the first pair with its key (`key_of(k)`): k
+// itself when it is the first. The pairs tested are those that are their own.
+std::vector<std::size_t> first_pairs_placed_alike(std::size_t count, const std::function<PairKey(std::size_t)>& key_of);
 
 }  // namespace contactcore

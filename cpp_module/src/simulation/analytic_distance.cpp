@@ -26,6 +26,12 @@ Vector3 perpendicular(const Vector3& axis, const Vector3& ref) {
 
 bool revolution(SurfaceKind k) { return k == SurfaceKind::Cylinder || k == SurfaceKind::Cone || k == SurfaceKind::Sphere; }
 
+// The slab of the patch's outline (prepare_outline) holding height y in its
+// plane frame; heights beyond the outline go to the nearest slab.
+int slab_of(const AnalyticPatch& patch, double y) {
+  return std::clamp(static_cast<int>(std::floor((y - patch.slab_y0) / patch.slab_height)), 0, patch.slab_count - 1);
+}
+
 // Even-odd test of the plane-frame point q against the patch's outline; false
 // when q is within a chord's possible arc swing of it (the arcs are not known
 // exactly here). Outside the outline's box no point is inside; inside it only
@@ -34,8 +40,7 @@ bool revolution(SurfaceKind k) { return k == SurfaceKind::Cylinder || k == Surfa
 bool inside_outline(const AnalyticPatch& patch, double qx, double qy) {
   if (qx < patch.outline_x0 || qx > patch.outline_x1 || qy < patch.outline_y0 || qy > patch.outline_y1) return false;
   if (patch.slab_count <= 0) return false;
-  const int slab = std::clamp(static_cast<int>(std::floor((qy - patch.slab_y0) / patch.slab_height)), 0,
-                              patch.slab_count - 1);
+  const int slab = slab_of(patch, qy);
   bool in = false;
   const int* index = patch.slab_chords.data();
   for (int k = patch.slab_first[slab], end = patch.slab_first[slab + 1]; k < end; ++k) {
@@ -62,11 +67,8 @@ bool inside_outline(const AnalyticPatch& patch, double qx, double qy) {
 // the status of any one of them.
 bool chord_meets_box(const AnalyticPatch& patch, double x0, double y0, double x1, double y1) {
   if (patch.slab_count <= 0) return false;
-  auto slab_of = [&](double y) {
-    return std::clamp(static_cast<int>(std::floor((y - patch.slab_y0) / patch.slab_height)), 0, patch.slab_count - 1);
-  };
   const int* index = patch.slab_chords.data();
-  for (int s = slab_of(y0), last = slab_of(y1); s <= last; ++s)
+  for (int s = slab_of(patch, y0), last = slab_of(patch, y1); s <= last; ++s)
     for (int k = patch.slab_first[s], end = patch.slab_first[s + 1]; k < end; ++k) {
       const AnalyticPatch::Chord& c = patch.chords[index[k]];
       if (c.x0 <= x1 && c.x1 >= x0 && c.y0 <= y1 && c.y1 >= y0) return true;
@@ -356,7 +358,6 @@ void prepare_outline(AnalyticPatch& patch) {
   patch.slab_count = 0;
   patch.outline_x0 = patch.outline_y0 = 1e300;
   patch.outline_x1 = patch.outline_y1 = -1e300;
-  std::vector<double> reaches;
   for (const auto& loop : patch.loops) {
     const std::size_t n = loop.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -379,7 +380,6 @@ void prepare_outline(AnalyticPatch& patch) {
       c.x1 = std::max(p.x, r.x) + reach;
       c.y0 = std::min(p.y, r.y) - reach;
       c.y1 = std::max(p.y, r.y) + reach;
-      reaches.push_back(reach);
       patch.chords.push_back(c);
       patch.outline_x0 = std::min(patch.outline_x0, p.x);
       patch.outline_x1 = std::max(patch.outline_x1, p.x);
@@ -398,18 +398,14 @@ void prepare_outline(AnalyticPatch& patch) {
   patch.slab_y0 = patch.outline_y0;
   const double height = (patch.outline_y1 - patch.outline_y0) / patch.slab_count;
   patch.slab_height = height > 0 ? height : 1.0;
-  auto slab_of = [&](double y) {
-    return std::clamp(static_cast<int>(std::floor((y - patch.slab_y0) / patch.slab_height)), 0, patch.slab_count - 1);
-  };
   std::vector<int> count(patch.slab_count + 1, 0);
   std::vector<std::pair<int, int>> span(n);
   for (std::size_t i = 0; i < n; ++i) {
     const AnalyticPatch::Chord& c = patch.chords[i];
     // Grown beyond rounding too: a y within rounding of a slab boundary may land in either slab.
     const double round = 1e-12 * (std::abs(c.y) + std::abs(c.ey) + patch.slab_height) + 1e-12;
-    const double lo = std::min(c.y, c.y + c.ey) - reaches[i] - round,
-                 hi = std::max(c.y, c.y + c.ey) + reaches[i] + round;
-    span[i] = {slab_of(lo), slab_of(hi)};
+    const double lo = c.y0 - round, hi = c.y1 + round;  // its y-range grown by its reach
+    span[i] = {slab_of(patch, lo), slab_of(patch, hi)};
     for (int s = span[i].first; s <= span[i].second; ++s) ++count[s + 1];
   }
   for (int s = 0; s < patch.slab_count; ++s) count[s + 1] += count[s];

@@ -148,4 +148,40 @@ bool parallel_for(std::size_t n, int threads, Progress* progress, const char* st
   return !cancelled;
 }
 
+
+// Runs `beside` on a second thread while `here` runs on the calling thread,
+// as parallel_for starts its workers: only when the address space has room
+// for a thread, the new thread's exception state allocated first; with no
+// thread to be had, both run here, one after the other. An exception escaping
+// either is rethrown here once both have finished.
+template <class Beside, class Here>
+void run_beside(Beside&& beside, Here&& here) {
+  std::exception_ptr error;
+  const auto run = [&] {
+    (void)std::uncaught_exceptions();  // see parallel_for
+    try {
+      beside();
+    } catch (...) {
+      error = std::current_exception();
+    }
+  };
+  std::thread worker;
+  if (address_space_allows_threads(1)) {
+    try {
+      worker = std::thread(run);
+    } catch (const std::system_error&) {
+      // no thread to be had: run below
+    }
+  }
+  if (!worker.joinable()) run();
+  try {
+    here();
+  } catch (...) {
+    if (worker.joinable()) worker.join();
+    throw;
+  }
+  if (worker.joinable()) worker.join();
+  if (error) std::rethrow_exception(error);
+}
+
 }  // namespace contactcore

@@ -15,13 +15,6 @@
 
 namespace contactcore {
 
-// What find_contacts (the overload below) keeps of its run: each body's
-// shape (the same TopoDS_Shape: same OCCT shape, same location and
-// orientation) with the tolerances it was partitioned with, the body its
-// partitions were moved from, its partitions; the contacts and failed
-// candidates of each body pair whose candidates were tested (before being
-// copied to the pairs placed alike); the point and line contacts of each
-// body pair with the run's tolerances.
 // Each body's verdict of the solid checks (validity.h): its fault (reason
 // empty: none) and the text of a check that failed (empty: none), as
 // check_solids finds them for an instance's source.
@@ -30,6 +23,13 @@ struct SolidVerdicts {
   std::vector<std::string> failures;
 };
 
+// What find_contacts (the overload below) keeps of its run: each body's
+// shape (the same TopoDS_Shape: same OCCT shape, same location and
+// orientation) with the tolerances it was partitioned with, the body its
+// partitions were moved from, its partitions; the contacts and failed
+// candidates of each body pair whose candidates were tested (before being
+// copied to the pairs placed alike); the point and line contacts of each
+// body pair with the run's tolerances.
 struct ContactsMemo {
   std::vector<TopoDS_Shape> shapes;
   std::vector<Bnd_Box> shape_boxes;  // each source body's shape's box (BRepBndLib, before partitioning)
