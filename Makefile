@@ -15,26 +15,43 @@ INSTALL_DIR  := $(FREECAD_MOD)/Contacts
 BIN_DIR      ?= $(HOME)/.local/bin
 SAMPLE       ?= Resources/samples/motor.step
 
-# What `make run` needs: FreeCAD, the libraries the extension links, a compiler.
-DEB_PACKAGES := freecad libocct-foundation-dev libocct-modeling-data-dev \
+# What `make run` needs, in two lists: what the build of the extension needs
+# (a compiler, CMake, Ninja, the libraries it links), installed first, and
+# what only the installed workbench and later rebuilds need (FreeCAD, Qt's SVG
+# module, Graphviz, ccache), installed while the extension compiles (`run`).
+# The compiler is clang-14, not g++: its packages download 14 MB where g++'s
+# take 41 MB (clang's LLVM library comes with FreeCAD's packages anyway) and
+# it compiles the extension with less CPU (docs/benchmarks.md, issue 23).
+DEB_BUILD_PACKAGES := libocct-foundation-dev libocct-modeling-data-dev \
   libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
   libocct-visualization-dev libhidapi-dev pybind11-dev python3-pybind11 \
-  python3-dev cmake make g++ libtbb-dev libeigen3-dev graphviz libfcl-dev pkg-config ccache \
-  python3-pyside2.qtsvg ninja-build
-# What `make test`, `make bench`, `make sanitize` and `make fuzz` add.
-DEB_TEST_PACKAGES := $(DEB_PACKAGES) libcoin-dev python3-pytest googletest libgtest-dev \
-  libbenchmark-dev python3-pil xvfb xauth clang-14 clang libclang-rt-14-dev liburdfdom-tools libmujoco-dev
+  python3-dev cmake make clang-14 libtbb-dev libeigen3-dev libfcl-dev pkg-config ninja-build
+DEB_APP_PACKAGES := freecad python3-pyside2.qtsvg graphviz ccache
+DEB_PACKAGES := $(DEB_BUILD_PACKAGES) $(DEB_APP_PACKAGES)
+# What `make test`, `make bench`, `make sanitize` and `make fuzz` add (g++ for
+# the sanitizer build, which uses the system's default compiler).
+DEB_TEST_PACKAGES := $(DEB_PACKAGES) g++ libcoin-dev python3-pytest googletest libgtest-dev \
+  libbenchmark-dev python3-pil xvfb xauth clang libclang-rt-14-dev liburdfdom-tools libmujoco-dev
 
 .PHONY: run test deps deps-test build build-extension install uninstall samples bench test-cpp test-python test-gui clean fuzz sanitize
 
-# Installs only the packages that are missing (dpkg says "install ok installed").
+# The packages of $(1) that dpkg does not have ("install ok installed"), as a
+# shell command substitution.
+missing = $$(for p in $(1); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | \
+  grep -q '^install ok installed' || echo $$p; done)
+# sudo drops the environment: DEBIAN_FRONTEND goes through env. dpkg's
+# --force-unsafe-io skips its fsync before each file's rename (what Debian's
+# own container images set): the files installed are the same; a power cut
+# during the install can leave some of them empty (docs/benchmarks.md).
+APT_INSTALL = env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+  -o Dpkg::Options::=--force-unsafe-io
+
+# Installs only the packages that are missing.
 define install_missing
-	@missing=$$(for p in $(1); do \
-	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q '^install ok installed' || echo $$p; done); \
+	@missing="$(call missing,$(1))"; \
 	if [ -n "$$missing" ]; then \
 	  echo "Installing Debian packages:" $$missing; \
-	  $(SUDO) apt-get update -q && \
-	  DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -q --no-install-recommends $$missing; \
+	  $(SUDO) apt-get update -q && $(SUDO) $(APT_INSTALL) $$missing; \
 	else echo "All Debian packages present."; fi
 endef
 
@@ -47,7 +64,11 @@ deps-test:
 # ccache, when the machine has it, makes rebuilds in several checkouts cheap.
 LAUNCHER     := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
-CONFIGURE    := cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON) $(LAUNCHER)
+# The compiler of a new build folder (CMake reads CXX on a folder's first
+# configure only: an existing folder keeps the compiler it was made with).
+CONTACTS_CXX ?= clang++-14
+
+CONFIGURE    := CXX=$(CONTACTS_CXX) cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON) $(LAUNCHER)
 
 # A first configure for `make run` asks for neither GoogleTest nor Google
 # Benchmark (a fresh machine has only the run packages). With Ninja (looked
@@ -77,7 +98,34 @@ install: build-extension
 uninstall:
 	rm -rf $(INSTALL_DIR) $(BIN_DIR)/contacts
 
-run: deps install
+# The build's packages first; then the extension compiles while the
+# workbench's packages (FreeCAD and what only it pulls in: about half of the
+# download) install beside it. dpkg keeps about one core busy, the compile
+# two, and neither needs the other until `install` copies the workbench into
+# FreeCAD's folder, which waits for both. apt's output of that second step
+# goes to $(BESIDE_LOG), shown if it fails. sudo is asked for in the
+# foreground (apt-get update) before apt-get runs in the background, which
+# therefore never prompts (sudo -n). LAUNCHER is passed down as this make
+# found it: ccache, installed beside the build, is not used by a build that
+# started before it was there.
+BESIDE_LOG   := $(BUILD_DIR)/packages-beside-build.log
+SUDO_BESIDE  := $(if $(SUDO),sudo -n)
+run:
+	@missing="$(call missing,$(DEB_PACKAGES))"; \
+	if [ -n "$$missing" ]; then $(SUDO) apt-get update -q; fi
+	@missing="$(call missing,$(DEB_BUILD_PACKAGES))"; \
+	if [ -n "$$missing" ]; then echo "Installing the build's Debian packages:" $$missing; \
+	  $(SUDO) $(APT_INSTALL) $$missing; fi
+	@beside="$(call missing,$(DEB_APP_PACKAGES))"; \
+	if [ -n "$$beside" ]; then mkdir -p $(BUILD_DIR); \
+	  echo "Installing beside the build (output in $(BESIDE_LOG)):" $$beside; \
+	  $(SUDO_BESIDE) $(APT_INSTALL) $$beside < /dev/null > $(BESIDE_LOG) 2>&1 & pid=$$!; fi; \
+	$(MAKE) --no-print-directory build-extension LAUNCHER="$(LAUNCHER)"; built=$$?; \
+	if [ -n "$$beside" ]; then \
+	  if wait $$pid; then echo "Installed beside the build:" $$beside; \
+	  else tail -n 20 $(BESIDE_LOG); echo "Installing $$beside failed: see $(BESIDE_LOG)"; exit 1; fi; fi; \
+	exit $$built
+	@$(MAKE) --no-print-directory install LAUNCHER="$(LAUNCHER)"
 	$(BIN_DIR)/contacts $(SAMPLE)
 
 samples:

@@ -113,6 +113,67 @@ def ninja_schedule(rows, cores):
     return end, end - min(free)
 
 
+def shared_schedule(rows, cores, beside_cpu=0.0, beside_start=0.0):
+    """When the last compile ends if Ninja runs `cores` compiles at a time
+    while another process (the packages `make run` installs beside the
+    build: dpkg, about one core) needs `beside_cpu` seconds of CPU from
+    `beside_start` on. The cores are shared evenly among whatever runs (three
+    processes on two cores: two thirds of a core each, as Linux's scheduler
+    gives them); Ninja starts, whenever one of its compiles ends, the first
+    compile in log order whose target's precompiled header is there.
+    Returns (end of the compiles, end of the process beside)."""
+    pending = list(range(len(rows)))
+    with_pch = {target_of(o) for o, _ in rows if is_pch(o)}
+    done_pch = set()
+    running = {}  # index in rows -> CPU seconds left
+    beside_left = beside_cpu
+    beside_end = beside_start if beside_cpu <= 0 else None
+    clock = 0.0
+    while True:
+        while len(running) < cores:
+            ready = next((i for i in pending if is_pch(rows[i][0]) or target_of(rows[i][0]) not in with_pch
+                          or target_of(rows[i][0]) in done_pch), None)
+            if ready is None:
+                break
+            pending.remove(ready)
+            running[ready] = rows[ready][1]
+        beside_on = beside_left > 0 and clock >= beside_start
+        if not running and not pending:
+            if beside_left > 0:
+                start = max(clock, beside_start)
+                beside_end = start + beside_left
+            return clock, beside_end
+        share = min(1.0, cores / (len(running) + beside_on))
+        steps = [left / share for left in running.values()]
+        if beside_on:
+            steps.append(beside_left / share)
+        elif beside_left > 0:
+            steps.append(beside_start - clock)
+        step = min(steps)
+        clock += step
+        for i in list(running):
+            running[i] -= step * share
+            if running[i] <= 1e-9:
+                del running[i]
+                if is_pch(rows[i][0]):
+                    done_pch.add(target_of(rows[i][0]))
+        if beside_on:
+            beside_left -= step * share
+            if beside_left <= 1e-9:
+                beside_left = 0.0
+                beside_end = clock
+
+
+def make_run_estimate(rows, cores, before, beside_cpu, beside_start, link, after):
+    """The whole `make run` on idle cores: the package step before the build
+    (`before`: apt-get update, the build's packages downloaded and
+    installed), the compiles shared with the packages installed beside them,
+    the link, then `after` (installing the workbench, the motor's contacts).
+    The link waits for the compiles, `after` for the packages beside too."""
+    compiles, beside = shared_schedule(rows, cores, beside_cpu, beside_start)
+    return before + max(compiles + link, beside) + after
+
+
 def cpu_bound(rows, cores):
     return sum(s for _, s in rows) / cores
 
@@ -143,6 +204,14 @@ def main():
     parser.add_argument("--link-seconds", type=float, default=3.0)
     parser.add_argument("--top", type=int, default=12, help="the most expensive compiles listed")
     parser.add_argument("--compare", help="a second log: both builds' CPU per object")
+    parser.add_argument("--packages-before", type=float, metavar="S",
+                        help="the whole `make run`: seconds of the package step before the build")
+    parser.add_argument("--packages-beside", type=float, default=0.0, metavar="CPU_S",
+                        help="CPU seconds of the packages installed beside the build (one process)")
+    parser.add_argument("--beside-start", type=float, default=0.0, metavar="S",
+                        help="when, after the build's start, those packages start installing (their download)")
+    parser.add_argument("--after", type=float, default=0.0, metavar="S",
+                        help="seconds after the build: installing the workbench, the motor's contacts")
     args = parser.parse_args()
     rows = read_log(args.log)
     total = sum(s for _, s in rows)
@@ -160,6 +229,14 @@ def main():
     path, target = critical_path(rows)
     print(f"bounds: CPU / {args.jobs} cores + link {cpu_bound(rows, args.jobs) + args.link_seconds:.0f} s;"
           f" critical path {path + args.link_seconds:.0f} s ({target}: header, its most expensive source, link)")
+    if args.packages_before is not None:
+        compiles, beside = shared_schedule(rows, args.jobs, args.packages_beside, args.beside_start)
+        total = make_run_estimate(rows, args.jobs, args.packages_before, args.packages_beside,
+                                  args.beside_start, args.link_seconds, args.after)
+        print(f"make run on {args.jobs} idle cores: {args.packages_before:.0f} s of packages, then the"
+              f" compiles end at {compiles:.0f} s with {args.packages_beside:.0f} s of CPU installed beside"
+              f" (done at {beside:.0f} s), link {args.link_seconds:.0f} s, after {args.after:.0f} s:"
+              f" {total:.0f} s ({total / 60:.1f} min)")
     if args.compare:
         pairs = compare(rows, read_log(args.compare))
         print(f"per object: {args.log}, {args.compare}, the second's change:")

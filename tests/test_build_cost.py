@@ -77,3 +77,30 @@ def test_compare_lines_up_gch_and_pch(build_cost, rows, tmp_path):
     assert pairs == [(f"{CORE}/cmake_pch.hxx", 10.0, 2.0),
                      (f"{CORE}/Unity/unity_contactcore_a_cxx.cxx.o", 30.0, 24.0),
                      (f"{CORE}/Unity/unity_contactcore_b_cxx.cxx.o", 20.0, 10.0)]
+
+
+def test_shared_schedule_alone_by_hand(build_cost, rows):
+    # Ninja starts the first ready compile in log order: the core's header
+    # (0-10) and the bindings' (0-5); at 5 only c is ready (5-20); a at 10
+    # (10-40), b when c ends (20-40).
+    assert build_cost.shared_schedule(rows, 2) == (40.0, 0.0)
+
+
+def test_shared_schedule_with_packages_beside_by_hand(build_cost, rows):
+    # 12 s of dpkg from 0: three processes on two cores, 2/3 of a core each.
+    # Bindings' header done at 7.5 (5 / (2/3)); c starts. Core header done at
+    # 15 (5 more at 2/3); dpkg has 2 left, a starts. dpkg done at 18 (c: 8
+    # left, a: 28). c done at 26, b starts (a: 20 left); both end at 46.
+    assert build_cost.shared_schedule(rows, 2, beside_cpu=12.0) == (46.0, 18.0)
+    # The packages' download first (10 s, no CPU): dpkg from 10.
+    # 0-5 headers at full speed, c from 5; at 10 the core header is done, a
+    # starts, dpkg starts: c has 10, a 30, dpkg 12 at 2/3 each. c done at 25
+    # (a: 20, dpkg: 2); dpkg done at 28 (a: 18, b started at 25: 18); a and b
+    # end at 46.
+    assert build_cost.shared_schedule(rows, 2, beside_cpu=12.0, beside_start=10.0) == (46.0, 28.0)
+    # The whole `make run`: 7 s of packages before, the link 3 s, 2 s after.
+    assert build_cost.make_run_estimate(rows, 2, 7.0, 12.0, 0.0, 3.0, 2.0) == 58.0
+    # Packages beside that outlast the compiles: the install waits for them.
+    # c ends at 30 (a: 20 left, dpkg: 180), a and b at 60 (dpkg: 160), then
+    # dpkg alone until 220; the link (60-63) is long done.
+    assert build_cost.make_run_estimate(rows, 2, 0.0, 200.0, 0.0, 3.0, 0.0) == 220.0
