@@ -115,7 +115,7 @@ run:
 	if [ -n "$$missing" ]; then $(SUDO) apt-get update -q; fi
 	@missing="$(call missing,$(DEB_BUILD_PACKAGES))"; \
 	if [ -n "$$missing" ]; then echo "Installing the build's Debian packages:" $$missing; \
-	  $(SUDO) $(APT_INSTALL) $$missing; fi
+	  $(SUDO) $(APT_INSTALL) $$missing; else echo "The build's Debian packages are present."; fi
 	@beside="$(call missing,$(DEB_APP_PACKAGES))"; \
 	if [ -n "$$beside" ]; then mkdir -p $(BUILD_DIR); \
 	  echo "Installing beside the build (output in $(BESIDE_LOG)):" $$beside; \

@@ -415,7 +415,8 @@ std::vector<Interference> whole_solid_interferences(const Assembly& assembly, co
   std::vector<Interference> found;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const int a = pairs[k].first, b = pairs[k].second;
-    if (commons[k] > kMinRelativeVolume * std::min(volumes[a], volumes[b])) found.push_back({a, b, commons[k]});
+    if (commons[k] > kMinRelativeVolume * std::min(volumes[a], volumes[b]))
+      found.push_back({a, b, commons[k], TopoDS_Shape()});
   }
   return found;
 }
@@ -446,7 +447,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
     if (box_overlap(pa.box, pb.box) <= linear) continue;
     if (duplicates(pa, pb, linear)) {
       dropped[b] = 1;
-      copies.push_back({a, b, -1});
+      copies.push_back({a, b, -1, TopoDS_Shape()});
       result.messages.push_back("bodies '" + assembly.bodies[a].name + "' and '" + assembly.bodies[b].name +
                                 "' are the same solid at the same place: an interference; the contacts of '" +
                                 assembly.bodies[b].name + "' are not counted");
@@ -508,7 +509,7 @@ Status find_interferences(const Assembly& assembly, ContactsResult& result, Prog
     const PairOutcome& o = outcomes[k];
     if (o.kind == PairOutcome::Failed) result.messages.push_back(failure_message(assembly, deep[k].first, deep[k].second, o));
     if (o.kind != PairOutcome::PressFit && o.kind != PairOutcome::Overlap) continue;
-    result.interferences.push_back({deep[k].first, deep[k].second, o.volume});
+    result.interferences.push_back({deep[k].first, deep[k].second, o.volume, TopoDS_Shape()});
   }
   std::sort(result.interferences.begin(), result.interferences.end(),
             [](const Interference& l, const Interference& r) {
