@@ -342,5 +342,5 @@ def test_motor_fcstd_axis_pulled_15mm_up_comes_out(tmp_path):
             volume = moved.common(other).Volume
             if volume > worst[0]:
                 worst = (volume, name, sample["t"])
-    assert len(judged) == 18  # 401 samples (every 10th tick of 4 s, and the last): 17 judged and the end
+    assert len(judged) == 24  # 551 samples (every 10th tick of the 4 s script and 1.5 s settling, and the last)
     assert worst[0] <= 1e-6, f"overlap {worst[0]:.3g} mm3 with {worst[1]} at t = {worst[2]}"

@@ -115,13 +115,83 @@ bool loop_circle(const Polygon2& loop, LoopCircle& out) {
   return true;
 }
 
-// The outline as annuli (AnalyticPatch::annuli), or none.
+// One counter-clockwise loop as an annular sector about a centre (a face of an
+// annulus split in halves along its seams, a quarter of a washer): every vertex
+// on one of two concentric circles (inner 0: the centre itself), each chord
+// between two vertices of one circle that circle's arc (counter-clockwise on
+// the outer circle, clockwise on the inner), each straight chord radial. The
+// centre is the circle through three vertices joined by two arcs.
+struct LoopSector {
+  double cx = 0, cy = 0, inner = 0, outer = 0, span = 0;
+};
+bool loop_sector(const Polygon2& loop, LoopSector& out) {
+  const std::size_t n = loop.size();
+  if (n < 4) return false;
+  std::size_t first = n;
+  for (std::size_t i = 0; i < n && first == n; ++i)
+    if (loop[i].bulge != 0 && loop[(i + 1) % n].bulge != 0) first = i;
+  if (first == n) return false;
+  const Point2 &p = loop[first], &q = loop[(first + 1) % n], &r = loop[(first + 2) % n];
+  const double bx = q.x - p.x, by = q.y - p.y, cx = r.x - p.x, cy = r.y - p.y;
+  const double d = 2 * (bx * cy - by * cx);
+  if (std::abs(d) < 1e-300) return false;
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  out.cx = p.x + (cy * b2 - by * c2) / d;
+  out.cy = p.y + (bx * c2 - cx * b2) / d;
+  if (!std::isfinite(out.cx) || !std::isfinite(out.cy)) return false;
+  // The two radii.
+  double radii[2] = {-1, -1};
+  std::vector<int> on(n);
+  double twice_area = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rho = std::hypot(loop[i].x - out.cx, loop[i].y - out.cy);
+    int k = 0;
+    while (k < 2 && radii[k] >= 0 && std::abs(rho - radii[k]) > kCircleTolerance) ++k;
+    if (k == 2) return false;  // a third radius
+    if (radii[k] < 0) radii[k] = rho;
+    on[i] = k;
+    const Point2& next = loop[(i + 1) % n];
+    twice_area += loop[i].x * next.y - next.x * loop[i].y + loop[i].bulge;
+  }
+  if (radii[1] < 0 || twice_area <= 0) return false;  // one circle (loop_circle's), or a hole
+  const int outer = radii[0] > radii[1] ? 0 : 1;
+  double span[2] = {0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 &a = loop[i], &b = loop[(i + 1) % n];
+    if (on[i] == on[(i + 1) % n]) {  // an arc of that circle
+      const double rho = radii[on[i]];
+      if (rho <= kCircleTolerance) return false;
+      const double delta = 2 * std::asin(std::min(1.0, 0.5 * std::hypot(b.x - a.x, b.y - a.y) / rho));
+      const double arc = (on[i] == outer ? 1 : -1) * rho * rho * (delta - std::sin(delta));
+      if (std::abs(a.bulge - arc) > 1e-6 * std::abs(arc) + 1e-15 * rho * rho) return false;
+      span[on[i]] += delta;
+    } else {  // a straight chord along a radius
+      const double ax = a.x - out.cx, ay = a.y - out.cy, ex = b.x - out.cx, ey = b.y - out.cy;
+      if (a.bulge != 0 || std::abs(ax * ey - ay * ex) > kCircleTolerance * (radii[0] + radii[1]) ||
+          ax * ex + ay * ey < 0)
+        return false;
+    }
+  }
+  out.outer = radii[outer];
+  out.inner = radii[1 - outer] <= kCircleTolerance ? 0.0 : radii[1 - outer];
+  out.span = span[outer];
+  if (out.inner > 0 && std::abs(span[outer] - span[1 - outer]) > 1e-9) return false;
+  return out.span > 0 && out.span <= kTwoPi + 1e-9;
+}
+
+// The outline as annuli (AnalyticPatch::annuli), or none: loops that are whole
+// circles (outer circles and their concentric holes), and sectors of one
+// centre and two radii whose spans add up to a whole turn (the faces of one
+// partition do not overlap, so they cover it).
 std::vector<AnalyticPatch::Annulus> outline_annuli(const std::vector<Polygon2>& loops) {
   std::vector<LoopCircle> outer, holes;
+  std::vector<LoopSector> sectors;
   for (const Polygon2& loop : loops) {
     LoopCircle c;
-    if (!loop_circle(loop, c)) return {};
-    (c.turn > 0 ? outer : holes).push_back(c);
+    LoopSector sector;
+    if (loop_circle(loop, c)) (c.turn > 0 ? outer : holes).push_back(c);
+    else if (loop_sector(loop, sector)) sectors.push_back(sector);
+    else return {};
   }
   std::vector<AnalyticPatch::Annulus> annuli;
   for (const LoopCircle& o : outer) annuli.push_back({o.cx, o.cy, 0.0, o.r});
@@ -136,6 +206,23 @@ std::vector<AnalyticPatch::Annulus> outline_annuli(const std::vector<Polygon2>& 
         std::hypot(h.cx - outer[around].cx, h.cy - outer[around].cy) > kCircleTolerance)
       return {};
     annuli[around].inner = h.r;
+  }
+  // Sectors of one annulus, added up.
+  std::vector<char> used(sectors.size(), 0);
+  for (std::size_t i = 0; i < sectors.size(); ++i) {
+    if (used[i]) continue;
+    const LoopSector& s = sectors[i];
+    double span = 0;
+    for (std::size_t j = i; j < sectors.size(); ++j) {
+      const LoopSector& t = sectors[j];
+      if (used[j] || std::hypot(s.cx - t.cx, s.cy - t.cy) > kCircleTolerance ||
+          std::abs(s.inner - t.inner) > kCircleTolerance || std::abs(s.outer - t.outer) > kCircleTolerance)
+        continue;
+      used[j] = 1;
+      span += t.span;
+    }
+    if (std::abs(span - kTwoPi) > 1e-9) return {};  // part of an annulus: the outline test decides
+    annuli.push_back({s.cx, s.cy, s.inner, s.outer});
   }
   return annuli;
 }
@@ -313,12 +400,13 @@ bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticCon
 // A shaft (convex cylinder a) through a face (plane b whose outline is annuli),
 // its axis along the face's normal within the parallel tolerance and the face's
 // plane crossing it strictly between its ends: a shaft through a bearing's or a
-// seal's face, in the hole at the bore's mouth. The shaft's section in the plane
-// lies within r / |cos tilt| of its axis point q (exact for parallel axes, a
-// bound for a tilt); each annulus whose hole holds q is that far from its rim
-// (hole radius - e - r), one that q lies beyond is (e - outer - r); q in an
-// annulus' material (the shaft through the face itself) has no closed form here.
-// The nearest rim is the contact, along the line from its centre to q.
+// seal's face, in the hole at the bore's mouth. Its axis meets the plane at q,
+// e from an annulus' centre: the annulus' rim is (hole radius - e) cos(tilt) - r
+// from the shaft when q is in its hole, (e - outer) cos(tilt) - r when q lies
+// beyond it (exact for parallel axes, a lower bound for a tilt: a rim point
+// |p - q| from q is at least |p - q| cos(tilt) from the axis); q in an annulus'
+// material (the shaft through the face itself) has no closed form here. The
+// nearest rim is the contact, along the line from its centre to q.
 bool shaft_through_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
                          const AnalyticTolerances& tol) {
   if (a.kind != SurfaceKind::Cylinder || a.side != MaterialSide::Convex || b.annuli.empty()) return false;
@@ -331,7 +419,8 @@ bool shaft_through_plane(const AnalyticPatch& a, const AnalyticPatch& b, Analyti
   const Vector3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
   const Vector3 q = on_axis(a, s_plane);
   const double qx = (q - b.location).dot(bx), qy = (q - b.location).dot(by);
-  const double reach = a.radius / std::abs(c);
+  // A rim point p lies |p - q| from q in the plane, at least |p - q| |cos tilt| from the shaft's axis.
+  const double cos_tilt = std::abs(c);
   double best = std::numeric_limits<double>::infinity(), best_rim = 0, best_ux = 1, best_uy = 0, best_cx = 0,
          best_cy = 0, best_side = 1;
   for (const AnalyticPatch::Annulus& k : b.annuli) {
@@ -339,9 +428,9 @@ bool shaft_through_plane(const AnalyticPatch& a, const AnalyticPatch& b, Analyti
     const double ux = e > 1e-12 ? ex / e : 1.0, uy = e > 1e-12 ? ey / e : 0.0;
     double gap, rim, side;
     if (e < k.inner) {
-      gap = k.inner - e - reach, rim = k.inner, side = 1;  // in its hole: the rim beyond q, on side u
+      gap = (k.inner - e) * cos_tilt - a.radius, rim = k.inner, side = 1;  // in its hole: the rim beyond q, on side u
     } else if (e > k.outer) {
-      gap = e - k.outer - reach, rim = k.outer, side = -1;  // beside it: its outer rim, towards q
+      gap = (e - k.outer) * cos_tilt - a.radius, rim = k.outer, side = -1;  // beside it: its outer rim, towards q
     } else {
       return false;  // the axis through the face's material
     }
