@@ -14,7 +14,7 @@
 //
 //   bench_haptics [--seconds S] [--triangles N] [--proxy-only | --screw-only] [--closed-forms | --meshes-only] [MOTOR.step]
 // (--proxy-only: sections 4 and 5; --screw-only: section 5; --closed-forms: the
-// trial scenes with SceneOptions::analytic on; --meshes-only: off, the default)
+// trial scenes with SceneOptions::analytic on, the default; --meshes-only: off)
 #include <time.h>
 
 #include <algorithm>
@@ -119,8 +119,9 @@ int main(int argc, char** argv) {
 
   // 1. Incremental contact update vs the batch stage.
   Status status;
-  std::printf("Contact queries: %s\n\n", scene_options.analytic ? "closed forms between analytic partitions, meshes for the rest"
-                                                                : "meshes only (the default; --closed-forms for the closed forms)");
+  std::printf("Contact queries: %s\n\n", scene_options.analytic
+                                              ? "closed forms between analytic partitions, meshes for the rest (the default)"
+                                              : "meshes only (--meshes-only)");
   auto scene = TrialScene::build(read.assembly, "Axis", scene_options, status);
   if (!scene) {
     std::fprintf(stderr, "%s\n", status.describe().c_str());

@@ -21,7 +21,7 @@ wake-ups), realtime_priority (SCHED_FIFO granted), memory_locked; the CPU is
 at each case's start. The scene (STEP read, partitions, meshes) is built once
 per part, before any timing.
 
-  bench/bench_realtime_loop.py [--build-dir build] [--seconds 10] [--write docs/benchmarks.md]
+  bench/bench_realtime_loop.py [--build-dir build] [--seconds 10] [--meshes-only] [--write docs/benchmarks.md]
 
 `make bench` runs it through bench/run_benchmarks.py; --write replaces the
 "realtime loop bench" section of the Markdown file."""
@@ -133,6 +133,9 @@ def main():
     parser.add_argument("--busy", type=int, default=BUSY, help="busy processes in the second run of each case")
     parser.add_argument("--note", default="", help="a sentence added to the report (how the machine was loaded)")
     parser.add_argument("--write", help="also replace this Markdown file's section 'realtime loop bench'")
+    parser.add_argument("--meshes-only", action="store_true",
+                        help="the contact query on the meshes alone (the closed forms between analytic "
+                             "partitions off: the scene's closed_forms=False), for comparison")
     args = parser.parse_args()
     os.environ.setdefault("CONTACTS_PYTHON_DIR", os.path.join(os.path.abspath(args.build_dir), "python"))
     sys.path.insert(0, REPO)
@@ -142,7 +145,7 @@ def main():
     assembly = load_assembly(MOTOR)
     rows = []
     for name, part in CASES:
-        scene = trial.make_scene(assembly, part)
+        scene = trial.make_scene(assembly, part, closed_forms=not args.meshes_only)
         for busy in (0, args.busy):
             result = run_case(trial, scene, args.seconds, busy)
             if result["mode"] != "realtime":
@@ -150,7 +153,9 @@ def main():
             rows.append((name, busy, result))
             print(f"{name}, {busy} busy: {result['rate_hz']:.1f} Hz, jitter p99 {result['jitter_p99']:.1f} us, "
                   f"{result['overruns']} overruns", file=sys.stderr)
-    text = report(rows, args.seconds, cpu_model(), args.note)
+    query = ("The contact query on the meshes alone (`--meshes-only`)." if args.meshes_only else
+             "The contact query with the closed forms between analytic partitions (the default).")
+    text = report(rows, args.seconds, cpu_model(), f"{args.note} {query}".strip())
     print(text)
     if args.write:
         write_section(args.write, SECTION, text)

@@ -344,13 +344,14 @@ void bind_haptics(py::module_& root) {
 
   py::class_<TrialScene>(m, "TrialScene", "Partitions, real-time contacts and collision models for one moving part.")
       .def(py::init([](const Assembly& assembly, const std::string& part, double capture_distance,
-                       double capture_angle_deg, double deflection, py::object progress) {
+                       double capture_angle_deg, double deflection, py::object progress, bool closed_forms) {
              std::unique_ptr<PythonProgress> reporter;
              if (!progress.is_none()) reporter = std::make_unique<PythonProgress>(progress);
              SceneOptions options;
              options.capture.distance = capture_distance;
              options.capture.angle = rad(capture_angle_deg);
              options.deflection = deflection;
+             options.analytic = closed_forms;
              std::unique_ptr<TrialScene> scene;
              const Status status = guarded([&] {
                Status built;
@@ -362,7 +363,10 @@ void bind_haptics(py::module_& root) {
              return scene;
            }),
            py::arg("assembly"), py::arg("part"), py::arg("capture_distance") = 0.5,
-           py::arg("capture_angle_deg") = 2.0, py::arg("deflection") = 0.01, py::arg("progress") = py::none())
+           py::arg("capture_angle_deg") = 2.0, py::arg("deflection") = 0.01, py::arg("progress") = py::none(),
+           py::arg("closed_forms") = true,
+           "closed_forms: contacts between analytic partitions in closed form, the meshes for the rest (False: "
+           "the meshes alone, for comparison).")
       .def_property_readonly("part", &TrialScene::part_name)
       .def_property_readonly("moving", &TrialScene::moving, "Index of the moving part in the assembly.")
       .def(

@@ -470,7 +470,10 @@ TEST(ProxyAcceptance, BallHeldToItsSpherePlaneJointSlidesTurnsAndLiftsOff) {
   std::printf("[ figures ] at t = %.3f: %.6f %.6f %.6f mm, %.3f %.3f %.3f deg; lowest z offset %.9f\n", on_plate->t,
               on_plate->translate.x(), on_plate->translate.y(), on_plate->translate.z(), on_plate->rotate_deg.x(),
               on_plate->rotate_deg.y(), on_plate->rotate_deg.z(), lowest);
-  EXPECT_NEAR(lowest, 0.0, 1e-9);  // never below its start on the plate
+  // Never below its start on the plate: it rides at the contact skin the constraints keep (the
+  // closed form's exact sphere touches the plate at gap 0 when assembled; the meshes alone, whose
+  // chords lie inside the sphere, left it at 0).
+  EXPECT_NEAR(lowest, ServoConfig{}.contact_skin, 1e-9);
   EXPECT_NEAR(on_plate->translate.z(), 0, 0.05);
   EXPECT_NEAR(on_plate->translate.x(), 12, 0.1);
   EXPECT_NEAR(on_plate->translate.y(), 6, 0.1);

@@ -434,8 +434,8 @@ PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
 
   std::vector<Vec6> rows;
   std::vector<Vec3> bilateral, normals;
-  for (int i : contact_indices) {
-    ContactConstraints cc = constraints_of(result, i, frame, options);
+  // Surface contacts and higher pairs give their constraints alike.
+  const auto take = [&](const ContactConstraints& cc) {
     rows.insert(rows.end(), cc.rows.begin(), cc.rows.end());
     bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
     if (cc.circles.empty()) {
@@ -444,18 +444,9 @@ PairJoint joint_of_pair(const ContactsResult& result, int body_a, int body_b,
       for (const CircularStops& circle : cc.circles) add_circle(circle, options.cone_samples, bilateral, normals);
     }
     joint.stops.insert(joint.stops.end(), cc.stops.begin(), cc.stops.end());
-  }
-  for (int i : higher_pair_indices) {
-    const ContactConstraints cc = constraints_of_higher(result, i, frame, options.cone_samples);
-    rows.insert(rows.end(), cc.rows.begin(), cc.rows.end());
-    bilateral.insert(bilateral.end(), cc.bilateral_forces.begin(), cc.bilateral_forces.end());
-    if (cc.circles.empty()) {
-      for (const OneSidedStop& s : cc.stops) normals.push_back(vec(s.normal));
-    } else {
-      for (const CircularStops& circle : cc.circles) add_circle(circle, options.cone_samples, bilateral, normals);
-    }
-    joint.stops.insert(joint.stops.end(), cc.stops.begin(), cc.stops.end());
-  }
+  };
+  for (int i : contact_indices) take(constraints_of(result, i, frame, options));
+  for (int i : higher_pair_indices) take(constraints_of_higher(result, i, frame, options.cone_samples));
   Eigen::MatrixXd a(rows.size(), 6);
   for (size_t i = 0; i < rows.size(); ++i) a.row(i) = rows[i].transpose().normalized();
   const Eigen::MatrixXd free = null_space(a, options.rank_tolerance);

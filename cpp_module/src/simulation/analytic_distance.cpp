@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace contactcore {
 
@@ -76,6 +77,221 @@ bool chord_meets_box(const AnalyticPatch& patch, double x0, double y0, double x1
   return false;
 }
 
+// One loop as a circle: centre, radius and turn (+1 counter-clockwise: an outer
+// loop; -1: a hole). True only when every vertex lies on the circle within
+// kCircleTolerance and every chord's bulge is that circle's arc over it, turning
+// the loop's way (so a polygon inscribed in a circle is no circle).
+struct LoopCircle {
+  double cx = 0, cy = 0, r = 0;
+  int turn = 0;
+};
+bool loop_circle(const Polygon2& loop, LoopCircle& out) {
+  const std::size_t n = loop.size();
+  if (n < 3) return false;
+  // The circle through three vertices a third of the loop apart.
+  const Point2 &p = loop[0], &q = loop[n / 3], &r = loop[(2 * n) / 3];
+  const double bx = q.x - p.x, by = q.y - p.y, cx = r.x - p.x, cy = r.y - p.y;
+  const double d = 2 * (bx * cy - by * cx);
+  if (std::abs(d) < 1e-300) return false;
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  out.cx = p.x + (cy * b2 - by * c2) / d;
+  out.cy = p.y + (bx * c2 - cx * b2) / d;
+  out.r = std::hypot(p.x - out.cx, p.y - out.cy);
+  if (!(out.r > 0) || !std::isfinite(out.r)) return false;
+  double twice_area = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 &a = loop[i], &b = loop[(i + 1) % n];
+    if (std::abs(std::hypot(a.x - out.cx, a.y - out.cy) - out.r) > kCircleTolerance) return false;
+    twice_area += a.x * b.y - b.x * a.y + a.bulge;
+  }
+  out.turn = twice_area > 0 ? 1 : -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 &a = loop[i], &b = loop[(i + 1) % n];
+    const double half_chord = 0.5 * std::hypot(b.x - a.x, b.y - a.y);
+    const double delta = 2 * std::asin(std::min(1.0, half_chord / out.r));
+    const double arc = out.turn * out.r * out.r * (delta - std::sin(delta));
+    if (std::abs(a.bulge - arc) > 1e-6 * std::abs(arc) + 1e-15 * out.r * out.r) return false;
+  }
+  return true;
+}
+
+// One counter-clockwise loop as an annular sector about a centre (a face of an
+// annulus split in halves along its seams, a quarter of a washer): every vertex
+// on one of two concentric circles (inner 0: the centre itself), each chord
+// between two vertices of one circle that circle's arc (counter-clockwise on
+// the outer circle, clockwise on the inner), each straight chord radial. The
+// centre is the circle through three vertices joined by two arcs.
+struct LoopSector {
+  double cx = 0, cy = 0, inner = 0, outer = 0, span = 0;
+};
+bool loop_sector(const Polygon2& loop, LoopSector& out) {
+  const std::size_t n = loop.size();
+  if (n < 4) return false;
+  std::size_t first = n;
+  for (std::size_t i = 0; i < n && first == n; ++i)
+    if (loop[i].bulge != 0 && loop[(i + 1) % n].bulge != 0) first = i;
+  if (first == n) return false;
+  const Point2 &p = loop[first], &q = loop[(first + 1) % n], &r = loop[(first + 2) % n];
+  const double bx = q.x - p.x, by = q.y - p.y, cx = r.x - p.x, cy = r.y - p.y;
+  const double d = 2 * (bx * cy - by * cx);
+  if (std::abs(d) < 1e-300) return false;
+  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  out.cx = p.x + (cy * b2 - by * c2) / d;
+  out.cy = p.y + (bx * c2 - cx * b2) / d;
+  if (!std::isfinite(out.cx) || !std::isfinite(out.cy)) return false;
+  // The two radii.
+  double radii[2] = {-1, -1};
+  std::vector<int> on(n);
+  double twice_area = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rho = std::hypot(loop[i].x - out.cx, loop[i].y - out.cy);
+    int k = 0;
+    while (k < 2 && radii[k] >= 0 && std::abs(rho - radii[k]) > kCircleTolerance) ++k;
+    if (k == 2) return false;  // a third radius
+    if (radii[k] < 0) radii[k] = rho;
+    on[i] = k;
+    const Point2& next = loop[(i + 1) % n];
+    twice_area += loop[i].x * next.y - next.x * loop[i].y + loop[i].bulge;
+  }
+  if (radii[1] < 0 || twice_area <= 0) return false;  // one circle (loop_circle's), or a hole
+  const int outer = radii[0] > radii[1] ? 0 : 1;
+  double span[2] = {0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 &a = loop[i], &b = loop[(i + 1) % n];
+    if (on[i] == on[(i + 1) % n]) {  // an arc of that circle
+      const double rho = radii[on[i]];
+      if (rho <= kCircleTolerance) return false;
+      const double delta = 2 * std::asin(std::min(1.0, 0.5 * std::hypot(b.x - a.x, b.y - a.y) / rho));
+      const double arc = (on[i] == outer ? 1 : -1) * rho * rho * (delta - std::sin(delta));
+      if (std::abs(a.bulge - arc) > 1e-6 * std::abs(arc) + 1e-15 * rho * rho) return false;
+      span[on[i]] += delta;
+    } else {  // a straight chord along a radius
+      const double ax = a.x - out.cx, ay = a.y - out.cy, ex = b.x - out.cx, ey = b.y - out.cy;
+      if (a.bulge != 0 || std::abs(ax * ey - ay * ex) > kCircleTolerance * (radii[0] + radii[1]) ||
+          ax * ex + ay * ey < 0)
+        return false;
+    }
+  }
+  out.outer = radii[outer];
+  out.inner = radii[1 - outer] <= kCircleTolerance ? 0.0 : radii[1 - outer];
+  out.span = span[outer];
+  if (out.inner > 0 && std::abs(span[outer] - span[1 - outer]) > 1e-9) return false;
+  return out.span > 0 && out.span <= kTwoPi + 1e-9;
+}
+
+// The outline as annuli (AnalyticPatch::annuli), or none: loops that are whole
+// circles (outer circles and their concentric holes), and sectors of one
+// centre and two radii whose spans add up to a whole turn (the faces of one
+// partition do not overlap, so they cover it).
+std::vector<AnalyticPatch::Annulus> outline_annuli(const std::vector<Polygon2>& loops) {
+  std::vector<LoopCircle> outer, holes;
+  std::vector<LoopSector> sectors;
+  for (const Polygon2& loop : loops) {
+    LoopCircle c;
+    LoopSector sector;
+    if (loop_circle(loop, c)) (c.turn > 0 ? outer : holes).push_back(c);
+    else if (loop_sector(loop, sector)) sectors.push_back(sector);
+    else return {};
+  }
+  std::vector<AnalyticPatch::Annulus> annuli;
+  for (const LoopCircle& o : outer) annuli.push_back({o.cx, o.cy, 0.0, o.r});
+  for (const LoopCircle& h : holes) {
+    // The smallest outer circle around the hole: its annulus, concentric with it.
+    int around = -1;
+    for (std::size_t k = 0; k < outer.size(); ++k)
+      if (std::hypot(h.cx - outer[k].cx, h.cy - outer[k].cy) + h.r <= outer[k].r + kCircleTolerance &&
+          (around < 0 || outer[k].r < outer[around].r))
+        around = static_cast<int>(k);
+    if (around < 0 || annuli[around].inner > 0 || h.r >= outer[around].r ||
+        std::hypot(h.cx - outer[around].cx, h.cy - outer[around].cy) > kCircleTolerance)
+      return {};
+    annuli[around].inner = h.r;
+  }
+  // Sectors of one annulus, added up.
+  std::vector<char> used(sectors.size(), 0);
+  for (std::size_t i = 0; i < sectors.size(); ++i) {
+    if (used[i]) continue;
+    const LoopSector& s = sectors[i];
+    double span = 0;
+    for (std::size_t j = i; j < sectors.size(); ++j) {
+      const LoopSector& t = sectors[j];
+      if (used[j] || std::hypot(s.cx - t.cx, s.cy - t.cy) > kCircleTolerance ||
+          std::abs(s.inner - t.inner) > kCircleTolerance || std::abs(s.outer - t.outer) > kCircleTolerance)
+        continue;
+      used[j] = 1;
+      span += t.span;
+    }
+    if (std::abs(span - kTwoPi) > 1e-9) return {};  // part of an annulus: the outline test decides
+    annuli.push_back({s.cx, s.cy, s.inner, s.outer});
+  }
+  return annuli;
+}
+
+// Two outlines made of annuli (b's plane frame; a's centres mapped by
+// q = (ox, oy) + M v), planes parallel and facing, `gap` apart along b's
+// normal n. Two annuli share area where some circle about b's centre, of a
+// radius d in (b.inner, b.outer), reaches distances [|d - e|, d + e] from a's
+// centre (e apart) that meet (a.inner, a.outer): d in (max(b.inner, e - a.outer,
+// a.inner - e), min(b.outer, e + a.outer)). Sharing area: the contact is the
+// planes' gap at a point in the middle of that band. Else their rims' closest
+// pair lies on the line of the centres, delta apart in the plane (a's disk in
+// b's hole, the disks apart, or b's in a's hole): the faces are sqrt(gap^2 +
+// delta^2) apart; rims that touch (delta 0) on one plane (gap 0) leave the
+// meshes to decide (no direction).
+bool annuli_pair(const AnalyticPatch& a, const AnalyticPatch& b, double gap, const Vector3& n, double ox, double oy,
+                 double m00, double m01, double m10, double m11, AnalyticContact& out) {
+  const Vector3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
+  double best_delta = std::numeric_limits<double>::infinity();
+  double best_ax = 0, best_ay = 0, best_bx = 0, best_by = 0;
+  for (const AnalyticPatch::Annulus& p : a.annuli) {
+    const double ax = ox + m00 * p.cx + m01 * p.cy, ay = oy + m10 * p.cx + m11 * p.cy;
+    for (const AnalyticPatch::Annulus& q : b.annuli) {
+      const double ex = ax - q.cx, ey = ay - q.cy, e = std::hypot(ex, ey);
+      // u: from b's centre towards a's (any direction when concentric), v: u turned a quarter.
+      const double ux = e > 1e-12 ? ex / e : 1.0, uy = e > 1e-12 ? ey / e : 0.0;
+      const double lo = std::max({q.inner, e - p.outer, p.inner - e}), hi = std::min(q.outer, e + p.outer);
+      if (hi - lo > kAnnulusOverlap) {
+        // The band's middle radius d about b's centre, and on that circle the point whose distance t
+        // from a's centre is the middle of the radii a has there (law of cosines).
+        const double d = 0.5 * (lo + hi);
+        const double t = 0.5 * (std::max(std::abs(d - e), p.inner) + std::min(d + e, p.outer));
+        double cos_t = 1, sin_t = 0;
+        if (e > 1e-12) {
+          cos_t = std::clamp((d * d + e * e - t * t) / (2 * d * e), -1.0, 1.0);
+          sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t));
+        }
+        const double px = q.cx + d * (cos_t * ux - sin_t * uy), py = q.cy + d * (cos_t * uy + sin_t * ux);
+        out.gap = gap;
+        out.normal = n;
+        out.point_b = b.location + px * bx + py * by;
+        out.point_a = out.point_b + gap * n;
+        return true;
+      }
+      // Apart in the plane: the three ways two annuli miss each other, the largest is their distance.
+      const double in_hole = q.inner - e - p.outer, apart = e - p.outer - q.outer, around = p.inner - e - q.outer;
+      const double delta = std::max({in_hole, apart, around});
+      if (std::max(delta, 0.0) >= best_delta) continue;
+      best_delta = std::max(delta, 0.0);
+      double ra, rb;  // the rims' points: centre + r u
+      if (delta == in_hole) ra = p.outer, rb = q.inner;
+      else if (delta == apart) ra = -p.outer, rb = q.outer;
+      else ra = -p.inner, rb = -q.outer;
+      best_bx = q.cx + rb * ux, best_by = q.cy + rb * uy;
+      best_ax = ax + ra * ux, best_ay = ay + ra * uy;
+      if (delta <= 0) best_ax = best_bx, best_ay = best_by;  // touching (or a sliver): no in-plane offset
+    }
+  }
+  if (!std::isfinite(best_delta)) return false;
+  out.point_b = b.location + best_bx * bx + best_by * by;
+  out.point_a = b.location + best_ax * bx + best_ay * by + gap * n;
+  const Vector3 d = out.point_a - out.point_b;
+  const double distance = d.norm();
+  if (distance < 1e-12) return false;  // rims touching on one plane: no direction, the meshes decide
+  out.gap = distance;
+  out.normal = d / distance;
+  return true;
+}
+
 // Cylinder axis points: a point on b's axis line at coordinate s.
 Vector3 on_axis(const AnalyticPatch& p, double s) { return p.location + s * p.axis; }
 
@@ -103,6 +319,8 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   const Vector3 o_ab = a.location - b.location;
   const double ox = o_ab.dot(bx), oy = o_ab.dot(by);
   const double m00 = ax.dot(bx), m01 = ay.dot(bx), m10 = ax.dot(by), m11 = ay.dot(by);
+  // Two outlines of annuli (shoulders, bearings' and seals' faces): decided by their radii.
+  if (!a.annuli.empty() && !b.annuli.empty()) return annuli_pair(a, b, gap, n, ox, oy, m00, m01, m10, m11, out);
   const Vector3 o_ba = b.location - a.location;
   const double px = o_ba.dot(ax), py = o_ba.dot(ay);
   const double n00 = bx.dot(ax), n01 = by.dot(ax), n10 = bx.dot(ay), n11 = by.dot(ay);
@@ -177,6 +395,55 @@ bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticCon
   out.point_a = lowest;
   out.point_b = lowest - out.gap * n;
   return within_patch(a, out.point_a) && within_patch(b, out.point_b);
+}
+
+// A shaft (convex cylinder a) through a face (plane b whose outline is annuli),
+// its axis along the face's normal within the parallel tolerance and the face's
+// plane crossing it strictly between its ends: a shaft through a bearing's or a
+// seal's face, in the hole at the bore's mouth. Its axis meets the plane at q,
+// e from an annulus' centre: the annulus' rim is (hole radius - e) cos(tilt) - r
+// from the shaft when q is in its hole, (e - outer) cos(tilt) - r when q lies
+// beyond it (exact for parallel axes, a lower bound for a tilt: a rim point
+// |p - q| from q is at least |p - q| cos(tilt) from the axis); q in an annulus'
+// material (the shaft through the face itself) has no closed form here. The
+// nearest rim is the contact, along the line from its centre to q.
+bool shaft_through_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                         const AnalyticTolerances& tol) {
+  if (a.kind != SurfaceKind::Cylinder || a.side != MaterialSide::Convex || b.annuli.empty()) return false;
+  const Vector3& n = b.axis;
+  const double c = a.axis.dot(n);
+  if (std::abs(c) < std::cos(tol.parallel)) return false;
+  const double s_plane = (b.location - a.location).dot(n) / c;
+  constexpr double kEndSlack = 1e-6;  // mm: a plane at an end meets the shaft's rim (the meshes)
+  if (s_plane <= a.axial_min + kEndSlack || s_plane >= a.axial_max - kEndSlack) return false;
+  const Vector3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
+  const Vector3 q = on_axis(a, s_plane);
+  const double qx = (q - b.location).dot(bx), qy = (q - b.location).dot(by);
+  // A rim point p lies |p - q| from q in the plane, at least |p - q| |cos tilt| from the shaft's axis.
+  const double cos_tilt = std::abs(c);
+  double best = std::numeric_limits<double>::infinity(), best_rim = 0, best_ux = 1, best_uy = 0, best_cx = 0,
+         best_cy = 0, best_side = 1;
+  for (const AnalyticPatch::Annulus& k : b.annuli) {
+    const double ex = qx - k.cx, ey = qy - k.cy, e = std::hypot(ex, ey);
+    const double ux = e > 1e-12 ? ex / e : 1.0, uy = e > 1e-12 ? ey / e : 0.0;
+    double gap, rim, side;
+    if (e < k.inner) {
+      gap = (k.inner - e) * cos_tilt - a.radius, rim = k.inner, side = 1;  // in its hole: the rim beyond q, on side u
+    } else if (e > k.outer) {
+      gap = (e - k.outer) * cos_tilt - a.radius, rim = k.outer, side = -1;  // beside it: its outer rim, towards q
+    } else {
+      return false;  // the axis through the face's material
+    }
+    if (gap < best) {
+      best = gap, best_rim = rim, best_ux = ux, best_uy = uy, best_cx = k.cx, best_cy = k.cy, best_side = side;
+    }
+  }
+  const Vector3 u = best_ux * bx + best_uy * by;
+  out.gap = best;
+  out.normal = -best_side * u;  // a leaves the rim: away from it
+  out.point_b = b.location + (best_cx + best_rim * best_ux) * bx + (best_cy + best_rim * best_uy) * by;
+  out.point_a = q + best_side * a.radius * perpendicular(a.axis, u);
+  return within_patch(a, out.point_a, 1e-3);
 }
 
 // A shaft (convex cylinder a) in a bore (concave cylinder b), axes near parallel:
@@ -353,6 +620,7 @@ AnalyticPatch analytic_patch(const Partition& partition) {
 
 void prepare_outline(AnalyticPatch& patch) {
   patch.chords.clear();
+  patch.annuli = outline_annuli(patch.loops);
   patch.slab_first.clear();
   patch.slab_chords.clear();
   patch.slab_count = 0;
@@ -460,8 +728,10 @@ bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   const K ka = a.kind, kb = b.kind;
   if (ka == K::Other || kb == K::Other) return false;
   if (ka == K::Plane && kb == K::Plane) return plane_plane(a, b, out, tol);
-  if (kb == K::Plane && (ka == K::Cylinder || ka == K::Sphere)) return convex_on_plane(a, b, out);
-  if (ka == K::Plane && (kb == K::Cylinder || kb == K::Sphere)) return swap_result(convex_on_plane(b, a, out), out);
+  if (kb == K::Plane && (ka == K::Cylinder || ka == K::Sphere))
+    return shaft_through_plane(a, b, out, tol) || convex_on_plane(a, b, out);
+  if (ka == K::Plane && (kb == K::Cylinder || kb == K::Sphere))
+    return swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out), out);
   const bool convex_a = a.side == MaterialSide::Convex, convex_b = b.side == MaterialSide::Convex;
   if (ka == K::Cone || kb == K::Cone) {
     if (ka != K::Cone || kb != K::Cone || convex_a == convex_b) return false;

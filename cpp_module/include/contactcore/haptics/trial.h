@@ -25,11 +25,11 @@ struct SceneOptions {
   // another body mid-way (a pin's side across a bore's rim); 0: no bound.
   double moving_max_edge = 1.0;
   // Closed-form contacts between analytic partitions in the loop's contact
-  // query, the meshes for the rest (StageCollision::use_analytic). Off by
-  // default: on, it stopped motor.FCStd's Axis 5 mm out of its bores (an
-  // outline test's rounding, fixed; OutlineVertexOnTheRayCountsOnce); on
-  // again once the GUI suite has run with it (docs/haptics.md).
-  bool analytic = false;
+  // query, the meshes for the rest (StageCollision::use_analytic). On by
+  // default (docs/haptics.md, "Collision that fits the budget"); false: the
+  // meshes alone (`bench_haptics --meshes-only`, the binding's
+  // closed_forms=False), for comparison.
+  bool analytic = true;
 };
 
 // Everything the loop needs about the assembly, built once (OCCT here only).

@@ -58,7 +58,29 @@ struct AnalyticPatch {
   std::vector<int> slab_first;   // slab_count + 1 offsets into slab_chords
   std::vector<int> slab_chords;  // chord indices, slab by slab
   double outline_x0 = 0, outline_y0 = 0, outline_x1 = -1, outline_y1 = -1;  // empty when x0 > x1
+  // Plane: the outline as exact annuli (inner 0: a disk), in the plane frame,
+  // when every loop is one circle (its vertices on the circle within
+  // kCircleTolerance, each chord's bulge that circle's arc) and every hole is
+  // concentric with the smallest outer circle around it, one hole at most per
+  // outer circle (prepare_outline; empty otherwise: the outline test decides).
+  // A shaft's shoulder, a bearing's or a seal's face: two such faces are
+  // judged by their radii, not vertex by vertex, so coincident circles (a
+  // shoulder's rim on a bore's edge, a line-to-line shaft's inner circles)
+  // are decided too.
+  struct Annulus {
+    double cx = 0, cy = 0, inner = 0, outer = 0;
+  };
+  std::vector<Annulus> annuli;
 };
+
+// mm: a loop's vertices this close to one circle (and holes' centres this
+// close to their outer circle's) make it that circle (AnalyticPatch::annuli);
+// coordinates carry rounding of about 1e-13 mm.
+constexpr double kCircleTolerance = 1e-9;
+// mm: two annuli share area when the band of radii they have in common is
+// wider than this; narrower (circles coincident up to rounding), they only
+// touch along a rim.
+constexpr double kAnnulusOverlap = 1e-6;
 
 // Fills the patch's chords and boxes from its loops (set-up: allocates).
 void prepare_outline(AnalyticPatch& patch);
@@ -88,7 +110,9 @@ struct AnalyticTolerances {
 
 // True and `out` filled when the closest pair of a and b (both placed in one
 // frame) has a closed form here and lies inside both partitions; false when
-// the meshes must answer. Pairs: plane-plane (parallel, facing), plane with
+// the meshes must answer. Pairs: plane-plane (parallel, facing; two outlines
+// made of annuli (AnalyticPatch::annuli) also when they do not share area:
+// the closest pair of their rims, sqrt(gap^2 + in-plane distance^2)), plane with
 // a shaft (convex cylinder) or a ball (convex sphere), cylinder-cylinder
 // (shaft in bore with near-parallel axes, two shafts side by side), sphere-
 // sphere (two balls, a ball in a cup), a ball in a bore, cone in cone (a
