@@ -11,6 +11,7 @@
 #include <gp_Trsf.hxx>
 
 #include "contactcore/simulation/collision.h"
+#include "draw_order.h"
 
 namespace contactcore::testing {
 
@@ -27,7 +28,8 @@ inline gp_Trsf to_gp(const RigidTransform& t) {
 inline RigidTransform random_placement(std::mt19937& rng, double spread) {
   std::normal_distribution<double> normal;
   std::uniform_real_distribution<double> uniform(-spread, spread);
-  gp_Quaternion q(normal(rng), normal(rng), normal(rng), normal(rng));
+  const auto n = drawn_last_first<4>([&] { return normal(rng); });
+  gp_Quaternion q(n[0], n[1], n[2], n[3]);
   q.Normalize();
   const gp_Mat m = q.GetMatrix();
   RigidTransform t;

@@ -29,8 +29,10 @@
 #include "simulation/bvh_traversal.h"
 #include "contactcore/simulation/meshes.h"
 #include "placement_helpers.h"
+#include "draw_order.h"
 
 using namespace contactcore;
+using contactcore::testing::drawn_last_first;
 using contactcore::testing::placed;
 using contactcore::testing::random_placement;
 using contactcore::testing::to_gp;
@@ -581,10 +583,14 @@ TEST(Collision, BoxSeparationAgreesWithFclAndBoundsTheDistance) {
   std::uniform_real_distribution<double> unit(-1, 1), size(0.01, 2);
   int disjoint = 0, from_edges = 0;
   for (int i = 0; i < 3000; ++i) {
-    const fcl::Quaterniond q(unit(rng), unit(rng), unit(rng), unit(rng));
+    const auto qv = drawn_last_first<4>([&] { return unit(rng); });
+    const fcl::Quaterniond q(qv[0], qv[1], qv[2], qv[3]);
     const fcl::Matrix3d B = q.normalized().toRotationMatrix();
-    const fcl::Vector3d a(size(rng), size(rng), size(rng)), b(size(rng), size(rng), size(rng));
-    const fcl::Vector3d T = 3.0 * fcl::Vector3d(unit(rng), unit(rng), unit(rng));
+    const auto av = drawn_last_first<3>([&] { return size(rng); });
+    const auto bv = drawn_last_first<3>([&] { return size(rng); });
+    const fcl::Vector3d a(av[0], av[1], av[2]), b(bv[0], bv[1], bv[2]);
+    const auto tv = drawn_last_first<3>([&] { return unit(rng); });
+    const fcl::Vector3d T = 3.0 * fcl::Vector3d(tv[0], tv[1], tv[2]);
     const auto separation = box_separation(B, T, a, b);
     ASSERT_EQ(separation.disjoint, fcl::obbDisjoint<double>(B, T, a, b)) << i;
     if (!separation.disjoint) continue;

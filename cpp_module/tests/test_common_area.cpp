@@ -31,8 +31,10 @@
 #include "contactcore/bodies/bodies.h"
 #include "contactcore/contacts/contacts.h"
 #include "test_helpers.h"
+#include "draw_order.h"
 
 using namespace contactcore;
+using contactcore::testing::drawn_last_first;
 using contactcore::testing::contacts_of;
 using contactcore::testing::make_assembly;
 
@@ -207,11 +209,14 @@ void expect_order_and_motion_invariant(const Assembly& assembly, unsigned seed, 
   std::shuffle(order.begin(), order.end(), rng);
   std::uniform_real_distribution<double> uniform(-1, 1);
   gp_Trsf motion;
-  motion.SetRotation(gp_Ax1(gp_Pnt(uniform(rng), uniform(rng), uniform(rng)),
-                            gp_Dir(uniform(rng), uniform(rng), 0.5 + uniform(rng))),
-                     1 + uniform(rng));
+  const auto draw = [&] { return uniform(rng); };
+  const double angle = 1 + draw();
+  const auto dir = drawn_last_first<3>(draw);
+  const auto at = drawn_last_first<3>(draw);
+  motion.SetRotation(gp_Ax1(gp_Pnt(at[0], at[1], at[2]), gp_Dir(dir[0], dir[1], 0.5 + dir[2])), angle);
   gp_Trsf shift;
-  shift.SetTranslation(gp_Vec(100 * uniform(rng), 100 * uniform(rng), 100 * uniform(rng)));
+  const auto by = drawn_last_first<3>(draw);
+  shift.SetTranslation(gp_Vec(100 * by[0], 100 * by[1], 100 * by[2]));
   motion = shift * motion;
   Assembly moved;
   for (int i : order) {

@@ -23,8 +23,10 @@
 #include "contactcore/bodies/instances.h"
 #include "contactcore/common/occt_guard.h"
 #include "test_helpers.h"
+#include "draw_order.h"
 
 using namespace contactcore;
+using contactcore::testing::drawn_last_first;
 using contactcore::testing::sample;
 using contactcore::testing::shared_step;
 
@@ -45,8 +47,10 @@ std::vector<Bnd_Box> random_boxes(std::mt19937& random, int count, const gp_XYZ&
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::vector<Bnd_Box> boxes(count);
   for (Bnd_Box& box : boxes) {
-    const gp_XYZ lo(spread.X() * unit(random), spread.Y() * unit(random), spread.Z() * unit(random));
-    const gp_XYZ hi = lo + gp_XYZ(size.X() * unit(random), size.Y() * unit(random), size.Z() * unit(random));
+    const auto l = drawn_last_first<3>([&] { return unit(random); });
+    const gp_XYZ lo(spread.X() * l[0], spread.Y() * l[1], spread.Z() * l[2]);
+    const auto h = drawn_last_first<3>([&] { return unit(random); });
+    const gp_XYZ hi = lo + gp_XYZ(size.X() * h[0], size.Y() * h[1], size.Z() * h[2]);
     box.Update(lo.X(), lo.Y(), lo.Z(), hi.X(), hi.Y(), hi.Z());
     if (unit(random) < 0.1) box.SetGap(0.05 * unit(random));  // boxes with their own gap, as BRepBndLib makes
   }

@@ -28,6 +28,7 @@
 #include "contacts/interferences.h"
 #include "contacts/separation.h"
 #include "test_helpers.h"
+#include "draw_order.h"
 
 using namespace contactcore;
 using namespace contactcore::testing;
@@ -214,8 +215,11 @@ TEST(BoundaryCrossing, TouchingStaysTouchingUnderRigidMotions) {
   std::uniform_real_distribution<double> unit(-1, 1);
   for (int trial = 0; trial < 20; ++trial) {
     gp_Trsf rotation, translation;
-    rotation.SetRotation(gp_Ax1(gp::Origin(), gp_Dir(unit(rng), unit(rng), unit(rng) + 2)), M_PI * unit(rng));
-    translation.SetTranslation(gp_Vec(50 * unit(rng), 50 * unit(rng), 50 * unit(rng)));
+    const double angle = M_PI * unit(rng);
+    const auto d = drawn_last_first<3>([&] { return unit(rng); });
+    rotation.SetRotation(gp_Ax1(gp::Origin(), gp_Dir(d[0], d[1], d[2] + 2)), angle);
+    const auto t = drawn_last_first<3>([&] { return unit(rng); });
+    translation.SetTranslation(gp_Vec(50 * t[0], 50 * t[1], 50 * t[2]));
     const gp_Trsf motion = translation * rotation;
     const auto moved = [&](const TopoDS_Shape& s) { return BRepBuilderAPI_Transform(s, motion, true).Shape(); };
     const TopoDS_Shape moved_plate = moved(plate);
@@ -250,14 +254,22 @@ namespace {
 // A box, a ball or a cylinder of random size, place and axis.
 TopoDS_Shape random_solid(std::mt19937& rng) {
   std::uniform_real_distribution<double> size(1, 8), place(-4, 4), unit(-1, 1);
-  const gp_Pnt at(place(rng), place(rng), place(rng));
-  gp_Vec axis(unit(rng), unit(rng), unit(rng));
+  const auto p = drawn_last_first<3>([&] { return place(rng); });
+  const gp_Pnt at(p[0], p[1], p[2]);
+  const auto a = drawn_last_first<3>([&] { return unit(rng); });
+  gp_Vec axis(a[0], a[1], a[2]);
   if (axis.Magnitude() < 0.1) axis = gp_Vec(0, 0, 1);
   const gp_Ax2 frame(at, gp_Dir(axis));
   switch (rng() % 3) {
-    case 0: return BRepPrimAPI_MakeBox(frame, size(rng), size(rng), size(rng)).Shape();
+    case 0: {
+      const auto s = drawn_last_first<3>([&] { return size(rng); });
+      return BRepPrimAPI_MakeBox(frame, s[0], s[1], s[2]).Shape();
+    }
     case 1: return BRepPrimAPI_MakeSphere(at, 0.5 * size(rng)).Shape();
-    default: return BRepPrimAPI_MakeCylinder(frame, 0.5 * size(rng), 2 * size(rng)).Shape();
+    default: {
+      const auto s = drawn_last_first<2>([&] { return size(rng); });
+      return BRepPrimAPI_MakeCylinder(frame, 0.5 * s[0], 2 * s[1]).Shape();
+    }
   }
 }
 

@@ -2,6 +2,7 @@
 // merging into maximal partitions, extents and the interval helpers.
 #include "contactcore/common/angles.h"
 #include "contactcore/partitions/partitions.h"
+#include "draw_order.h"
 
 #include <gtest/gtest.h>
 
@@ -59,6 +60,7 @@
 #include <gp_Trsf.hxx>
 
 using namespace contactcore;
+using contactcore::testing::drawn_last_first;
 
 namespace {
 
@@ -206,12 +208,14 @@ TopoDS_Shape transformed(const TopoDS_Shape& shape, const gp_Trsf& trsf, bool co
 
 gp_Trsf random_rigid_motion(std::mt19937& rng) {
   std::uniform_real_distribution<double> unit(-1, 1), angle(-kPi, kPi), shift(-500, 500);
-  gp_Vec axis(unit(rng), unit(rng), unit(rng));
+  const auto a = drawn_last_first<3>([&] { return unit(rng); });
+  gp_Vec axis(a[0], a[1], a[2]);
   if (axis.Magnitude() < 1e-3) axis = gp_Vec(0, 0, 1);
   gp_Trsf trsf;
   trsf.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(axis)), angle(rng));
   gp_Trsf move;
-  move.SetTranslation(gp_Vec(shift(rng), shift(rng), shift(rng)));
+  const auto s = drawn_last_first<3>([&] { return shift(rng); });
+  move.SetTranslation(gp_Vec(s[0], s[1], s[2]));
   return move * trsf;
 }
 
