@@ -85,17 +85,24 @@ struct LoopCircle {
   double cx = 0, cy = 0, r = 0;
   int turn = 0;
 };
-bool loop_circle(const Polygon2& loop, LoopCircle& out) {
-  const std::size_t n = loop.size();
-  if (n < 3) return false;
-  // The circle through three vertices a third of the loop apart.
-  const Point2 &p = loop[0], &q = loop[n / 3], &r = loop[(2 * n) / 3];
+
+// The centre of the circle through p, q and r; false when they are collinear.
+bool circumcentre(const Point2& p, const Point2& q, const Point2& r, double& x, double& y) {
   const double bx = q.x - p.x, by = q.y - p.y, cx = r.x - p.x, cy = r.y - p.y;
   const double d = 2 * (bx * cy - by * cx);
   if (std::abs(d) < 1e-300) return false;
   const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-  out.cx = p.x + (cy * b2 - by * c2) / d;
-  out.cy = p.y + (bx * c2 - cx * b2) / d;
+  x = p.x + (cy * b2 - by * c2) / d;
+  y = p.y + (bx * c2 - cx * b2) / d;
+  return true;
+}
+
+bool loop_circle(const Polygon2& loop, LoopCircle& out) {
+  const std::size_t n = loop.size();
+  if (n < 3) return false;
+  // The circle through three vertices a third of the loop apart.
+  if (!circumcentre(loop[0], loop[n / 3], loop[(2 * n) / 3], out.cx, out.cy)) return false;
+  const Point2& p = loop[0];
   out.r = std::hypot(p.x - out.cx, p.y - out.cy);
   if (!(out.r > 0) || !std::isfinite(out.r)) return false;
   double twice_area = 0;
@@ -131,13 +138,7 @@ bool loop_sector(const Polygon2& loop, LoopSector& out) {
   for (std::size_t i = 0; i < n && first == n; ++i)
     if (loop[i].bulge != 0 && loop[(i + 1) % n].bulge != 0) first = i;
   if (first == n) return false;
-  const Point2 &p = loop[first], &q = loop[(first + 1) % n], &r = loop[(first + 2) % n];
-  const double bx = q.x - p.x, by = q.y - p.y, cx = r.x - p.x, cy = r.y - p.y;
-  const double d = 2 * (bx * cy - by * cx);
-  if (std::abs(d) < 1e-300) return false;
-  const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-  out.cx = p.x + (cy * b2 - by * c2) / d;
-  out.cy = p.y + (bx * c2 - cx * b2) / d;
+  if (!circumcentre(loop[first], loop[(first + 1) % n], loop[(first + 2) % n], out.cx, out.cy)) return false;
   if (!std::isfinite(out.cx) || !std::isfinite(out.cy)) return false;
   // The two radii.
   double radii[2] = {-1, -1};
