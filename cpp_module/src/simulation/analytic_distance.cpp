@@ -97,6 +97,14 @@ bool circumcentre(const Point2& p, const Point2& q, const Point2& r, double& x, 
   return true;
 }
 
+// The angle a chord a -> b of a circle of radius r subtends when a's bulge is
+// that circle's arc over it, turning `turn` (+1 counter-clockwise); -1 when not.
+double arc_angle(const Point2& a, const Point2& b, double r, int turn) {
+  const double delta = 2 * std::asin(std::min(1.0, 0.5 * std::hypot(b.x - a.x, b.y - a.y) / r));
+  const double arc = turn * r * r * (delta - std::sin(delta));
+  return std::abs(a.bulge - arc) > 1e-6 * std::abs(arc) + 1e-15 * r * r ? -1.0 : delta;
+}
+
 bool loop_circle(const Polygon2& loop, LoopCircle& out) {
   const std::size_t n = loop.size();
   if (n < 3) return false;
@@ -112,13 +120,8 @@ bool loop_circle(const Polygon2& loop, LoopCircle& out) {
     twice_area += a.x * b.y - b.x * a.y + a.bulge;
   }
   out.turn = twice_area > 0 ? 1 : -1;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point2 &a = loop[i], &b = loop[(i + 1) % n];
-    const double half_chord = 0.5 * std::hypot(b.x - a.x, b.y - a.y);
-    const double delta = 2 * std::asin(std::min(1.0, half_chord / out.r));
-    const double arc = out.turn * out.r * out.r * (delta - std::sin(delta));
-    if (std::abs(a.bulge - arc) > 1e-6 * std::abs(arc) + 1e-15 * out.r * out.r) return false;
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (arc_angle(loop[i], loop[(i + 1) % n], out.r, out.turn) < 0) return false;
   return true;
 }
 
@@ -162,9 +165,8 @@ bool loop_sector(const Polygon2& loop, LoopSector& out) {
     if (on[i] == on[(i + 1) % n]) {  // an arc of that circle
       const double rho = radii[on[i]];
       if (rho <= kCircleTolerance) return false;
-      const double delta = 2 * std::asin(std::min(1.0, 0.5 * std::hypot(b.x - a.x, b.y - a.y) / rho));
-      const double arc = (on[i] == outer ? 1 : -1) * rho * rho * (delta - std::sin(delta));
-      if (std::abs(a.bulge - arc) > 1e-6 * std::abs(arc) + 1e-15 * rho * rho) return false;
+      const double delta = arc_angle(a, b, rho, on[i] == outer ? 1 : -1);
+      if (delta < 0) return false;
       span[on[i]] += delta;
     } else {  // a straight chord along a radius
       const double ax = a.x - out.cx, ay = a.y - out.cy, ex = b.x - out.cx, ey = b.y - out.cy;
