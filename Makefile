@@ -19,20 +19,19 @@ SAMPLE       ?= Resources/samples/motor.step
 # (a compiler, CMake, Ninja, the libraries it links), installed first, and
 # what only the installed workbench and later rebuilds need (FreeCAD, Qt's SVG
 # module, Graphviz, ccache), installed while the extension compiles (`run`).
-# The compiler is g++. clang-14 (`make run CONTACTS_CXX=clang++-14`, with the
-# test packages) compiles the extension with 16 % less CPU from smaller
-# packages, but its build fails one test under a memory limit (an out-of-memory
-# STEP read reported as an unreadable file: docs/benchmarks.md, issue 23), so
-# it is not the default yet.
+# The compiler is clang-14: it compiles the extension with less CPU than g++ 12
+# (idle, a cold `make run` from a clone: 197 s against 285 s) from smaller
+# packages; g++ (`make run CONTACTS_CXX=g++`, with the test packages) gives the
+# same results (docs/benchmarks.md, issue 23).
 DEB_BUILD_PACKAGES := libocct-foundation-dev libocct-modeling-data-dev \
   libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
   libocct-visualization-dev libhidapi-dev pybind11-dev python3-pybind11 \
-  python3-dev cmake make g++ libtbb-dev libeigen3-dev libfcl-dev pkg-config ninja-build
+  python3-dev cmake make clang-14 libtbb-dev libeigen3-dev libfcl-dev pkg-config ninja-build
 DEB_APP_PACKAGES := freecad python3-pyside2.qtsvg graphviz ccache
 DEB_PACKAGES := $(DEB_BUILD_PACKAGES) $(DEB_APP_PACKAGES)
-# What `make test`, `make bench`, `make sanitize` and `make fuzz` add (clang-14
-# for the fuzz targets and for a clang build folder).
-DEB_TEST_PACKAGES := $(DEB_PACKAGES) clang-14 libcoin-dev python3-pytest googletest libgtest-dev \
+# What `make test`, `make bench`, `make sanitize` and `make fuzz` add (g++ for a
+# g++ build folder and the sanitizer build).
+DEB_TEST_PACKAGES := $(DEB_PACKAGES) g++ libcoin-dev python3-pytest googletest libgtest-dev \
   libbenchmark-dev python3-pil xvfb xauth clang libclang-rt-14-dev liburdfdom-tools libmujoco-dev
 
 .PHONY: run test deps deps-test build build-extension install uninstall samples bench test-cpp test-python test-gui clean fuzz sanitize
@@ -68,7 +67,7 @@ LAUNCHER     := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=cc
 
 # The compiler of a new build folder (CMake reads CXX on a folder's first
 # configure only: an existing folder keeps the compiler it was made with).
-CONTACTS_CXX ?= g++
+CONTACTS_CXX ?= clang++-14
 
 CONFIGURE    := CXX=$(CONTACTS_CXX) cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=$(PYTHON) $(LAUNCHER)
 

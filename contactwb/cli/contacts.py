@@ -17,7 +17,8 @@ import os
 import sys
 import time
 
-from contactwb.cli.process import finite_number, internal_error, nonnegative_count, run as run_command, unsafe_output
+from contactwb.cli.process import finite_number, internal_error, naming_the_file, nonnegative_count, run as run_command
+from contactwb.cli.process import unsafe_output
 from contactwb.cli.process import EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED  # noqa: F401
 
 
@@ -190,13 +191,11 @@ def _contacts(argv):
         print(f"contacts: {error}", file=sys.stderr)
         return EXIT_USAGE
     except core.InputError as error:
-        where = "" if os.path.basename(path) in str(error) else f" (file '{path}')"  # a document's body errors
-        print(f"contacts: {error}{where}", file=sys.stderr)
+        print(f"contacts: {naming_the_file(str(error), path)}", file=sys.stderr)
         return EXIT_INPUT
     except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
         text = str(error) if "out of memory" in str(error) else "out of memory"
-        where = "" if os.path.basename(path) in text else f" (file '{path}')"
-        print(f"contacts: {text}{where}", file=sys.stderr)
+        print(f"contacts: {naming_the_file(text, path)}", file=sys.stderr)
         return EXIT_FAILED
     except core.InternalError as error:  # a bug in the core
         print(f"contacts: internal error ({error}); please report it", file=sys.stderr)

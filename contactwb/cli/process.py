@@ -27,6 +27,12 @@ EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
 
 
+def naming_the_file(text, path):
+    """An error's text with the file named once: the core's errors name it already (its full
+    path), a Python error or a document's body error may not."""
+    return text if os.path.basename(path) in text else f"{text} (file '{path}')"
+
+
 class UsageError(Exception):
     """A bad option value found after argparse (exit 2)."""
 

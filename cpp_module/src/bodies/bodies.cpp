@@ -32,6 +32,7 @@
 #ifdef __GLIBC__
 #include <malloc.h>  // malloc_trim
 #endif
+#include <sys/mman.h>  // the memory probe of parse_failure
 
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
@@ -356,6 +357,30 @@ void keep_reader_notes(const OcctGuard& guard, std::vector<std::string>& message
   }
 }
 
+// Why OCCT's STEP parser gave up on a file, as the read's status: out of
+// memory or an unreadable file. OCCT's parser catches its own
+// Standard_OutOfMemory and only says so, or fails without a word (a block it
+// could not allocate, under `ulimit -v`): a silent failure is out of memory
+// when 16 MB of address space cannot be had now. The probe is a mapping, not
+// a malloc: clang removes a malloc whose block is only compared with null and
+// freed (it may assume the allocation succeeds), and its build then called an
+// out-of-memory parse an unreadable file (issue 23).
+Status parse_failure(const OcctGuard& guard, const std::string& what) {
+  std::string why;
+  for (const std::string& line : guard.messages()) why += (why.empty() ? "" : "; ") + line;
+  const auto memory_left = [] {
+    constexpr std::size_t probe_size = std::size_t(16) << 20;
+    void* probe = mmap(nullptr, probe_size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (probe == MAP_FAILED) return false;
+    munmap(probe, probe_size);
+    return true;
+  };
+  if (why.find("Standard_OutOfMemory") != std::string::npos || why.find("malloc failed") != std::string::npos ||
+      (why.empty() && !memory_left()))
+    return Status::failure(StatusCode::OutOfMemory, "out of memory while reading the STEP file");
+  return Status::failure(StatusCode::ReadError, what + (why.empty() ? std::string() : ": " + why));
+}
+
 // The read's error when OCCT's STEP transfer throws: the exception's type
 // and message, and the file's damaged entities when the check found any.
 std::string transfer_failure(const Standard_Failure& failure, const StepModelCheck& check) {
@@ -430,20 +455,8 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
       parsed = reader.ReadFile(path.c_str());
     }
     if (parsed != IFSelect_RetDone) {
-      std::string why;
-      for (const std::string& line : guard.messages()) why += (why.empty() ? "" : "; ") + line;
-      // OCCT's reader catches its own Standard_OutOfMemory and only says so,
-      // or fails silently (its buffers): then 16 MB cannot be had either.
-      const auto memory_left = [] {
-        void* probe = std::malloc(16 << 20);
-        std::free(probe);
-        return probe != nullptr;
-      };
-      if (why.find("Standard_OutOfMemory") != std::string::npos || why.find("malloc failed") != std::string::npos ||
-          (why.empty() && !memory_left()))
-        fail(StatusCode::OutOfMemory, "out of memory while reading the STEP file");
-      else
-        fail(StatusCode::ReadError, "not a readable STEP file" + (why.empty() ? std::string() : ": " + why));
+      const Status why = parse_failure(guard, "not a readable STEP file");
+      fail(why.code, why.message);
     } else {
       read_units(reader, result.assembly);
       const StepModelCheck check =
@@ -506,7 +519,8 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
             // (its placements scan the lists): the file parsed as written.
             as_written = new_reader();
             if (as_written->ReadFile(path.c_str()) != IFSelect_RetDone) {
-              fail(StatusCode::ReadError, "not a readable STEP file (second read)");
+              const Status why = parse_failure(guard, "not a readable STEP file (second read)");
+              fail(why.code, why.message);
             } else {
               xde_reader = as_written.get();
               if (plan.needs_whole_text) {
@@ -530,8 +544,10 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
             if (result.status.ok() && outcome.outcome == ProductRead::NotServed) {
               fall_back(outcome.why_not);
               reread = new_reader();
-              if (result.status.ok() && reread->ReadFile(path.c_str()) != IFSelect_RetDone)
-                fail(StatusCode::ReadError, "not a readable STEP file (second read)");
+              if (result.status.ok() && reread->ReadFile(path.c_str()) != IFSelect_RetDone) {
+                const Status why = parse_failure(guard, "not a readable STEP file (second read)");
+                fail(why.code, why.message);
+              }
               xde_reader = reread.get();
             } else if (result.status.ok()) {
               served = true;
