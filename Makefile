@@ -22,11 +22,15 @@ SAMPLE       ?= Resources/samples/motor.step
 # The compiler is clang-14: it compiles the extension with less CPU than g++ 12
 # (idle, a cold `make run` from a clone: 197 s against 285 s) from smaller
 # packages; g++ (`make run CONTACTS_CXX=g++`, with the test packages) gives the
-# same results (docs/benchmarks.md, issue 23).
+# same results (docs/benchmarks.md, issue 23). libfontconfig-dev: OCCT's
+# visualization toolkit (TKService, which the STEP reader's XDE links) names
+# -lfontconfig, and libocct-visualization-dev does not pull it in (a fresh
+# Debian 12's `make run` failed at the extension's link without it, 27 Nov).
 DEB_BUILD_PACKAGES := libocct-foundation-dev libocct-modeling-data-dev \
   libocct-modeling-algorithms-dev libocct-data-exchange-dev libocct-ocaf-dev \
   libocct-visualization-dev libhidapi-dev pybind11-dev python3-pybind11 \
-  python3-dev cmake make clang-14 libtbb-dev libeigen3-dev libfcl-dev pkg-config ninja-build
+  python3-dev cmake make clang-14 libtbb-dev libeigen3-dev libfcl-dev pkg-config ninja-build \
+  libfontconfig-dev
 DEB_APP_PACKAGES := freecad python3-pyside2.qtsvg graphviz ccache
 DEB_PACKAGES := $(DEB_BUILD_PACKAGES) $(DEB_APP_PACKAGES)
 # What `make test`, `make bench`, `make sanitize` and `make fuzz` add (g++ for a

@@ -11,16 +11,34 @@ namespace contactcore::bindings {
 
 namespace {
 
-py::list vertex_list(const TaggedMesh& mesh) {
-  py::list out;
-  for (const auto& v : mesh.vertices) out.append(py::make_tuple(v[0], v[1], v[2]));
+// A list of 3-tuples made with CPython's own calls: the bindings compile at
+// -O0 (cpp_module/CMakeLists.txt), where pybind11's make_tuple per item costs
+// about three times as much (20,000 vertices: 9 to 13 ms against 3 to 4 ms).
+template <typename Triple, typename Convert>
+py::list tuple_list(const std::vector<Triple>& items, Convert convert) {
+  py::list out(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    PyObject* tuple = PyTuple_New(3);
+    if (!tuple) throw py::error_already_set();
+    for (Py_ssize_t k = 0; k < 3; ++k) {
+      PyObject* value = convert(items[i][k]);
+      if (!value) {
+        Py_DECREF(tuple);
+        throw py::error_already_set();
+      }
+      PyTuple_SET_ITEM(tuple, k, value);
+    }
+    PyList_SET_ITEM(out.ptr(), static_cast<Py_ssize_t>(i), tuple);
+  }
   return out;
 }
 
+py::list vertex_list(const TaggedMesh& mesh) {
+  return tuple_list(mesh.vertices, [](double x) { return PyFloat_FromDouble(x); });
+}
+
 py::list triangle_list(const TaggedMesh& mesh) {
-  py::list out;
-  for (const auto& t : mesh.triangles) out.append(py::make_tuple(t[0], t[1], t[2]));
-  return out;
+  return tuple_list(mesh.triangles, [](auto index) { return PyLong_FromLongLong(static_cast<long long>(index)); });
 }
 
 }  // namespace
