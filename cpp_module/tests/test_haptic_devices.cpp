@@ -224,6 +224,7 @@ TEST(RealtimeHygiene, ThreadModeWatchdogAndStatistics) {
     stale = s.watchdog == Watchdog::Stale;
   }
   const bool locked = loop.memory_locked();
+  const long slack_ns = loop.timer_slack_ns();
   loop.stop();
   device.stop();
   ASSERT_TRUE(stale) << "the watchdog never fired after the reports stopped";
@@ -237,6 +238,8 @@ TEST(RealtimeHygiene, ThreadModeWatchdogAndStatistics) {
   if (geteuid() == 0) EXPECT_TRUE(locked);
   EXPECT_EQ(s.memory_locked, locked);
   EXPECT_FALSE(loop.memory_locked());
+  // The loop thread sleeps with 1 ns of timer slack, not a normal thread's 50 us.
+  EXPECT_EQ(slack_ns, 1);
   std::printf("[ measured ] thread mode: %llu ticks, rate %.1f Hz, jitter %.1f us, wake latency mean %.1f us max %.1f us, "
               "memory locked %s\n",
               static_cast<unsigned long long>(loop.ticks()), loop.rate_hz(), loop.jitter_us(),

