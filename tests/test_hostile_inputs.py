@@ -338,9 +338,12 @@ def test_under_a_memory_limit_a_valid_file_is_never_called_bad(limit_mb, command
     assert done.returncode in (0, 4), f"{limit_mb} MB: exit {done.returncode}: {err[-600:]}"
     if done.returncode == 4:
         assert "out of memory" in err or "could not tessellate any of the body's" in err, err
-        # The file named once (the core's error names it; the CLI added it again).
+        # The file named once: the core's error names it, and the CLI added it again. Only an
+        # out-of-memory before the command has read its arguments cannot name it.
         last = err.strip().splitlines()[-1]
-        assert last.count(os.path.basename(MOTOR)) == 1, last
+        assert last.count(os.path.basename(MOTOR)) <= 1, last
+        if last != f"contacts{' trial' if command == 'trial' else ''}: out of memory":
+            assert last.count(os.path.basename(MOTOR)) == 1, last
     # Found with clang 14 at 116 to 124 MB: the STEP parse ran out of memory silently and the read's
     # probe for memory left (a malloc compared with null, which clang removes) said there was some,
     # so the read ended "not a readable STEP file", exit 3 (issue 23; bodies.cpp, parse_failure).

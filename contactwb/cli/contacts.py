@@ -18,7 +18,7 @@ import sys
 import time
 
 from contactwb.cli.process import finite_number, internal_error, naming_the_file, nonnegative_count, run as run_command
-from contactwb.cli.process import unsafe_output
+from contactwb.cli.process import unsafe_output, working_on
 from contactwb.cli.process import EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED  # noqa: F401
 
 
@@ -123,6 +123,7 @@ def _contacts(argv):
     parser.add_argument("--density", type=finite_number(low=0, low_open=True), default=None, metavar="KG_PER_M3",
                         help="with --export-urdf/--export-mjcf: density of every body, kg/m^3 (default 7850, steel)")
     args = parser.parse_args(argv)
+    working_on(os.fsdecode(args.file))
     if args.export_urdf or args.export_mjcf or args.density is not None:
         from contactwb.cli.export_mechanism import check_export_arguments
         problem = check_export_arguments(args)
@@ -141,7 +142,7 @@ def _contacts(argv):
         from contactwb.core import analysis
         from contactwb.core import joints as joints_api
     except MemoryError as error:  # the extension cannot even be loaded under a memory limit
-        print(f"contacts: {error} (file '{os.fsdecode(args.file)}')", file=sys.stderr)
+        print(f"contacts: {naming_the_file(str(error) or 'out of memory', os.fsdecode(args.file))}", file=sys.stderr)
         return EXIT_FAILED
     progress = _progress_printer(sys.stderr) if args.progress else None
     start = time.perf_counter()

@@ -10,7 +10,8 @@ import json
 import os
 import sys
 
-from contactwb.cli.process import escape_controls, finite_number, nonnegative_count, run as run_command
+from contactwb.cli.process import escape_controls, finite_number, naming_the_file, nonnegative_count, run as run_command
+from contactwb.cli.process import working_on
 from contactwb.cli.process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE
 
 _finite = finite_number
@@ -70,16 +71,18 @@ def _mesh(argv):
     from contactwb.core import meshes
     from contactwb.document.files import load_assembly
     path = os.fsdecode(args.file)
+    working_on(path)
     try:
         assembly = load_assembly(path, args.max_bodies)
         document = meshes.write_meshes(assembly, out, args.deflection, args.angle, args.max_edge,
                                        args.linear, args.angular, args.simplify, args.envelope or 0.0,
                                        max_triangles=args.max_triangles)
     except core.ContactsError as error:
-        print(f"contacts mesh: {error}", file=sys.stderr)
+        print(f"contacts mesh: {naming_the_file(str(error), path)}", file=sys.stderr)
         return _error_code(core, error)
-    except MemoryError:
-        print(f"contacts mesh: out of memory (file '{path}')", file=sys.stderr)
+    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
+        text = str(error) if "out of memory" in str(error) else "out of memory"
+        print(f"contacts mesh: {naming_the_file(text, path)}", file=sys.stderr)
         return EXIT_FAILED
     except OSError as error:
         where = os.fsdecode(error.filename) if error.filename else out
@@ -123,10 +126,11 @@ def print_disassembly(path, as_json=False, linear=None, angular=None, max_bodies
         document = meshes.disassembly_json(assembly, meshes.disassemble(assembly, linear=linear, angular=angular,
                                                                         annotations=annotations))
     except core.ContactsError as error:
-        print(f"contacts: {error}", file=sys.stderr)
+        print(f"contacts: {naming_the_file(str(error), path)}", file=sys.stderr)
         return _error_code(core, error)
-    except MemoryError:
-        print(f"contacts: out of memory (file '{path}')", file=sys.stderr)
+    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
+        text = str(error) if "out of memory" in str(error) else "out of memory"
+        print(f"contacts: {naming_the_file(text, path)}", file=sys.stderr)
         return EXIT_FAILED
     if as_json:
         json.dump(document, sys.stdout, indent=2)

@@ -27,6 +27,17 @@ EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
 
 
+# The file the running command works on, once it has read its arguments (working_on): named in
+# the errors run() reports itself (out of memory outside a command's own handlers).
+_subject = None
+
+
+def working_on(path):
+    """Names the file the running command works on, for the errors run() reports itself."""
+    global _subject
+    _subject = path
+
+
 def naming_the_file(text, path):
     """An error's text with the file named once: the core's errors name it already (its full
     path), a Python error or a document's body error may not."""
@@ -105,6 +116,7 @@ def run(name, body, own_process=True):
     """Runs `body()` (returning an exit code) under the contract above. With
     own_process (the command line, not a call from Python code), also checks
     standard output and takes SIGINT/SIGTERM for the rest of the process."""
+    working_on(None)
     if own_process:
         if not _check_standard_output(name):
             return EXIT_FAILED
@@ -127,7 +139,8 @@ def run(name, body, own_process=True):
             return EXIT_FAILED
         raise
     except MemoryError:
-        print(f"{name}: out of memory", file=sys.stderr)
+        print(f"{name}: {naming_the_file('out of memory', _subject) if _subject else 'out of memory'}",
+              file=sys.stderr)
         return EXIT_FAILED
     except SystemExit:
         raise

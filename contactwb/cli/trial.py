@@ -22,6 +22,7 @@ import os
 import sys
 
 from contactwb.cli.process import escape_controls, finite_number, naming_the_file, run as run_command, unsafe_output
+from contactwb.cli.process import working_on
 from contactwb.cli.process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE
 
 _finite = finite_number
@@ -85,6 +86,7 @@ def _trial(argv):
     if args.hid_file and args.device != "replay":
         parser.error("--hid-file is for --device replay")
     file = os.fsdecode(args.file)
+    working_on(file)
     script_path = os.fsdecode(args.script) if args.script else None
     if args.record and unsafe_output("contacts trial", "--record", args.record):
         return EXIT_USAGE
