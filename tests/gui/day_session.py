@@ -236,6 +236,7 @@ def delete_recompute_undo_derive():
         QtCore.QThread.msleep(200)
         settle()
     group = analyses(doc)[0]
+    session_helpers.wait_for_drawing(group)  # its drawing is deferred until the document has opened
     result["reopened"] = snapshot(doc, group)
     result["reopened_names_same"] = sorted(snapshot(doc, group)["contacts"]) == names
     result["reopened_joints"] = len(joints_of(group))

@@ -26,6 +26,22 @@ def settle(rounds=5):
         FreeCADGui.updateGui()
 
 
+def wait_for_drawing(group, seconds=3.0):
+    """Lets the event loop run until the analysis group's deferred drawing is done (its view
+    provider retries every 50 ms while the document is still opening or recomputing), `seconds`
+    at most: whether it is drawn and shown."""
+    import time
+    from pivy import coin
+    proxy = group.ViewObject.Proxy
+    deadline = time.monotonic() + seconds
+    while True:
+        FreeCADGui.updateGui()
+        drawn = not proxy._stale and proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL
+        if drawn or time.monotonic() > deadline:
+            return drawn
+        time.sleep(0.05)
+
+
 def stepper(errors, settle_rounds=5):
     """A session's `step(function)`: runs function, keeps its traceback in
     errors[function's name] (one failing step does not hide the others), then

@@ -352,12 +352,7 @@ def stale_after_move_and_delete():
     result["touched_after_recompute"] = "Touched" in group.State
     # The paint is redrawn once the recompute is over (a deferred rebuild, not during it): let the
     # event loop run it, 3 s at most.
-    import time
-    for _ in range(60):
-        if proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL and not proxy._stale:
-            break
-        time.sleep(0.05)
-        FreeCADGui.updateGui()
+    session_helpers.wait_for_drawing(group)
     result["paint_shown_again"] = proxy.switch.whichChild.getValue() == coin.SO_SWITCH_ALL
     result["drawn"] = len(proxy.overlay.names)
     axis.Placement = placement
@@ -525,6 +520,9 @@ def save_and_reopen():
     name = group.Name
     doc = session_helpers.save_and_reopen(doc, path)
     group = doc.getObject(name)
+    # The drawing of a reopened analysis waits until the document has finished opening (retried
+    # every 50 ms): under load, one updateGui() was not enough (drawn 0 of 35 once, 27 Nov).
+    session_helpers.wait_for_drawing(group)
     result = {"labels_same": [c.Label for c in group.Group] == labels, "scope": group.Scope,
               "live": group.UpdateOnRecompute, "drawn": len(group.ViewObject.Proxy.overlay.names),
               "half_angle_property": "HalfAngle" in group.Group[0].PropertiesList}
