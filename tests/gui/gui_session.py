@@ -7,6 +7,7 @@ and re-opens the document, and writes what it saw to $CONTACTS_GUI_RESULT
 (JSON) for tests/gui/test_gui.py to check."""
 import json
 import os
+import sys
 import tempfile
 import traceback
 
@@ -15,6 +16,9 @@ import FreeCADGui
 from PySide2 import QtWidgets
 from pivy import coin
 from contactwb.objects.contact_objects import is_contact_analysis
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the shared session helpers
+import session_helpers  # noqa: E402
 
 out_dir = os.environ["CONTACTS_GUI_OUT"]
 report = {"errors": []}
@@ -85,6 +89,7 @@ def save_view(name):
 def check_overlay(doc, group):
     """The drawing: nodes, visibility, highlight, screenshots."""
     from contactwb.gui import view_providers
+    session_helpers.wait_for_drawing(group)  # the drawing is deferred until the search is over
     report["overlay"] = overlay_report(group)
     report["legend"] = dict(view_providers.TYPE_COLOURS)
     report["icons"] = {kind: view_providers.contact_icon_path(kind) for kind in view_providers.TYPE_COLOURS}
@@ -170,6 +175,7 @@ def overlay_z_range(group):
 def check_exploded(doc, group):
     """Moving the bodies redraws their contact faces where they now are; the
     picture (neutral bodies, contact colours) is the README's overview."""
+    session_helpers.wait_for_drawing(group)  # reopened: drawn once the document has opened
     report["z_range_assembled"] = overlay_z_range(group)
     group.UpdateOnRecompute = False  # a snapshot: its paint follows the moved faces
     for obj in doc.Objects:

@@ -110,7 +110,10 @@ def test_still_part_readouts_refresh_at_2_hz(hand_report):
     # window with the 3D view's image: a frame's cost with a software renderer).
     assert hand_report["readout_period_s"] == 0.5
     seconds = hand_report["still_seconds"]
-    allowed = int(seconds / hand_report["readout_period_s"]) + 1
+    # A move shows the numbers with it; the part is still, but under load the loop may end its last
+    # move inside the window: at most one.
+    assert hand_report["still_moves"] <= 1
+    allowed = int(seconds / hand_report["readout_period_s"]) + 1 + hand_report["still_moves"]
     assert hand_report["still_panel_updates"] > allowed  # the panel did update more often than that
     for key, changes in hand_report["still_readout_changes"].items():
         assert changes <= allowed, key
