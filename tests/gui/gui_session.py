@@ -155,7 +155,7 @@ def check_reopen(doc, group):
     doc.saveAs(path)
     FreeCAD.closeDocument(doc.Name)
     doc = FreeCAD.openDocument(path)
-    FreeCADGui.updateGui()  # the drawing is built once loading is over
+    session_helpers.wait_for_drawing(doc.getObject(name))  # the drawing is built once loading is over
     report["reopened"] = overlay_report(doc.getObject(name))
     return doc, doc.getObject(name)
 

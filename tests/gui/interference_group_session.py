@@ -120,9 +120,8 @@ def run():
     settle()
     doc = FreeCAD.openDocument(path)
     settle()
-    for _ in range(20):  # the paint is drawn once the document is loaded
-        FreeCADGui.updateGui()
     (analysis,) = analyses(doc)
+    session_helpers.wait_for_drawing(analysis)  # the paint is drawn once the document is loaded
     report["reopened"] = group_state(doc, analysis)
     report["reopened"]["export"] = export.to_json(analysis)["interferences"]
     report["reopened"]["legend"] = analysis.ViewObject.Proxy.overlay.interferences
