@@ -18,7 +18,7 @@ import sys
 import time
 
 from contactwb.cli.process import finite_number, internal_error, naming_the_file, nonnegative_count, run as run_command
-from contactwb.cli.process import unsafe_output, working_on
+from contactwb.cli.process import out_of_memory_message, unsafe_output, working_on
 from contactwb.cli.process import EXIT_OK, EXIT_USAGE, EXIT_INPUT, EXIT_FAILED, EXIT_INTERNAL, EXIT_CANCELLED  # noqa: F401
 
 
@@ -194,9 +194,8 @@ def _contacts(argv):
     except core.InputError as error:
         print(f"contacts: {naming_the_file(str(error), path)}", file=sys.stderr)
         return EXIT_INPUT
-    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
-        text = str(error) if "out of memory" in str(error) else "out of memory"
-        print(f"contacts: {naming_the_file(text, path)}", file=sys.stderr)
+    except MemoryError as error:
+        print(f"contacts: {out_of_memory_message(error, path)}", file=sys.stderr)
         return EXIT_FAILED
     except core.InternalError as error:  # a bug in the core
         print(f"contacts: internal error ({error}); please report it", file=sys.stderr)

@@ -11,7 +11,7 @@ import os
 import sys
 
 from contactwb.cli.process import escape_controls, finite_number, naming_the_file, nonnegative_count, run as run_command
-from contactwb.cli.process import working_on
+from contactwb.cli.process import out_of_memory_message, working_on
 from contactwb.cli.process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE
 
 _finite = finite_number
@@ -80,9 +80,8 @@ def _mesh(argv):
     except core.ContactsError as error:
         print(f"contacts mesh: {naming_the_file(str(error), path)}", file=sys.stderr)
         return _error_code(core, error)
-    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
-        text = str(error) if "out of memory" in str(error) else "out of memory"
-        print(f"contacts mesh: {naming_the_file(text, path)}", file=sys.stderr)
+    except MemoryError as error:
+        print(f"contacts mesh: {out_of_memory_message(error, path)}", file=sys.stderr)
         return EXIT_FAILED
     except OSError as error:
         where = os.fsdecode(error.filename) if error.filename else out
@@ -128,9 +127,8 @@ def print_disassembly(path, as_json=False, linear=None, angular=None, max_bodies
     except core.ContactsError as error:
         print(f"contacts: {naming_the_file(str(error), path)}", file=sys.stderr)
         return _error_code(core, error)
-    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
-        text = str(error) if "out of memory" in str(error) else "out of memory"
-        print(f"contacts: {naming_the_file(text, path)}", file=sys.stderr)
+    except MemoryError as error:
+        print(f"contacts: {out_of_memory_message(error, path)}", file=sys.stderr)
         return EXIT_FAILED
     if as_json:
         json.dump(document, sys.stdout, indent=2)

@@ -44,6 +44,12 @@ def naming_the_file(text, path):
     return text if os.path.basename(path) in text else f"{text} (file '{path}')"
 
 
+def out_of_memory_message(error, path):
+    """What a command says of a MemoryError: the core's text (which names the file) or Python's
+    own (no text), with the file named once."""
+    return naming_the_file(str(error) if "out of memory" in str(error) else "out of memory", path)
+
+
 class UsageError(Exception):
     """A bad option value found after argparse (exit 2)."""
 

@@ -22,7 +22,7 @@ import os
 import sys
 
 from contactwb.cli.process import escape_controls, finite_number, naming_the_file, run as run_command, unsafe_output
-from contactwb.cli.process import working_on
+from contactwb.cli.process import out_of_memory_message, working_on
 from contactwb.cli.process import EXIT_CANCELLED, EXIT_FAILED, EXIT_INPUT, EXIT_OK, EXIT_USAGE
 
 _finite = finite_number
@@ -124,9 +124,8 @@ def _trial(argv):
         if isinstance(error, core.ArgumentError):
             return EXIT_USAGE
         return EXIT_INPUT if isinstance(error, core.InputError) else EXIT_FAILED
-    except MemoryError as error:  # the core's (naming the file) or Python's own (no text)
-        text = str(error) if "out of memory" in str(error) else "out of memory"
-        print(f"contacts trial: {naming_the_file(text, file)}", file=sys.stderr)
+    except MemoryError as error:
+        print(f"contacts trial: {out_of_memory_message(error, file)}", file=sys.stderr)
         return EXIT_FAILED
     path = [sample.to_dict() for sample in result.path]
     if args.record:

@@ -364,10 +364,12 @@ void keep_reader_notes(const OcctGuard& guard, std::vector<std::string>& message
 // when 16 MB of address space cannot be had now. The probe is a mapping, not
 // a malloc: clang removes a malloc whose block is only compared with null and
 // freed (it may assume the allocation succeeds), and its build then called an
-// out-of-memory parse an unreadable file (issue 23).
-Status parse_failure(const OcctGuard& guard, const std::string& what) {
+// out-of-memory parse an unreadable file (issue 23). Only the messages from
+// `first_message` on are that parse's (a second read follows a first one).
+Status parse_failure(const OcctGuard& guard, std::size_t first_message, const std::string& what) {
   std::string why;
-  for (const std::string& line : guard.messages()) why += (why.empty() ? "" : "; ") + line;
+  const std::vector<std::string> messages = guard.messages();
+  for (std::size_t i = first_message; i < messages.size(); ++i) why += (why.empty() ? "" : "; ") + messages[i];
   const auto memory_left = [] {
     constexpr std::size_t probe_size = std::size_t(16) << 20;
     void* probe = mmap(nullptr, probe_size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
@@ -455,7 +457,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
       parsed = reader.ReadFile(path.c_str());
     }
     if (parsed != IFSelect_RetDone) {
-      const Status why = parse_failure(guard, "not a readable STEP file");
+      const Status why = parse_failure(guard, 0, "not a readable STEP file");
       fail(why.code, why.message);
     } else {
       read_units(reader, result.assembly);
@@ -510,6 +512,14 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
           fresh->SetPropsMode(false);
           return fresh;
         };
+        // A second parse of the file as written; false, with the read's status set, when OCCT gives up.
+        const auto parse_again = [&](StepReader& again) {
+          const std::size_t first_message = guard.messages().size();
+          if (again.ReadFile(path.c_str()) == IFSelect_RetDone) return true;
+          const Status why = parse_failure(guard, first_message, "not a readable STEP file (second read)");
+          fail(why.code, why.message);
+          return false;
+        };
         std::unique_ptr<StepReader> as_written;  // the file parsed as written, when a shortened list is not an assembly's
         StepReader* products_reader = &reader;
         if (mode == StepReadMode::Products || mode == StepReadMode::ProductsAsWritten) {
@@ -518,10 +528,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
             // A shortened list outside an assembly, or the XDE read to come
             // (its placements scan the lists): the file parsed as written.
             as_written = new_reader();
-            if (as_written->ReadFile(path.c_str()) != IFSelect_RetDone) {
-              const Status why = parse_failure(guard, "not a readable STEP file (second read)");
-              fail(why.code, why.message);
-            } else {
+            if (parse_again(*as_written)) {
               xde_reader = as_written.get();
               if (plan.needs_whole_text) {
                 products_reader = as_written.get();
@@ -544,10 +551,7 @@ AssemblyResult read_step(const std::string& path, Progress* progress, StepReadMo
             if (result.status.ok() && outcome.outcome == ProductRead::NotServed) {
               fall_back(outcome.why_not);
               reread = new_reader();
-              if (result.status.ok() && reread->ReadFile(path.c_str()) != IFSelect_RetDone) {
-                const Status why = parse_failure(guard, "not a readable STEP file (second read)");
-                fail(why.code, why.message);
-              }
+              if (result.status.ok()) parse_again(*reread);
               xde_reader = reread.get();
             } else if (result.status.ok()) {
               served = true;
