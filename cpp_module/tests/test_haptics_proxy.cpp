@@ -270,6 +270,26 @@ TEST(ProxyAcceptance, AxisPushedSidewaysThenPulledStraightUpComesOut) {
   expect_no_deeper(o, 0.01);
 }
 
+// The same motion on the loop's own thread (realtime: absolute deadlines, the
+// thread's 1 ns timer slack, wall-clock ticks), judged the same way.
+TEST(ProxyAcceptance, AxisPushedSidewaysThenPulledStraightUpComesOutInRealtime) {
+  Scene& s = motor_part("Axis");
+  TrialScript script;
+  script.start = key(0, Vec3::Zero());
+  script.hand = {key(0.0, Vec3::Zero()), key(0.5, Vec3(20, 0, 0)), key(1.0, Vec3(20, 0, 0)),
+                 key(2.0, Vec3(20, 0, 90))};
+  TrialOptions options;
+  options.settle = 1.0;
+  options.record_every = 10;
+  const TrialResult r = run_trial(*s.scene, script, options, true);
+  ASSERT_TRUE(r.status.ok()) << r.status.message;
+  EXPECT_TRUE(r.realtime);
+  EXPECT_LT((r.final_translate - Vec3(20, 0, 90)).norm(), 0.01) << r.final_translate.transpose();
+  const PathOverlap o = check_path(s.assembly, "Axis", s.scene->centre(), r.path, 15);
+  EXPECT_GT(o.samples_checked, 10);
+  expect_no_deeper(o, 0.01);
+}
+
 TEST(ProxyAcceptance, StartOverlappingIsReportedAndNeverLeftInsideSilently) {
   Scene& s = motor_part("Screw-1");
   // 0.5 mm down: the head 0.5 mm inside the Front-cover; the hand holds still.
