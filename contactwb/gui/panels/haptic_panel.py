@@ -411,7 +411,8 @@ class HapticTrialPanel:
         self.axes_label.setText(" ".join(f"{a:+.2f}" for a in s.axes))
         r["depth"].setText(f"{s.insertion_depth:.3f} mm" if s.engaged else "-")
         r["force"].setText(f"{s.force_n:.2f} N")
-        r["offset"].setText("[" + ", ".join(f"{v:.3f}" for v in s.translate) + "] mm")
+        # A coordinate that rounds to zero reads 0.000, not "-0.000".
+        r["offset"].setText("[" + ", ".join(f"{v:.3f}".replace("-0.000", "0.000") for v in s.translate) + "] mm")
         r["penetration"].setText(f"{s.penetration:.4f} mm (max {s.max_penetration:.4f})")
         r["rate"].setText(f"{s.rate_hz:.0f} Hz")
         r["jitter"].setText(f"{s.jitter_us:.0f} us")
