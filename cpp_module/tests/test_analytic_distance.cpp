@@ -11,6 +11,7 @@
 
 #include <BRepAlgoAPI_Common.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepGProp.hxx>
 #include <GProp_GProps.hxx>
 #include <Precision.hxx>
@@ -303,8 +304,12 @@ TEST(AnalyticDistance, MotorAxisPosesMatchOcct) {
   // its line-to-line bores, pushed aside). Before the annuli and the shaft through a face's hole (27 Nov):
   // 2 and 10; the 12 and 4 more are the Axis's shoulders against the bearings' and the seal's rings, and its
   // cylinders through their holes.
-  EXPECT_EQ(compared, 22);
-  EXPECT_EQ(handled_touching, 14);
+  // 22 and 14 before the round holes of any outline, the chamfers, the shafts beside bores and the ends on
+  // faces (27 Nov, morning): the 8 and 16 more are the Axis through the rotors' faces (their holes split
+  // between two faces, or among bolt holes), past the rotors' bolt holes, through the bearings' chamfers
+  // and its chamfered end in Bearing-back's bore.
+  EXPECT_EQ(compared, 30);
+  EXPECT_EQ(handled_touching, 30);
 }
 
 // The motor's Axis's annular faces (its shoulders and ends) against every
@@ -551,5 +556,172 @@ TEST(AnalyticDistance, ShaftThroughAFaceHoleMatchesOcct) {
   EXPECT_FALSE(analytic_contact(analytic_patch(find(above.parts, SurfaceKind::Cylinder, MaterialSide::Convex)),
                                 analytic_patch(face), c));
   EXPECT_FALSE(analytic_contact(analytic_patch(find(beside.parts, SurfaceKind::Cylinder, MaterialSide::Convex)),
+                                analytic_patch(face), c));
+}
+
+namespace {
+// A 20 x 20 x 5 plate under z = 0 (two 10 x 20 halves fused when `halves`: its faces split
+// along x = 0) with a hole of radius `hole` at the origin and four of radius 1 at (+-7, +-7).
+TopoDS_Shape plate_with_holes(double hole, bool halves) {
+  TopoDS_Shape plate = BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -5), 20, 20, 5).Shape();
+  if (halves)
+    plate = BRepAlgoAPI_Fuse(BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -5), 10, 20, 5).Shape(),
+                             BRepPrimAPI_MakeBox(gp_Pnt(0, -10, -5), 10, 20, 5).Shape())
+                .Shape();
+  plate = BRepAlgoAPI_Cut(plate, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -6), gp_Dir(0, 0, 1)), hole, 7).Shape())
+              .Shape();
+  for (double x : {-7.0, 7.0})
+    for (double y : {-7.0, 7.0})
+      plate = BRepAlgoAPI_Cut(plate, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, y, -6), gp_Dir(0, 0, 1)), 1, 7).Shape())
+                  .Shape();
+  return plate;
+}
+}  // namespace
+
+// A shaft of radius 4 through a square plate's hole of 4.05 among four bolt
+// holes (no annuli: the outline is a square), and through the same plate made
+// of two fused halves, its face two faces each holding half of the hole (the
+// motor's Rotor-back): round holes (AnalyticPatch::round_holes), and pushed e
+// off the axis the shaft is 0.05 - e from the rim, as OCCT measures.
+TEST(AnalyticDistance, ShaftThroughARoundHoleOfAnyOutlineMatchesOcct) {
+  const Partitioned rod = partitioned(tube(0, 4, -20, 20));
+  const Partition& side = find(rod.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  int compared = 0;
+  for (bool halves : {false, true}) {
+    const Partitioned plate = partitioned(plate_with_holes(4.05, halves));
+    const Partition& face = plane_facing(plate.parts, gp_Dir(0, 0, 1));
+    EXPECT_EQ(face.faces.size(), halves ? 2u : 1u);
+    const AnalyticPatch patch = analytic_patch(face);
+    EXPECT_TRUE(patch.annuli.empty());
+    ASSERT_EQ(patch.round_holes.size(), 5u);
+    for (double e : {0.0, 0.02, 0.049, 0.07})
+      for (double turn = 0.2; turn < 6.28; turn += 1.5) {
+        const Vector3d u(std::cos(turn), std::sin(turn), 0);
+        const Measured m = measure(rod, side, translation(e * u.x(), e * u.y(), 0), plate, face);
+        ASSERT_TRUE(m.handled) << halves << " " << e << " " << turn;
+        EXPECT_NEAR(m.analytic.gap, 0.05 - e, 1e-12);
+        EXPECT_NEAR(m.occt, std::max(0.0, 0.05 - e), 1e-6) << halves << " " << e << " " << turn;
+        if (e > 0) EXPECT_NEAR((m.analytic.normal + u).norm(), 0.0, 1e-12);
+        if (e > 0 && e < 0.05) EXPECT_NEAR((m.analytic.point_b - m.occt_b).norm(), 0.0, 1e-5);
+        ++compared;
+      }
+  }
+  EXPECT_EQ(compared, 40);
+}
+
+// A shaft of radius 3.95 in a bore of 4 whose mouth has a 45-degree chamfer 0.3
+// deep (a concave cone from radius 4 to 4.3): the chamfer's small rim is
+// nearest, 0.05 - e from the shaft pushed e aside (OCCT on the cone's face);
+// a shaft ending above the small rim, inside the chamfer: no closed form.
+TEST(AnalyticDistance, ShaftThroughAChamferMatchesOcct) {
+  TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -10), 20, 20, 10).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -11), gp_Dir(0, 0, 1)), 4, 12).Shape())
+              .Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, -0.3), gp_Dir(0, 0, 1)), 4, 4.6, 0.6).Shape())
+              .Shape();
+  const Partitioned bore = partitioned(block), rod = partitioned(tube(0, 3.95, -20, 20));
+  const Partition& chamfer = find(bore.parts, SurfaceKind::Cone, MaterialSide::Concave);
+  const Partition& side = find(rod.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  for (double e : {0.0, 0.03, 0.08})
+    for (double turn = 0.4; turn < 6.28; turn += 2.0) {
+      const Vector3d u(std::cos(turn), std::sin(turn), 0);
+      const Measured m = measure(rod, side, translation(e * u.x(), e * u.y(), 0), bore, chamfer);
+      ASSERT_TRUE(m.handled) << e << " " << turn;
+      EXPECT_NEAR(m.analytic.gap, 0.05 - e, 1e-12);
+      EXPECT_NEAR(m.occt, std::max(0.0, 0.05 - e), 1e-6) << e << " " << turn;
+      EXPECT_NEAR(m.analytic.point_b.z(), -0.3, 1e-12);  // on the small rim
+      if (e > 0) EXPECT_NEAR((m.analytic.normal + u).norm(), 0.0, 1e-12);
+      if (e > 0 && e < 0.05) EXPECT_NEAR((m.analytic.point_b - m.occt_b).norm(), 0.0, 1e-5);
+    }
+  AnalyticContact c;
+  const Partitioned short_rod = partitioned(tube(0, 3.95, -0.1, 20));
+  EXPECT_FALSE(analytic_contact(analytic_patch(find(short_rod.parts, SurfaceKind::Cylinder, MaterialSide::Convex)),
+                                analytic_patch(chamfer), c));
+}
+
+// A shaft of radius 4 whose end has a 45-degree chamfer 0.3 long (a convex cone
+// from radius 3.7 to 4), 3 mm down a bore of 4.05 and pushed e aside: the
+// chamfer's large rim is nearest the wall, 0.05 - e (OCCT on the two faces);
+// with that rim above the bore's mouth, no closed form.
+TEST(AnalyticDistance, ChamferedEndInABoreMatchesOcct) {
+  const TopoDS_Shape shaft =
+      BRepAlgoAPI_Fuse(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -2.7), gp_Dir(0, 0, 1)), 4, 22.7).Shape(),
+                       BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, -3), gp_Dir(0, 0, 1)), 3.7, 4, 0.3).Shape())
+          .Shape();
+  TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -10), 20, 20, 10).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -11), gp_Dir(0, 0, 1)), 4.05, 12).Shape())
+              .Shape();
+  const Partitioned rod = partitioned(shaft), bore = partitioned(block);
+  const Partition& chamfer = find(rod.parts, SurfaceKind::Cone, MaterialSide::Convex);
+  const Partition& wall = find(bore.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
+  for (double e : {0.0, 0.03, 0.08})
+    for (double turn = 0.4; turn < 6.28; turn += 2.0) {
+      const Vector3d u(std::cos(turn), std::sin(turn), 0);
+      const Measured m = measure(rod, chamfer, translation(e * u.x(), e * u.y(), 0), bore, wall);
+      ASSERT_TRUE(m.handled) << e << " " << turn;
+      EXPECT_NEAR(m.analytic.gap, 0.05 - e, 1e-12);
+      EXPECT_NEAR(m.occt, std::max(0.0, 0.05 - e), 1e-6) << e << " " << turn;
+      EXPECT_NEAR(m.analytic.point_a.z(), -2.7, 1e-12);  // on the large rim
+      if (e > 0) EXPECT_NEAR((m.analytic.normal + u).norm(), 0.0, 1e-12);
+      if (e > 0 && e < 0.05) EXPECT_NEAR((m.analytic.point_a - m.occt_a).norm(), 0.0, 1e-5);
+    }
+  EXPECT_FALSE(measure(rod, chamfer, translation(0, 0, 3.5), bore, wall).handled);
+}
+
+// A shaft of radius 4 beside a block's bolt hole of radius 1 whose axis is 5.5
+// away (the Axis past a rotor's bolt holes): the hole's near wall is 0.5 - e
+// from the shaft moved e towards it, as OCCT measures on the two faces; a
+// shaft reaching into the hole's room: no closed form.
+TEST(AnalyticDistance, ShaftBesideABoreMatchesOcct) {
+  TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -10), 20, 20, 10).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(5.5, 0, -11), gp_Dir(0, 0, 1)), 1, 12).Shape())
+              .Shape();
+  const Partitioned holed = partitioned(block), rod = partitioned(tube(0, 4, -20, 20));
+  const Partition& hole = find(holed.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
+  const Partition& side = find(rod.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  for (double e : {0.0, 0.2, 0.45}) {
+    const Measured m = measure(rod, side, translation(e, 0, 0), holed, hole);
+    ASSERT_TRUE(m.handled) << e;
+    EXPECT_NEAR(m.analytic.gap, 0.5 - e, 1e-12);
+    EXPECT_NEAR(m.occt, 0.5 - e, 1e-6) << e;
+    EXPECT_NEAR((m.analytic.normal - Vector3d(-1, 0, 0)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(m.analytic.point_b.x(), 4.5, 1e-12);
+  }
+  EXPECT_FALSE(measure(rod, side, translation(0.6, 0, 0), holed, hole).handled);
+}
+
+// A screw's head (a cylinder of radius 2.75) standing h above a plate's face
+// with its shank's hole of 1.5 among bolt holes, and a washer's underside (an
+// annulus 1.5 .. 2.75) h above a plate's bore of 1.5, line to line: each is h
+// from the face along the normal (OCCT on the faces), centred or e aside, and
+// pressed 0.0005 in, -0.0005. A head as wide as the whole plate stands on
+// nothing of it it could measure: no closed form.
+TEST(AnalyticDistance, EndsOnAFaceMatchOcct) {
+  const Partitioned plate = partitioned(plate_with_holes(1.5, false));
+  const Partition& face = plane_facing(plate.parts, gp_Dir(0, 0, 1));
+  TopoDS_Shape block = BRepPrimAPI_MakeBox(gp_Pnt(-10, -10, -10), 20, 20, 10).Shape();
+  block = BRepAlgoAPI_Cut(block, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -11), gp_Dir(0, 0, 1)), 1.5, 12).Shape())
+              .Shape();
+  const Partitioned bored = partitioned(block);
+  const Partition& bore = find(bored.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
+  const Partitioned head = partitioned(tube(0, 2.75, 0, 2.7)), washer = partitioned(tube(1.5, 2.75, 0, 1));
+  const Partition& head_side = find(head.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  const Partition& underside = plane_facing(washer.parts, gp_Dir(0, 0, -1));
+  int compared = 0;
+  for (double h : {-0.0005, 0.0, 0.0005, 0.2})
+    for (double e : {0.0, 0.004}) {
+      const gp_Trsf move = translation(e, 0.5 * e, h);
+      for (const Measured& m : {measure(head, head_side, move, plate, face), measure(washer, underside, move, bored, bore)}) {
+        ASSERT_TRUE(m.handled) << h << " " << e;
+        EXPECT_NEAR(m.analytic.gap, h, 1e-12) << h << " " << e;
+        EXPECT_NEAR(m.occt, std::max(0.0, h), 1e-6) << h << " " << e;
+        EXPECT_NEAR(std::abs(m.analytic.normal.z()), 1.0, 1e-12);
+        ++compared;
+      }
+    }
+  EXPECT_EQ(compared, 16);
+  const Partitioned wide = partitioned(tube(0, 30, 0.0005, 3));
+  AnalyticContact c;
+  EXPECT_FALSE(analytic_contact(analytic_patch(find(wide.parts, SurfaceKind::Cylinder, MaterialSide::Convex)),
                                 analytic_patch(face), c));
 }

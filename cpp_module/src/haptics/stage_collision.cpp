@@ -135,16 +135,21 @@ bool closed_form_kinds(const AnalyticPatch& a, const AnalyticPatch& b) {
   if (a.kind == K::Other || b.kind == K::Other) return false;
   if (a.kind == K::Plane || b.kind == K::Plane) {
     const AnalyticPatch& other = a.kind == K::Plane ? b : a;
-    return other.kind == K::Plane || ((other.kind == K::Cylinder || other.kind == K::Sphere) &&
-                                      other.side == MaterialSide::Convex);
+    // A bore's rim under a plane (end_on_plane) too: cylinders of either side.
+    return other.kind == K::Plane || other.kind == K::Cylinder ||
+           (other.kind == K::Sphere && other.side == MaterialSide::Convex);
   }
-  if (a.kind == K::Cone || b.kind == K::Cone)
-    return a.kind == K::Cone && b.kind == K::Cone && convex_against_concave(a.side, b.side);
+  if (a.kind == K::Cone || b.kind == K::Cone) {
+    // A plug on its seat; a shaft through a chamfer at a bore's mouth, a chamfered end in a bore.
+    const K other = a.kind == K::Cone ? b.kind : a.kind;
+    return (other == K::Cone || other == K::Cylinder) && convex_against_concave(a.side, b.side);
+  }
   if (a.side == MaterialSide::Convex && b.side == MaterialSide::Convex) return true;
   if (!convex_against_concave(a.side, b.side)) return false;
   const AnalyticPatch& inner = a.side == MaterialSide::Convex ? a : b;
   const AnalyticPatch& outer = a.side == MaterialSide::Convex ? b : a;
-  return inner.kind == K::Sphere || (inner.kind == K::Cylinder && outer.kind == K::Cylinder && outer.radius >= inner.radius - 0.5);
+  // A shaft in a bore, or beside one (a shaft past a rotor's small holes).
+  return inner.kind == K::Sphere || (inner.kind == K::Cylinder && outer.kind == K::Cylinder);
 }
 }  // namespace
 

@@ -230,6 +230,103 @@ std::vector<AnalyticPatch::Annulus> outline_annuli(const std::vector<Polygon2>& 
   return annuli;
 }
 
+// The outline's round holes (AnalyticPatch::round_holes): circles whose whole
+// turn is covered by chords that are clockwise arcs of them (a hole's loop, or
+// a hole split between the faces of a partition, each face's loop holding part
+// of it), with every other chord outside the circle, its arc's swing included.
+// Runs of arcs are found on the circle through three consecutive vertices (a
+// loose fit: close vertices place its centre to about 1e-9 mm), then each
+// circle is fitted again through three vertices spread over all its runs and
+// every vertex and arc checked against it as loop_circle does. `loop_first`:
+// each loop's first chord in patch.chords, then the chords' count.
+std::vector<AnalyticPatch::Circle> round_holes(const AnalyticPatch& patch, const std::vector<std::size_t>& loop_first) {
+  constexpr double kLoose = 1e-6;  // mm: the first fit's tolerance
+  struct Run {
+    double cx, cy, r;
+    std::size_t loop, first, count;  // chords first .. first + count - 1 of the loop
+  };
+  std::vector<Run> runs;
+  for (std::size_t l = 0; l < patch.loops.size(); ++l) {
+    const Polygon2& loop = patch.loops[l];
+    const std::size_t n = loop.size();
+    if (n < 3) continue;
+    std::size_t i = 0;
+    while (i < n) {
+      Run run{0, 0, 0, l, i, 0};
+      const Point2 &p0 = loop[i], &p1 = loop[(i + 1) % n], &p2 = loop[(i + 2) % n];
+      bool arcs = false;
+      if (circumcentre(p0, p1, p2, run.cx, run.cy)) {
+        run.r = std::hypot(p0.x - run.cx, p0.y - run.cy);
+        arcs = run.r > kLoose && std::isfinite(run.r) && arc_angle(p0, p1, run.r, -1) >= 0 &&
+               arc_angle(p1, p2, run.r, -1) >= 0;
+      }
+      if (!arcs) {
+        ++i;
+        continue;
+      }
+      // Chords i and i + 1 are arcs of one circle, clockwise: extend while the next chord is too.
+      std::size_t k = i + 2;
+      while (k < n) {
+        const Point2 &a = loop[k], &b = loop[(k + 1) % n];
+        if (std::abs(std::hypot(b.x - run.cx, b.y - run.cy) - run.r) > kLoose || arc_angle(a, b, run.r, -1) < 0) break;
+        ++k;
+      }
+      run.count = k - i;
+      runs.push_back(run);
+      i = k;
+    }
+  }
+  std::vector<AnalyticPatch::Circle> holes;
+  std::vector<char> used(runs.size(), 0), of_circle(patch.chords.size(), 0);
+  std::vector<const Point2*> starts;  // each chord's first vertex, over the circle's runs
+  std::vector<const Point2*> ends;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    if (used[r]) continue;
+    std::fill(of_circle.begin(), of_circle.end(), 0);
+    starts.clear();
+    ends.clear();
+    for (std::size_t q = r; q < runs.size(); ++q) {
+      const Run& other = runs[q];
+      if (used[q] || std::hypot(other.cx - runs[r].cx, other.cy - runs[r].cy) > kLoose ||
+          std::abs(other.r - runs[r].r) > kLoose)
+        continue;
+      used[q] = 1;
+      const Polygon2& loop = patch.loops[other.loop];
+      for (std::size_t k = other.first; k < other.first + other.count; ++k) {
+        of_circle[loop_first[other.loop] + k] = 1;
+        starts.push_back(&loop[k]);
+        ends.push_back(&loop[(k + 1) % loop.size()]);
+      }
+    }
+    // The circle again, through vertices a third of its chords apart, checked exactly.
+    const std::size_t m = starts.size();
+    AnalyticPatch::Circle c;
+    if (m < 3 || !circumcentre(*starts[0], *starts[m / 3], *starts[(2 * m) / 3], c.cx, c.cy)) continue;
+    c.r = std::hypot(starts[0]->x - c.cx, starts[0]->y - c.cy);
+    double span = 0;
+    bool on_circle = true;
+    for (std::size_t k = 0; k < m && on_circle; ++k) {
+      const double delta = arc_angle(*starts[k], *ends[k], c.r, -1);
+      on_circle = std::abs(std::hypot(starts[k]->x - c.cx, starts[k]->y - c.cy) - c.r) <= kCircleTolerance &&
+                  std::abs(std::hypot(ends[k]->x - c.cx, ends[k]->y - c.cy) - c.r) <= kCircleTolerance && delta >= 0;
+      span += delta;
+    }
+    if (!on_circle || std::abs(span - kTwoPi) > 1e-9) continue;  // part of a circle: the outline test decides
+    // Every other chord outside the circle (to a micrometre: chords ending on it touch it).
+    constexpr double kClear = 1e-6;
+    bool clear = true;
+    for (std::size_t k = 0; k < patch.chords.size() && clear; ++k) {
+      if (of_circle[k]) continue;
+      const AnalyticPatch::Chord& chord = patch.chords[k];
+      const double px = c.cx - chord.x, py = c.cy - chord.y;
+      const double t = chord.length2 > 0 ? std::clamp((px * chord.ex + py * chord.ey) / chord.length2, 0.0, 1.0) : 0.0;
+      clear = std::hypot(px - t * chord.ex, py - t * chord.ey) - std::sqrt(chord.reach2) >= c.r - kClear;
+    }
+    if (clear) holes.push_back(c);
+  }
+  return holes;
+}
+
 // Two outlines made of annuli (b's plane frame; a's centres mapped by
 // q = (ox, oy) + M v), planes parallel and facing, `gap` apart along b's
 // normal n. Two annuli share area where some circle about b's centre, of a
@@ -375,16 +472,40 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   return false;  // only edges crossing, or apart in the plane: the meshes decide
 }
 
+// A cylinder (a shaft, or a bore's rim: either side) standing on a plane (b),
+// its axis along the plane's normal: every point of its nearer end circle is
+// at one height above the plane and the rest of it higher, so the gap is that
+// height wherever one of those points lies over the face (eight tried; all
+// over a hole: the meshes decide). A screw's head on a cover, the cover's bore
+// under the head's face.
+bool end_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
+  const Vector3& n = b.axis;
+  const Vector3 centre = on_axis(a, a.axis.dot(n) > 0 ? a.axial_min : a.axial_max);
+  const double height = (centre - b.location).dot(n);
+  const Vector3 x = perpendicular(a.axis, a.ref_dir), y = a.axis.cross(x);
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * kTwoPi / 8;
+    const Vector3 p = centre + a.radius * (std::cos(angle) * x + std::sin(angle) * y);
+    if (!within_patch(a, p, 1e-3) || !within_patch(b, p - height * n)) continue;
+    out.gap = height;
+    out.normal = n;
+    out.point_a = p;
+    out.point_b = p - height * n;
+    return true;
+  }
+  return false;
+}
+
 // A convex cylinder or sphere (a) against a plane (b).
 bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
-  if (a.side != MaterialSide::Convex) return false;
   const Vector3& n = b.axis;
+  if (a.kind == SurfaceKind::Cylinder && (n - n.dot(a.axis) * a.axis).norm() < 1e-6) return end_on_plane(a, b, out);
+  if (a.side != MaterialSide::Convex) return false;
   Vector3 lowest;
   if (a.kind == SurfaceKind::Sphere) {
     lowest = a.location - a.radius * n;
   } else {
-    const Vector3 w = n - n.dot(a.axis) * a.axis;
-    if (w.norm() < 1e-6) return false;  // axis along the normal: an end circle (an edge) is closest
+    const Vector3 w = n - n.dot(a.axis) * a.axis;  // not along the normal (end_on_plane above)
     const Vector3 down = w.normalized();
     // Height along n is linear in the axial coordinate: lowest at an end, or anywhere when parallel.
     const double slope = a.axis.dot(n);
@@ -400,10 +521,11 @@ bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticCon
   return within_patch(a, out.point_a) && within_patch(b, out.point_b);
 }
 
-// A shaft (convex cylinder a) through a face (plane b whose outline is annuli),
-// its axis along the face's normal within the parallel tolerance and the face's
-// plane crossing it strictly between its ends: a shaft through a bearing's or a
-// seal's face, in the hole at the bore's mouth. Its axis meets the plane at q,
+// A shaft (convex cylinder a) through a face (plane b whose outline is annuli,
+// or any outline when the shaft is in one of its round holes), its axis along
+// the face's normal within the parallel tolerance and the face's plane crossing
+// it or reaching an end: a shaft through a bearing's or a seal's face, in the
+// hole at the bore's mouth, a screw's head on the cover. Its axis meets the plane at q,
 // e from an annulus' centre: the annulus' rim is (hole radius - e) cos(tilt) - r
 // from the shaft when q is in its hole, (e - outer) cos(tilt) - r when q lies
 // beyond it (exact for parallel axes, a lower bound for a tilt: a rim point
@@ -412,13 +534,27 @@ bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticCon
 // nearest rim is the contact, along the line from its centre to q.
 bool shaft_through_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
                          const AnalyticTolerances& tol) {
-  if (a.kind != SurfaceKind::Cylinder || a.side != MaterialSide::Convex || b.annuli.empty()) return false;
+  if (a.kind != SurfaceKind::Cylinder || a.side != MaterialSide::Convex || (b.annuli.empty() && b.round_holes.empty()))
+    return false;
   const Vector3& n = b.axis;
   const double c = a.axis.dot(n);
   if (std::abs(c) < std::cos(tol.parallel)) return false;
   const double s_plane = (b.location - a.location).dot(n) / c;
-  constexpr double kEndSlack = 1e-6;  // mm: a plane at an end meets the shaft's rim (the meshes)
-  if (s_plane <= a.axial_min + kEndSlack || s_plane >= a.axial_max - kEndSlack) return false;
+  // The end nearer the plane, and how far the shaft stands off the plane on its body's side (the
+  // side of the other end): negative when that end has crossed it (the whole shaft then leaves by
+  // moving that far along the normal), less the end circle's drop for a tilt. A lower bound of
+  // the distance like the rim's gap below; the answer is the larger of the two: the rim's when the
+  // shaft runs through the hole, the end's when it stands on the face around the hole (a screw's
+  // head on a cover) or ends in the face's plane (its shaft under the head).
+  const double height_min = (on_axis(a, a.axial_min) - b.location).dot(n);
+  const double height_max = (on_axis(a, a.axial_max) - b.location).dot(n);
+  const bool min_nearer = std::abs(height_min) <= std::abs(height_max);
+  const double body_side = (min_nearer ? height_max : height_min) > 0 ? 1.0 : -1.0;
+  const double stand_off = body_side * (min_nearer ? height_min : height_max) -
+                           a.radius * std::sqrt(std::max(0.0, 1 - c * c));
+  // Not reaching the plane (beyond this, mm): the rim's gap alone would undercount the distance.
+  constexpr double kEndReach = 1e-3;
+  if (stand_off > kEndReach) return false;
   const Vector3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
   const Vector3 q = on_axis(a, s_plane);
   const double qx = (q - b.location).dot(bx), qy = (q - b.location).dot(by);
@@ -441,12 +577,113 @@ bool shaft_through_plane(const AnalyticPatch& a, const AnalyticPatch& b, Analyti
       best = gap, best_rim = rim, best_ux = ux, best_uy = uy, best_cx = k.cx, best_cy = k.cy, best_side = side;
     }
   }
+  if (b.annuli.empty()) {
+    // An outline of another shape: only a round hole around q settles it (the material lies outside
+    // that circle; the holes do not overlap, so one at most holds q).
+    for (const AnalyticPatch::Circle& h : b.round_holes) {
+      const double ex = qx - h.cx, ey = qy - h.cy, e = std::hypot(ex, ey);
+      if (e >= h.r) continue;
+      best = (h.r - e) * cos_tilt - a.radius, best_rim = h.r, best_cx = h.cx, best_cy = h.cy, best_side = 1;
+      best_ux = e > 1e-12 ? ex / e : 1.0, best_uy = e > 1e-12 ? ey / e : 0.0;
+    }
+    if (!std::isfinite(best)) return false;  // q on the face's material or beside it: the meshes decide
+  }
   const Vector3 u = best_ux * bx + best_uy * by;
+  // The end stands on (or sinks into) the face around the hole: along the normal. Only from outside
+  // the face's material (a shaft from inside, ending in the face's plane, is the rim's: its bore's
+  // overlap, not a pull towards its seat), and only for an end wider than the hole's room (a shaft
+  // that fits, its end in the plane, goes on into the hole: its rim's gap, not a stop).
+  constexpr double kFits = 1e-6;  // mm
+  if (body_side > 0 && best < -kFits && stand_off > best) {
+    // Only where the end circle lies over the face's material (eight points tried, from the side
+    // of the nearest rim): a wide cylinder around a small face (a housing around a shaft's
+    // shoulder) stands on nothing.
+    const Vector3 end = on_axis(a, min_nearer ? a.axial_min : a.axial_max);
+    const Vector3 x = perpendicular(a.axis, u), y = a.axis.cross(x);
+    for (int k = 0; k < 8; ++k) {
+      const double angle = k * kTwoPi / 8;
+      const Vector3 p = end + a.radius * (std::cos(angle) * x + std::sin(angle) * y);
+      const Vector3 under = p - ((p - b.location).dot(n)) * n;
+      if (!within_patch(a, p, 1e-3) || !within_patch(b, under)) continue;
+      out.gap = stand_off;
+      out.normal = body_side * n;  // a leaves towards its body's side
+      out.point_a = p;
+      out.point_b = p - stand_off * out.normal;
+      return true;
+    }
+  }
   out.gap = best;
   out.normal = -best_side * u;  // a leaves the rim: away from it
   out.point_b = b.location + (best_cx + best_rim * best_ux) * bx + (best_cy + best_rim * best_uy) * by;
   out.point_a = q + best_side * a.radius * perpendicular(a.axis, u);
   return within_patch(a, out.point_a, 1e-3);
+}
+
+// A shaft (convex cylinder a) through a chamfer at a bore's mouth (concave cone
+// b), axes near parallel: the cone's material lies outside its radius
+// rho(t) = t tan(half-angle), which grows along its axis faster than the
+// shaft's axis can drift off the cone's (tan(tilt) per unit of t; required),
+// so the small rim is nearest. In the rim's plane the shaft's axis passes at q,
+// e from the rim's centre: the gap is (rim - e) cos(tilt) - r (exact for
+// parallel axes, a lower bound for a tilt, as in shaft_through_plane).
+bool shaft_through_chamfer(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                           const AnalyticTolerances& tol) {
+  if (a.kind != SurfaceKind::Cylinder || a.side != MaterialSide::Convex || b.kind != SurfaceKind::Cone ||
+      b.side != MaterialSide::Concave || !(b.axial_min > 0))
+    return false;
+  const double c = a.axis.dot(b.axis), cos_tilt = std::abs(c);
+  if (cos_tilt < std::cos(tol.parallel)) return false;
+  const double sin_tilt = std::sqrt(std::max(0.0, 1 - c * c)), tan_half = std::tan(b.half_angle);
+  if (tan_half * cos_tilt <= sin_tilt) return false;  // a cone as steep as the tilt: its far rim may be nearer
+  const Vector3 centre = on_axis(b, b.axial_min);
+  const double rim = b.axial_min * tan_half;
+  const double s_rim = (centre - a.location).dot(b.axis) / c;  // where the rim's plane crosses the shaft's axis
+  constexpr double kEndSlack = 1e-6;  // mm: a rim at the shaft's end meets its edge (the meshes)
+  if (s_rim <= a.axial_min + kEndSlack || s_rim >= a.axial_max - kEndSlack) return false;
+  const Vector3 q = on_axis(a, s_rim);
+  const Vector3 offset = q - centre;
+  const double e = offset.norm();
+  if (e >= rim) return false;  // the shaft's axis outside the rim: not through it
+  const Vector3 u = e > 1e-12 ? Vector3(offset / e) : perpendicular(b.axis, b.ref_dir);
+  out.gap = (rim - e) * cos_tilt - a.radius;
+  out.normal = -u;  // a leaves the rim: away from it
+  out.point_b = centre + rim * u;
+  out.point_a = q + a.radius * perpendicular(a.axis, u);
+  return within_patch(a, out.point_a, 1e-3) && within_patch(b, out.point_b, 1e-3);
+}
+
+// A shaft's chamfered end (convex cone a) in a bore (concave cylinder b), axes
+// near parallel: a point of the cone at t is at most d(t) + rho(t) from the
+// bore's axis (d: its axis point's distance to the bore's axis, which changes
+// by at most sin(tilt) per unit of t while rho grows by tan(half-angle);
+// required), so the large rim is nearest the wall: the gap is R - e - rim, e
+// the large rim's centre off the bore's axis (exact for parallel axes, a lower
+// bound for a tilt). Only with the large rim inside the bore's band (else the
+// bore's mouth is nearest).
+bool chamfer_in_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                     const AnalyticTolerances& tol) {
+  if (a.kind != SurfaceKind::Cone || a.side != MaterialSide::Convex || b.kind != SurfaceKind::Cylinder ||
+      b.side != MaterialSide::Concave)
+    return false;
+  const double c = a.axis.dot(b.axis);
+  if (std::abs(c) < std::cos(tol.parallel)) return false;
+  const double sin_tilt = std::sqrt(std::max(0.0, 1 - c * c)), tan_half = std::tan(a.half_angle);
+  if (tan_half <= sin_tilt) return false;
+  const Vector3 centre = on_axis(a, a.axial_max);
+  const double rim = a.axial_max * tan_half;
+  const double s = (centre - b.location).dot(b.axis);
+  constexpr double kEndSlack = 1e-6;  // mm
+  if (s <= b.axial_min + kEndSlack || s >= b.axial_max - kEndSlack) return false;
+  const Vector3 foot = on_axis(b, s);
+  const Vector3 offset = centre - foot;
+  const double e = offset.norm();
+  if (e >= b.radius) return false;  // the cone's axis outside the bore: not in it
+  const Vector3 u = e > 1e-12 ? Vector3(offset / e) : perpendicular(b.axis, b.ref_dir);
+  out.gap = b.radius - e - rim;
+  out.normal = -u;  // a leaves the wall: towards the bore's axis
+  out.point_a = centre + rim * perpendicular(a.axis, u);
+  out.point_b = foot + b.radius * u;
+  return within_patch(a, out.point_a, 1e-3) && within_patch(b, out.point_b, 1e-3);
 }
 
 // A shaft (convex cylinder a) in a bore (concave cylinder b), axes near parallel:
@@ -535,6 +772,15 @@ bool convex_cores(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContac
   out.point_a = ca - a.radius * u;
   out.point_b = cb + b.radius * u;
   return within_patch(a, out.point_a) && within_patch(b, out.point_b);
+}
+
+// A shaft (convex cylinder a) beside a bore (concave cylinder b) it is not in:
+// the bore's wall nearest the shaft is its near side, as for two shafts side by
+// side (convex_cores, which reads no material side). Only while they are apart:
+// a shaft reaching into a bore's cavity from the bore's material is no contact
+// of theirs (the meshes decide).
+bool shaft_beside_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
+  return convex_cores(a, b, out) && out.gap >= 0;
 }
 
 // A ball (convex sphere a) in a cup (concave sphere) or a bore (concave cylinder b).
@@ -629,8 +875,10 @@ void prepare_outline(AnalyticPatch& patch) {
   patch.slab_count = 0;
   patch.outline_x0 = patch.outline_y0 = 1e300;
   patch.outline_x1 = patch.outline_y1 = -1e300;
+  std::vector<std::size_t> loop_first;  // each loop's first chord
   for (const auto& loop : patch.loops) {
     const std::size_t n = loop.size();
+    loop_first.push_back(patch.chords.size());
     for (std::size_t i = 0; i < n; ++i) {
       const Point2& p = loop[i];
       const Point2& r = loop[(i + 1) % n];
@@ -658,6 +906,8 @@ void prepare_outline(AnalyticPatch& patch) {
       patch.outline_y1 = std::max(patch.outline_y1, p.y);
     }
   }
+  loop_first.push_back(patch.chords.size());
+  patch.round_holes = round_holes(patch, loop_first);
   if (patch.chords.empty()) {
     patch.outline_x0 = 0, patch.outline_x1 = -1, patch.outline_y0 = 0, patch.outline_y1 = -1;
     return;
@@ -699,7 +949,15 @@ bool within_patch(const AnalyticPatch& patch, const Eigen::Vector3d& p, double s
   const Vector3 d = p - patch.location;
   if (patch.kind == SurfaceKind::Plane) {
     const Vector3 y = patch.axis.cross(patch.ref_dir);
-    return inside_outline(patch, d.dot(patch.ref_dir), d.dot(y));
+    const double x = d.dot(patch.ref_dir), yy = d.dot(y);
+    if (patch.annuli.empty()) return inside_outline(patch, x, yy);
+    // Annuli are exact (no arc swing to stay clear of): their closed rings, rims included to the
+    // circles' tolerance (a bore's rim under a washer's inner rim, line to line).
+    for (const AnalyticPatch::Annulus& k : patch.annuli) {
+      const double r = std::hypot(x - k.cx, yy - k.cy);
+      if (r >= k.inner - kCircleTolerance && r <= k.outer + kCircleTolerance) return true;
+    }
+    return false;
   }
   if (!revolution(patch.kind)) return false;
   const double axial = d.dot(patch.axis);
@@ -737,8 +995,14 @@ bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
     return swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out), out);
   const bool convex_a = a.side == MaterialSide::Convex, convex_b = b.side == MaterialSide::Convex;
   if (ka == K::Cone || kb == K::Cone) {
-    if (ka != K::Cone || kb != K::Cone || convex_a == convex_b) return false;
-    return convex_a ? cone_seat(a, b, out, tol) : swap_result(cone_seat(b, a, out, tol), out);
+    if (convex_a == convex_b) return false;
+    if (ka == K::Cone && kb == K::Cone)
+      return convex_a ? cone_seat(a, b, out, tol) : swap_result(cone_seat(b, a, out, tol), out);
+    if (ka == K::Cylinder)  // b a cone
+      return convex_a ? shaft_through_chamfer(a, b, out, tol) : swap_result(chamfer_in_bore(b, a, out, tol), out);
+    if (kb == K::Cylinder)  // a a cone
+      return convex_a ? chamfer_in_bore(a, b, out, tol) : swap_result(shaft_through_chamfer(b, a, out, tol), out);
+    return false;
   }
   if (convex_a && convex_b) return convex_cores(a, b, out);
   if (convex_a == convex_b) return false;  // two concave surfaces: never the closest pair of solids
@@ -746,7 +1010,8 @@ bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   const AnalyticPatch& inner = convex_a ? a : b;
   const AnalyticPatch& outer = convex_a ? b : a;
   bool ok = false;
-  if (inner.kind == K::Cylinder && outer.kind == K::Cylinder) ok = shaft_in_bore(inner, outer, out, tol);
+  if (inner.kind == K::Cylinder && outer.kind == K::Cylinder)
+    ok = shaft_in_bore(inner, outer, out, tol) || shaft_beside_bore(inner, outer, out);
   else if (inner.kind == K::Sphere) ok = ball_inside(inner, outer, out);
   else return false;  // a shaft in a cup: its rim is closest
   return convex_a ? ok : swap_result(ok, out);

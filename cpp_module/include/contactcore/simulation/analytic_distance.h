@@ -71,6 +71,16 @@ struct AnalyticPatch {
     double cx = 0, cy = 0, inner = 0, outer = 0;
   };
   std::vector<Annulus> annuli;
+  // Plane: the outline's holes that are whole circles (a hole loop as
+  // AnalyticPatch::annuli reads one) with no other loop reaching inside them
+  // (prepare_outline): the face's material lies outside such a circle, so a
+  // shaft whose axis crosses the plane inside it is nearest to its rim, however
+  // the rest of the outline runs (a screw through a cover's plate, which has
+  // other holes and a square outline).
+  struct Circle {
+    double cx = 0, cy = 0, r = 0;
+  };
+  std::vector<Circle> round_holes;
 };
 
 // mm: a loop's vertices this close to one circle (and holes' centres this
@@ -113,7 +123,10 @@ struct AnalyticTolerances {
 // the meshes must answer. Pairs: plane-plane (parallel, facing; two outlines
 // made of annuli (AnalyticPatch::annuli) also when they do not share area:
 // the closest pair of their rims, sqrt(gap^2 + in-plane distance^2)), plane with
-// a shaft (convex cylinder) or a ball (convex sphere), cylinder-cylinder
+// a shaft (convex cylinder) or a ball (convex sphere), a shaft through a plane's
+// round hole (AnalyticPatch::round_holes) or through a chamfer at a bore's
+// mouth (a concave cone: its small rim), a shaft's chamfered end (a convex
+// cone: its large rim) in a bore, cylinder-cylinder
 // (shaft in bore with near-parallel axes, two shafts side by side), sphere-
 // sphere (two balls, a ball in a cup), a ball in a bore, cone in cone (a
 // plug on its seat: one half-angle, near-parallel axes). Overlaps are signed
