@@ -193,6 +193,8 @@ void StageCollision::use_analytic(const std::vector<BodyPartitions>& partitions)
 bool StageCollision::analytic_contact_of(Neighbour& n, const Pose& pose, double reach, ContactPoint& out) noexcept {
   bool found = false;
   AnalyticContact c;
+  AnalyticTolerances tolerances;
+  tolerances.reach = reach;
   for (Neighbour::AnalyticPair& pair : n.analytic) {
     CollisionPair& mesh = *n.pair;
     if (!mesh.partition_enabled(0, pair.moving) || !mesh.partition_enabled(1, pair.other)) continue;
@@ -205,11 +207,12 @@ bool StageCollision::analytic_contact_of(Neighbour& n, const Pose& pose, double 
       mesh.set_pair_enabled(pair.moving, pair.other, true);
       continue;
     }
-    if (!analytic_contact(moving_placed_[pair.moving], pair.other_patch, c)) {
+    if (!analytic_contact(moving_placed_[pair.moving], pair.other_patch, c, tolerances)) {
       mesh.set_pair_enabled(pair.moving, pair.other, true);
       ++fallback_pairs_;
       continue;
     }
+    // Answered (out of reach ones perhaps by a lower bound of their gap: AnalyticTolerances::reach).
     mesh.set_pair_enabled(pair.moving, pair.other, false);
     ++closed_form_pairs_;
     if (c.gap > reach || (found && c.gap >= out.gap)) continue;

@@ -405,6 +405,16 @@ bool swap_result(bool ok, AnalyticContact& out) {
 
 // ---- the pairs (a's role first)
 
+// A pair known to be at least `gap` apart along `normal`, beyond the reach: answered with that bound
+// (AnalyticTolerances::reach), its points placed at `at` without checking the bounds.
+bool out_of_reach(double gap, const Vector3& normal, const Vector3& at, AnalyticContact& out) {
+  out.gap = gap;
+  out.normal = normal;
+  out.point_a = at;
+  out.point_b = at - gap * normal;
+  return true;
+}
+
 bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
   if (a.axis.dot(b.axis) > -std::cos(tol.angle)) return false;  // not facing, or tilted: an edge is closest
   if (a.loops.empty() || b.loops.empty()) return false;
@@ -412,6 +422,7 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   const double gap = (a.location - b.location).dot(n);
   // Back to back deeper than any contact (analytic_contact refuses it): no outline test.
   if (gap < -tol.max_depth) return false;
+  if (gap > tol.reach) return out_of_reach(gap, n, a.location, out);
   const Vector3 ax = a.ref_dir, ay = a.axis.cross(a.ref_dir);
   const Vector3 bx = b.ref_dir, by = b.axis.cross(b.ref_dir);
   // a's plane frame into b's (q = o + M v) and back (planes parallel within
@@ -478,10 +489,11 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
 // height wherever one of those points lies over the face (eight tried; all
 // over a hole: the meshes decide). A screw's head on a cover, the cover's bore
 // under the head's face.
-bool end_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
+bool end_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
   const Vector3& n = b.axis;
   const Vector3 centre = on_axis(a, a.axis.dot(n) > 0 ? a.axial_min : a.axial_max);
   const double height = (centre - b.location).dot(n);
+  if (height > tol.reach) return out_of_reach(height, n, centre, out);  // the whole cylinder is that high
   const Vector3 x = perpendicular(a.axis, a.ref_dir), y = a.axis.cross(x);
   for (int k = 0; k < 8; ++k) {
     const double angle = k * kTwoPi / 8;
@@ -497,9 +509,11 @@ bool end_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContac
 }
 
 // A convex cylinder or sphere (a) against a plane (b).
-bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
+bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                     const AnalyticTolerances& tol) {
   const Vector3& n = b.axis;
-  if (a.kind == SurfaceKind::Cylinder && (n - n.dot(a.axis) * a.axis).norm() < 1e-6) return end_on_plane(a, b, out);
+  if (a.kind == SurfaceKind::Cylinder && (n - n.dot(a.axis) * a.axis).norm() < 1e-6)
+    return end_on_plane(a, b, out, tol);
   if (a.side != MaterialSide::Convex) return false;
   Vector3 lowest;
   if (a.kind == SurfaceKind::Sphere) {
@@ -515,6 +529,7 @@ bool convex_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticCon
     lowest = on_axis(a, s) - a.radius * down;
   }
   out.gap = (lowest - b.location).dot(n);
+  if (out.gap > tol.reach) return out_of_reach(out.gap, n, lowest, out);  // its lowest point that high
   out.normal = n;
   out.point_a = lowest;
   out.point_b = lowest - out.gap * n;
@@ -990,9 +1005,9 @@ bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   if (ka == K::Other || kb == K::Other) return false;
   if (ka == K::Plane && kb == K::Plane) return plane_plane(a, b, out, tol);
   if (kb == K::Plane && (ka == K::Cylinder || ka == K::Sphere))
-    return shaft_through_plane(a, b, out, tol) || convex_on_plane(a, b, out);
+    return shaft_through_plane(a, b, out, tol) || convex_on_plane(a, b, out, tol);
   if (ka == K::Plane && (kb == K::Cylinder || kb == K::Sphere))
-    return swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out), out);
+    return swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out, tol), out);
   const bool convex_a = a.side == MaterialSide::Convex, convex_b = b.side == MaterialSide::Convex;
   if (ka == K::Cone || kb == K::Cone) {
     if (convex_a == convex_b) return false;

@@ -8,6 +8,7 @@
 // haptic loop.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -116,6 +117,12 @@ struct AnalyticTolerances {
   // (faces back to back, a shaft beside a bore rather than in it): the
   // meshes decide. A haptic proxy never lets parts sink this deep.
   double max_depth = 0.5;
+  // mm: nothing farther is wanted (a haptic query's reach). A pair whose gap
+  // is known early to be at least this (a lower bound: two parallel planes'
+  // separation, a cylinder's end height over a plane) is answered with that
+  // bound, its points not checked against the partitions' bounds: the caller
+  // only needs to know it is out of reach, and the outline tests are the cost.
+  double reach = std::numeric_limits<double>::infinity();
 };
 
 // True and `out` filled when the closest pair of a and b (both placed in one
