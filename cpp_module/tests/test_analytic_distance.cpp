@@ -725,3 +725,34 @@ TEST(AnalyticDistance, EndsOnAFaceMatchOcct) {
   EXPECT_FALSE(analytic_contact(analytic_patch(find(wide.parts, SurfaceKind::Cylinder, MaterialSide::Convex)),
                                 analytic_patch(face), c));
 }
+
+// Out of the caller's reach (AnalyticTolerances::reach), a pair is answered by
+// a lower bound of its gap found before any outline test: two facing faces 5
+// apart whose outlines miss each other in the plane (no closed form without a
+// reach), a cylinder standing 3 above a face beside it. OCCT's distance is at
+// least the bound; within the reach nothing changes.
+TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
+  const Partitioned low = partitioned(BRepPrimAPI_MakeBox(gp_Pnt(0, 0, -1), 10, 10, 1).Shape());
+  const Partitioned high = partitioned(BRepPrimAPI_MakeBox(gp_Pnt(20, 0, 5), 10, 10, 1).Shape());
+  const Partitioned post = partitioned(tube(0, 2, 3, 6, 40));
+  const Partition& top = plane_facing(low.parts, gp_Dir(0, 0, 1));
+  const Partition& bottom = plane_facing(high.parts, gp_Dir(0, 0, -1));
+  const Partition& side = find(post.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  AnalyticTolerances near;
+  near.reach = 0.2;
+  for (const Partition* upper : {&bottom, &side}) {
+    const Partitioned& body = upper == &bottom ? high : post;
+    const Measured m = measure(body, *upper, gp_Trsf(), low, top);
+    EXPECT_FALSE(m.handled);  // no reach: the outlines decide, and they miss
+    AnalyticContact c;
+    ASSERT_TRUE(analytic_contact(analytic_patch(*upper), analytic_patch(top), c, near));
+    EXPECT_NEAR(c.gap, upper == &bottom ? 5.0 : 3.0, 1e-12);
+    EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
+    EXPECT_GE(m.occt, c.gap - 1e-9);
+  }
+  // Within the reach the outline test still decides.
+  AnalyticTolerances far;
+  far.reach = 10;
+  AnalyticContact c;
+  EXPECT_FALSE(analytic_contact(analytic_patch(bottom), analytic_patch(top), c, far));
+}
