@@ -750,6 +750,28 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
     EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
     EXPECT_GE(m.occt, c.gap - 1e-9);
   }
+  // A shaft of radius 4 through a ring whose outer surface has radius 8, pushed 0.3 aside (nested: at
+  // least 8 - 4 - 0.3 from it), and a shaft above the ring's bore, its end 2 over the bore's top
+  // (axially apart): bounds at most OCCT's distances, and no closed form without a reach.
+  const Partitioned ring = partitioned(tube(4.5, 8, -10, 0));
+  const Partitioned through = partitioned(tube(0, 4, -20, 20)), above = partitioned(tube(0, 4, 2, 20));
+  struct Case {
+    const Partitioned& shaft;
+    const Partition& other;
+    double bound;
+  };
+  const Case cases[] = {{through, find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Convex), 8 - 4 - 0.3},
+                        {above, find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Concave), 2.0}};
+  for (const Case& k : cases) {
+    const gp_Trsf aside = translation(0.3, 0, 0);
+    const Partition& rod = find(k.shaft.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+    const Measured m = measure(k.shaft, rod, aside, ring, k.other);
+    EXPECT_FALSE(m.handled) << k.bound;
+    AnalyticContact c;
+    ASSERT_TRUE(analytic_contact(placed(analytic_patch(rod), isometry(aside)), analytic_patch(k.other), c, near));
+    EXPECT_NEAR(c.gap, k.bound, 1e-12);
+    EXPECT_GE(m.occt, c.gap - 1e-9);
+  }
   // Within the reach the outline test still decides.
   AnalyticTolerances far;
   far.reach = 10;

@@ -798,6 +798,81 @@ bool shaft_beside_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticC
   return convex_cores(a, b, out) && out.gap >= 0;
 }
 
+// Two revolution patches (b a cylinder or a cone; a any, its axis near b's)
+// whose extents along b's axis miss each other: every pair of their points is
+// at least that far apart (the distance of their projections on b's axis). a
+// projects within its axis' ends' projections widened by its largest radius
+// times the tilt's sine (a sphere: its radius). Beyond the reach that bound
+// answers (AnalyticTolerances::reach): a shaft's end above a bearing's bore,
+// chamfers and recesses at other heights.
+bool axially_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                   const AnalyticTolerances& tol) {
+  if (!std::isfinite(tol.reach) || (b.kind != SurfaceKind::Cylinder && b.kind != SurfaceKind::Cone) ||
+      !revolution(a.kind))
+    return false;
+  double lo, hi;
+  if (a.kind == SurfaceKind::Sphere) {
+    const double centre = (a.location - b.location).dot(b.axis);
+    lo = centre - a.radius, hi = centre + a.radius;
+  } else {
+    const double c = a.axis.dot(b.axis);
+    if (std::abs(c) < std::cos(tol.parallel)) return false;
+    const double widest = a.kind == SurfaceKind::Cone ? a.axial_max * std::tan(a.half_angle) : a.radius;
+    const double spread = widest * std::sqrt(std::max(0.0, 1 - c * c));
+    const double s1 = (on_axis(a, a.axial_min) - b.location).dot(b.axis);
+    const double s2 = (on_axis(a, a.axial_max) - b.location).dot(b.axis);
+    lo = std::min(s1, s2) - spread, hi = std::max(s1, s2) + spread;
+  }
+  const double below = b.axial_min - hi, above = lo - b.axial_max;
+  const double apart = std::max(below, above);
+  if (apart <= tol.reach) return false;
+  return out_of_reach(apart, above > below ? b.axis : Vector3(-b.axis), on_axis(a, a.axial_min), out);
+}
+
+// Radii of a revolution patch about its axis over its extent: a cylinder's
+// one, a cone's at its ends (a sphere: 0 to its radius about any line through
+// its centre).
+double least_radius(const AnalyticPatch& p) {
+  return p.kind == SurfaceKind::Cone ? p.axial_min * std::tan(p.half_angle)
+                                     : p.kind == SurfaceKind::Sphere ? 0.0 : p.radius;
+}
+double widest_radius(const AnalyticPatch& p) {
+  return p.kind == SurfaceKind::Cone ? p.axial_max * std::tan(p.half_angle) : p.radius;
+}
+
+// Two revolution patches, one nested inside the other (a shaft inside a
+// ring's outer surface, a bore inside a wider recess, a chamfer inside a
+// bearing's outer ring), of any sides: a point of the inner one is at most its
+// widest radius plus e from the outer one's axis (e: the inner axis' largest
+// offset from the outer's along its length, at one of its ends; the centre's
+// for a sphere), and the outer one's points are at least its least radius from
+// it, so they are at least the difference apart. Beyond the reach that bound
+// answers (AnalyticTolerances::reach); else no closed form here.
+bool nested_out_of_reach(const AnalyticPatch& inner, const AnalyticPatch& outer, AnalyticContact& out,
+                         const AnalyticTolerances& tol) {
+  if (!std::isfinite(tol.reach) || !revolution(inner.kind) ||
+      (outer.kind != SurfaceKind::Cylinder && outer.kind != SurfaceKind::Cone))
+    return false;
+  double e = 0;
+  Vector3 offset = Vector3::Zero();
+  auto farthest = [&](const Vector3& p) {
+    const Vector3 d = p - outer.location;
+    const Vector3 off = d - d.dot(outer.axis) * outer.axis;
+    if (off.norm() >= e) e = off.norm(), offset = off;
+  };
+  if (inner.kind == SurfaceKind::Sphere) {
+    farthest(inner.location);
+  } else {
+    if (std::abs(inner.axis.dot(outer.axis)) < std::cos(tol.parallel)) return false;
+    farthest(on_axis(inner, inner.axial_min));
+    farthest(on_axis(inner, inner.axial_max));
+  }
+  const double bound = least_radius(outer) - widest_radius(inner) - e;
+  if (bound <= tol.reach) return false;
+  const Vector3 u = e > 1e-12 ? Vector3(offset / e) : perpendicular(outer.axis, outer.ref_dir);
+  return out_of_reach(bound, -u, on_axis(inner, inner.axial_min), out);
+}
+
 // A ball (convex sphere a) in a cup (concave sphere) or a bore (concave cylinder b).
 bool ball_inside(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
   Vector3 centre;
@@ -1008,6 +1083,10 @@ bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
     return shaft_through_plane(a, b, out, tol) || convex_on_plane(a, b, out, tol);
   if (ka == K::Plane && (kb == K::Cylinder || kb == K::Sphere))
     return swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out, tol), out);
+  if (axially_apart(a, b, out, tol) || swap_result(axially_apart(b, a, out, tol), out)) return true;
+  if (widest_radius(a) <= widest_radius(b) ? nested_out_of_reach(a, b, out, tol)
+                                           : swap_result(nested_out_of_reach(b, a, out, tol), out))
+    return true;
   const bool convex_a = a.side == MaterialSide::Convex, convex_b = b.side == MaterialSide::Convex;
   if (ka == K::Cone || kb == K::Cone) {
     if (convex_a == convex_b) return false;
