@@ -576,6 +576,32 @@ TopoDS_Shape plate_with_holes(double hole, bool halves) {
                   .Shape();
   return plate;
 }
+
+// `part` of `moving` pushed e off its axis towards each of `turns` (radians about z), against
+// `other` of `fixed`: the closed form's gap is clearance - e (by hand), OCCT's max(0, that), its
+// normal back towards the axis, and while apart its point on `fixed` (on_fixed) or on `moving` is
+// OCCT's (1e-5), at height `rim_z` when given. Returns the poses compared.
+int expect_pushed_gaps(const Partitioned& moving, const Partition& part, const Partitioned& fixed,
+                       const Partition& other, double clearance, const std::vector<double>& offsets,
+                       const std::vector<double>& turns, bool on_fixed, double rim_z = std::nan("")) {
+  int compared = 0;
+  for (double e : offsets)
+    for (double turn : turns) {
+      const Vector3d u(std::cos(turn), std::sin(turn), 0);
+      const Measured m = measure(moving, part, translation(e * u.x(), e * u.y(), 0), fixed, other);
+      EXPECT_TRUE(m.handled) << e << " " << turn;
+      if (!m.handled) continue;
+      EXPECT_NEAR(m.analytic.gap, clearance - e, 1e-12) << e << " " << turn;
+      EXPECT_NEAR(m.occt, std::max(0.0, clearance - e), 1e-6) << e << " " << turn;
+      const Vector3d& point = on_fixed ? m.analytic.point_b : m.analytic.point_a;
+      const Vector3d& occt_point = on_fixed ? m.occt_b : m.occt_a;
+      if (!std::isnan(rim_z)) EXPECT_NEAR(point.z(), rim_z, 1e-12);
+      if (e > 0) EXPECT_NEAR((m.analytic.normal + u).norm(), 0.0, 1e-12);
+      if (e > 0 && e < clearance) EXPECT_NEAR((point - occt_point).norm(), 0.0, 1e-5) << e << " " << turn;
+      ++compared;
+    }
+  return compared;
+}
 }  // namespace
 
 // A shaft of radius 4 through a square plate's hole of 4.05 among four bolt
@@ -594,17 +620,8 @@ TEST(AnalyticDistance, ShaftThroughARoundHoleOfAnyOutlineMatchesOcct) {
     const AnalyticPatch patch = analytic_patch(face);
     EXPECT_TRUE(patch.annuli.empty());
     ASSERT_EQ(patch.round_holes.size(), 5u);
-    for (double e : {0.0, 0.02, 0.049, 0.07})
-      for (double turn = 0.2; turn < 6.28; turn += 1.5) {
-        const Vector3d u(std::cos(turn), std::sin(turn), 0);
-        const Measured m = measure(rod, side, translation(e * u.x(), e * u.y(), 0), plate, face);
-        ASSERT_TRUE(m.handled) << halves << " " << e << " " << turn;
-        EXPECT_NEAR(m.analytic.gap, 0.05 - e, 1e-12);
-        EXPECT_NEAR(m.occt, std::max(0.0, 0.05 - e), 1e-6) << halves << " " << e << " " << turn;
-        if (e > 0) EXPECT_NEAR((m.analytic.normal + u).norm(), 0.0, 1e-12);
-        if (e > 0 && e < 0.05) EXPECT_NEAR((m.analytic.point_b - m.occt_b).norm(), 0.0, 1e-5);
-        ++compared;
-      }
+    compared += expect_pushed_gaps(rod, side, plate, face, 0.05, {0.0, 0.02, 0.049, 0.07}, {0.2, 1.7, 3.2, 4.7, 6.2},
+                                   true);
   }
   EXPECT_EQ(compared, 40);
 }
@@ -622,17 +639,8 @@ TEST(AnalyticDistance, ShaftThroughAChamferMatchesOcct) {
   const Partitioned bore = partitioned(block), rod = partitioned(tube(0, 3.95, -20, 20));
   const Partition& chamfer = find(bore.parts, SurfaceKind::Cone, MaterialSide::Concave);
   const Partition& side = find(rod.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
-  for (double e : {0.0, 0.03, 0.08})
-    for (double turn = 0.4; turn < 6.28; turn += 2.0) {
-      const Vector3d u(std::cos(turn), std::sin(turn), 0);
-      const Measured m = measure(rod, side, translation(e * u.x(), e * u.y(), 0), bore, chamfer);
-      ASSERT_TRUE(m.handled) << e << " " << turn;
-      EXPECT_NEAR(m.analytic.gap, 0.05 - e, 1e-12);
-      EXPECT_NEAR(m.occt, std::max(0.0, 0.05 - e), 1e-6) << e << " " << turn;
-      EXPECT_NEAR(m.analytic.point_b.z(), -0.3, 1e-12);  // on the small rim
-      if (e > 0) EXPECT_NEAR((m.analytic.normal + u).norm(), 0.0, 1e-12);
-      if (e > 0 && e < 0.05) EXPECT_NEAR((m.analytic.point_b - m.occt_b).norm(), 0.0, 1e-5);
-    }
+  // On the small rim, z = -0.3.
+  EXPECT_EQ(expect_pushed_gaps(rod, side, bore, chamfer, 0.05, {0.0, 0.03, 0.08}, {0.4, 2.4, 4.4}, true, -0.3), 9);
   AnalyticContact c;
   const Partitioned short_rod = partitioned(tube(0, 3.95, -0.1, 20));
   EXPECT_FALSE(analytic_contact(analytic_patch(find(short_rod.parts, SurfaceKind::Cylinder, MaterialSide::Convex)),
@@ -654,17 +662,8 @@ TEST(AnalyticDistance, ChamferedEndInABoreMatchesOcct) {
   const Partitioned rod = partitioned(shaft), bore = partitioned(block);
   const Partition& chamfer = find(rod.parts, SurfaceKind::Cone, MaterialSide::Convex);
   const Partition& wall = find(bore.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
-  for (double e : {0.0, 0.03, 0.08})
-    for (double turn = 0.4; turn < 6.28; turn += 2.0) {
-      const Vector3d u(std::cos(turn), std::sin(turn), 0);
-      const Measured m = measure(rod, chamfer, translation(e * u.x(), e * u.y(), 0), bore, wall);
-      ASSERT_TRUE(m.handled) << e << " " << turn;
-      EXPECT_NEAR(m.analytic.gap, 0.05 - e, 1e-12);
-      EXPECT_NEAR(m.occt, std::max(0.0, 0.05 - e), 1e-6) << e << " " << turn;
-      EXPECT_NEAR(m.analytic.point_a.z(), -2.7, 1e-12);  // on the large rim
-      if (e > 0) EXPECT_NEAR((m.analytic.normal + u).norm(), 0.0, 1e-12);
-      if (e > 0 && e < 0.05) EXPECT_NEAR((m.analytic.point_a - m.occt_a).norm(), 0.0, 1e-5);
-    }
+  // On the large rim, z = -2.7.
+  EXPECT_EQ(expect_pushed_gaps(rod, chamfer, bore, wall, 0.05, {0.0, 0.03, 0.08}, {0.4, 2.4, 4.4}, false, -2.7), 9);
   EXPECT_FALSE(measure(rod, chamfer, translation(0, 0, 3.5), bore, wall).handled);
 }
 
