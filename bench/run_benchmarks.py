@@ -369,6 +369,11 @@ def haptic_query_tables(runs):
                      f"{f(row['cpu_p99_us'])} | {f(row['closed_pairs'])} | {f(row['mesh_fallbacks'])} | "
                      f"{f(mesh.get('p50_us'))} | {f(mesh.get('p99_us'))} | {f(ratio)}x | "
                      f"{f(bodies.get('cpu_p50_us'))} | {f(trees, 2)}x |")
+    lines += ["", "| machine | the machine's floor: a fixed 6,000 multiply-adds timed as a query, p50 us | p99 us | "
+              "CPU p50 us | CPU p99 us |", "|---|---|---|---|---|"]
+    for label, _, _, row, _ in rows_under("machine_floor/fixed_loop"):
+        lines.append(f"| {label} | {f(row['p50_us'])} | {f(row['p99_us'])} | {f(row['cpu_p50_us'])} | "
+                     f"{f(row['cpu_p99_us'])} |")
     lines += ["", "| machine | part | servo tick, closed forms: p50 us | p99 us | CPU p99 us | contacts / tick | "
               "meshes only: p50 us | p99 us |", "|---|---|---|---|---|---|---|---|"]
     for label, _, rest, row, results in rows_under("servo_tick/closed_form/"):
@@ -406,7 +411,9 @@ def haptic_query_report(build_dir, loop_seconds):
         "ticks); loop rows are realtime mode (the loop on its own thread, absolute deadlines, "
         f"{loop_seconds:g} s). *closed forms*: the contact query as the trial runs it (analytic partition "
         "pairs in closed form, the meshes for the rest); *meshes only*: the same query with the closed "
-        "forms off (the collision stage's meshes alone, as before), in the same process.",
+        "forms off (the collision stage's meshes alone, as before), in the same process. *The machine's "
+        "floor*: a fixed computation of about a query's p50, timed the same way in the same process: what "
+        "this machine adds to the p99 of any short computation.",
         "", haptic_query_tables(runs)])
 
 
