@@ -771,6 +771,18 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
     EXPECT_NEAR(c.gap, k.bound, 1e-12);
     EXPECT_GE(m.occt, c.gap - 1e-9);
   }
+  // A rod's end face (a disk of 3.5) 5 down the ring's bore of 4.5, pushed 0.3 aside: the face lies
+  // within 3.5 + 0.3 of the bore's axis, so at least 4.5 - 3.8 from its wall.
+  const Partitioned rod_end = partitioned(tube(0, 3.5, -5, 20));
+  const Partition& end_face = plane_facing(rod_end.parts, gp_Dir(0, 0, -1));
+  const Partition& ring_bore = find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
+  const Measured inside = measure(rod_end, end_face, translation(0.3, 0, 0), ring, ring_bore);
+  EXPECT_FALSE(inside.handled);
+  AnalyticContact face_bound;
+  ASSERT_TRUE(analytic_contact(placed(analytic_patch(end_face), isometry(translation(0.3, 0, 0))),
+                               analytic_patch(ring_bore), face_bound, near));
+  EXPECT_NEAR(face_bound.gap, 4.5 - 3.5 - 0.3, 1e-9);
+  EXPECT_GE(inside.occt, face_bound.gap - 1e-9);
   // Within the reach the outline test still decides.
   AnalyticTolerances far;
   far.reach = 10;

@@ -140,9 +140,10 @@ bool closed_form_kinds(const AnalyticPatch& a, const AnalyticPatch& b) {
            (other.kind == K::Sphere && other.side == MaterialSide::Convex);
   }
   if (a.kind == K::Cone || b.kind == K::Cone) {
-    // A plug on its seat; a shaft through a chamfer at a bore's mouth, a chamfered end in a bore.
+    // A plug on its seat; a shaft through a chamfer at a bore's mouth, a chamfered end in a bore;
+    // and any cone with a cylinder or cone out of reach (axially apart, or nested), whatever sides.
     const K other = a.kind == K::Cone ? b.kind : a.kind;
-    return (other == K::Cone || other == K::Cylinder) && convex_against_concave(a.side, b.side);
+    return other == K::Cone || other == K::Cylinder;
   }
   if (a.side == MaterialSide::Convex && b.side == MaterialSide::Convex) return true;
   if (!convex_against_concave(a.side, b.side)) return false;

@@ -873,6 +873,34 @@ bool nested_out_of_reach(const AnalyticPatch& inner, const AnalyticPatch& outer,
   return out_of_reach(bound, -u, on_axis(inner, inner.axial_min), out);
 }
 
+// A face (plane a) across a revolution patch's axis (b: its normal along the
+// axis): every point of the face lies within its annuli's farthest outer rim
+// (or the circle holding its outline) from where b's axis crosses
+// the plane, so within that of b's axis (at most: a tilt brings it nearer), and
+// b's points are at least b's least radius from it. Beyond the reach that
+// bound answers (a shaft's end face inside a bearing's outer ring).
+bool face_inside_revolution(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                            const AnalyticTolerances& tol) {
+  if (!std::isfinite(tol.reach) || a.kind != SurfaceKind::Plane ||
+      (b.kind != SurfaceKind::Cylinder && b.kind != SurfaceKind::Cone) || a.outline_radius < 0)
+    return false;
+  const double c = a.axis.dot(b.axis);
+  if (std::abs(c) < std::cos(tol.parallel)) return false;
+  const Vector3 q = b.location + ((a.location - b.location).dot(a.axis) / c) * b.axis;
+  const Vector3 ax = a.ref_dir, ay = a.axis.cross(a.ref_dir);
+  const double qx = (q - a.location).dot(ax), qy = (q - a.location).dot(ay);
+  double reach = 0;  // in the plane, from q
+  if (!a.annuli.empty()) {
+    for (const AnalyticPatch::Annulus& k : a.annuli) reach = std::max(reach, std::hypot(k.cx - qx, k.cy - qy) + k.outer);
+  } else {  // the circle holding the outline
+    reach = std::hypot(a.outline_cx - qx, a.outline_cy - qy) + a.outline_radius;
+  }
+  // A point p of the face, |p - q| <= reach in the plane, is at most that from b's axis (q lies on it).
+  const double bound = least_radius(b) - reach;
+  if (bound <= tol.reach) return false;
+  return out_of_reach(bound, -perpendicular(b.axis, b.ref_dir), a.location, out);
+}
+
 // A ball (convex sphere a) in a cup (concave sphere) or a bore (concave cylinder b).
 bool ball_inside(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out) {
   Vector3 centre;
@@ -959,6 +987,7 @@ AnalyticPatch analytic_patch(const Partition& partition) {
 
 void prepare_outline(AnalyticPatch& patch) {
   patch.chords.clear();
+  patch.outline_radius = -1;
   patch.annuli = outline_annuli(patch.loops);
   patch.slab_first.clear();
   patch.slab_chords.clear();
@@ -998,6 +1027,13 @@ void prepare_outline(AnalyticPatch& patch) {
   }
   loop_first.push_back(patch.chords.size());
   patch.round_holes = round_holes(patch, loop_first);
+  if (!patch.chords.empty()) {
+    patch.outline_cx = 0.5 * (patch.outline_x0 + patch.outline_x1);
+    patch.outline_cy = 0.5 * (patch.outline_y0 + patch.outline_y1);
+    for (const AnalyticPatch::Chord& c : patch.chords)
+      patch.outline_radius =
+          std::max(patch.outline_radius, std::hypot(c.x - patch.outline_cx, c.y - patch.outline_cy) + std::sqrt(c.reach2));
+  }
   if (patch.chords.empty()) {
     patch.outline_x0 = 0, patch.outline_x1 = -1, patch.outline_y0 = 0, patch.outline_y1 = -1;
     return;
@@ -1080,9 +1116,11 @@ bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   if (ka == K::Other || kb == K::Other) return false;
   if (ka == K::Plane && kb == K::Plane) return plane_plane(a, b, out, tol);
   if (kb == K::Plane && (ka == K::Cylinder || ka == K::Sphere))
-    return shaft_through_plane(a, b, out, tol) || convex_on_plane(a, b, out, tol);
+    return swap_result(face_inside_revolution(b, a, out, tol), out) || shaft_through_plane(a, b, out, tol) ||
+           convex_on_plane(a, b, out, tol);
   if (ka == K::Plane && (kb == K::Cylinder || kb == K::Sphere))
-    return swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out, tol), out);
+    return face_inside_revolution(a, b, out, tol) ||
+           swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out, tol), out);
   if (axially_apart(a, b, out, tol) || swap_result(axially_apart(b, a, out, tol), out)) return true;
   if (widest_radius(a) <= widest_radius(b) ? nested_out_of_reach(a, b, out, tol)
                                            : swap_result(nested_out_of_reach(b, a, out, tol), out))

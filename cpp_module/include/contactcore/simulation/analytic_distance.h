@@ -59,6 +59,8 @@ struct AnalyticPatch {
   std::vector<int> slab_first;   // slab_count + 1 offsets into slab_chords
   std::vector<int> slab_chords;  // chord indices, slab by slab
   double outline_x0 = 0, outline_y0 = 0, outline_x1 = -1, outline_y1 = -1;  // empty when x0 > x1
+  // A circle holding the whole outline, arcs' swing included (about its box's centre).
+  double outline_cx = 0, outline_cy = 0, outline_radius = -1;
   // Plane: the outline as exact annuli (inner 0: a disk), in the plane frame,
   // when every loop is one circle (its vertices on the circle within
   // kCircleTolerance, each chord's bulge that circle's arc) and every hole is
