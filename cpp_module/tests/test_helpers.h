@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 #include <BRep_Tool.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
@@ -34,6 +36,12 @@ inline void dereference_null_inside_occt() {
 }
 
 inline std::string sample(const std::string& name) { return std::string(CONTACTS_SAMPLES) + "/" + name; }
+
+// A file in the temp directory named for this process: two test runs side by side (two clean
+// clones, CI beside a developer) never write or remove each other's files.
+inline std::string temp_file(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name)).string();
+}
 
 // A file's whole text, as written (binary: no newline translation).
 inline std::string file_text(const std::string& path) {

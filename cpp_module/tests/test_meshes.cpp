@@ -151,7 +151,7 @@ TEST(Meshes, BadOptionsAndEmptyShapeAreErrors) {
 
 TEST(Meshes, PlyFileHoldsSharedVerticesAndTags) {
   const MeshResult result = mesh_of(BRepPrimAPI_MakeBox(1, 2, 3).Shape(), MeshOptions{});
-  const std::string path = (std::filesystem::temp_directory_path() / "contacts_test_box.ply").string();
+  const std::string path = contactcore::testing::temp_file("contacts_test_box.ply");
   ASSERT_TRUE(write_ply(result.mesh, path).ok());
   std::ifstream in(path);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -129,7 +129,7 @@ TEST(StepRead, UnknownProductStructureFallsBackToXdeAndSaysSo) {
   const std::size_t end = step.rfind("ENDSEC;");
   ASSERT_NE(end, std::string::npos);
   step.insert(end, "#99990 = CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#461,#34);\n");
-  const std::string path = (std::filesystem::temp_directory_path() / "contacts_fallback_pin_block.step").string();
+  const std::string path = contactcore::testing::temp_file("contacts_fallback_pin_block.step");
   std::ofstream(path) << step;
   StageLog log;
   const AssemblyResult fast = read_step(path, &log, StepReadMode::Products);
@@ -221,7 +221,7 @@ TEST(StepRead, AShortenedListOutsideAnAssemblyIsReadAsWritten) {
               "#99991 = SHAPE_DEFINITION_REPRESENTATION(#34,#99990);\n");
   ASSERT_NE(step.find("#34 = PRODUCT_DEFINITION_SHAPE('','',#35);"), std::string::npos);
   ASSERT_NE(step.find("#37 = PRODUCT('Plate'"), std::string::npos);
-  const std::string path = (std::filesystem::temp_directory_path() / "contacts_leaf_placements.step").string();
+  const std::string path = contactcore::testing::temp_file("contacts_leaf_placements.step");
   std::ofstream(path) << step;
   const ShortenedPlacementLists shortened = shorten_placement_lists(step);
   ASSERT_EQ(shortened.removed.size(), 2u);  // the assembly's #10 and the part's #99990
@@ -238,7 +238,7 @@ TEST(StepRead, BigGridReadsTheSameWithItsPlacementListShortened) {
   // assembly's one list of 3,001 placements, shortened for OCCT's parser,
   // gives the same bodies, names, paths, placements and volumes as the read
   // of the file as written.
-  const std::string path = (std::filesystem::temp_directory_path() / "contacts_big_grid_3000.step").string();
+  const std::string path = contactcore::testing::temp_file("contacts_big_grid_3000.step");
   const std::string command = "/usr/bin/python3 " + std::string(CONTACTS_SOURCE_DIR) + "/bench/big_grid_step.py 3000 " +
                               path + " --template " + contactcore::testing::sample("families/bolted_grid_100.step");
   ASSERT_EQ(std::system(command.c_str()), 0) << command;
