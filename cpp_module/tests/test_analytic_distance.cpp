@@ -747,7 +747,9 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
     ASSERT_TRUE(analytic_contact(analytic_patch(*upper), analytic_patch(top), c, near));
     EXPECT_NEAR(c.gap, upper == &bottom ? 5.0 : 3.0, 1e-12);
     EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
-    EXPECT_GE(m.occt, c.gap - 1e-9);
+    // OCCT, by hand: the faces' nearest edges 10 apart across and 5 up; the post's rim at (38, 0, 3)
+    // and the face's corner (10, 0, 0).
+    EXPECT_NEAR(m.occt, upper == &bottom ? std::hypot(10.0, 5.0) : std::hypot(28.0, 3.0), 1e-6);
   }
   // A shaft of radius 4 through a ring whose outer surface has radius 8, pushed 0.3 aside (nested: at
   // least 8 - 4 - 0.3 from it), and a shaft above the ring's bore, its end 2 over the bore's top
@@ -757,10 +759,11 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
   struct Case {
     const Partitioned& shaft;
     const Partition& other;
-    double bound;
+    double bound, occt;  // OCCT by hand: the nested bound is exact; above, the rim 2 up and 0.2 in
   };
-  const Case cases[] = {{through, find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Convex), 8 - 4 - 0.3},
-                        {above, find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Concave), 2.0}};
+  const Case cases[] = {
+      {through, find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Convex), 8 - 4 - 0.3, 8 - 4 - 0.3},
+      {above, find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Concave), 2.0, std::hypot(2.0, 0.2)}};
   for (const Case& k : cases) {
     const gp_Trsf aside = translation(0.3, 0, 0);
     const Partition& rod = find(k.shaft.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
@@ -769,7 +772,7 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
     AnalyticContact c;
     ASSERT_TRUE(analytic_contact(placed(analytic_patch(rod), isometry(aside)), analytic_patch(k.other), c, near));
     EXPECT_NEAR(c.gap, k.bound, 1e-12);
-    EXPECT_GE(m.occt, c.gap - 1e-9);
+    EXPECT_NEAR(m.occt, k.occt, 1e-6);
   }
   // A rod's end face (a disk of 3.5) 5 down the ring's bore of 4.5, pushed 0.3 aside: the face lies
   // within 3.5 + 0.3 of the bore's axis, so at least 4.5 - 3.8 from its wall.
@@ -782,7 +785,7 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
   ASSERT_TRUE(analytic_contact(placed(analytic_patch(end_face), isometry(translation(0.3, 0, 0))),
                                analytic_patch(ring_bore), face_bound, near));
   EXPECT_NEAR(face_bound.gap, 4.5 - 3.5 - 0.3, 1e-9);
-  EXPECT_GE(inside.occt, face_bound.gap - 1e-9);
+  EXPECT_NEAR(inside.occt, 4.5 - 3.5 - 0.3, 1e-6);  // exact here: the disk's rim against the wall
   // Within the reach the outline test still decides.
   AnalyticTolerances far;
   far.reach = 10;
