@@ -395,6 +395,17 @@ bool annuli_pair(const AnalyticPatch& a, const AnalyticPatch& b, double gap, con
 // Cylinder axis points: a point on b's axis line at coordinate s.
 Vector3 on_axis(const AnalyticPatch& p, double s) { return p.location + s * p.axis; }
 
+// Radii of a revolution patch about its axis over its extent: a cylinder's
+// one, a cone's at its ends (a sphere: 0 to its radius about any line through
+// its centre).
+double least_radius(const AnalyticPatch& p) {
+  return p.kind == SurfaceKind::Cone ? p.axial_min * std::tan(p.half_angle)
+                                     : p.kind == SurfaceKind::Sphere ? 0.0 : p.radius;
+}
+double widest_radius(const AnalyticPatch& p) {
+  return p.kind == SurfaceKind::Cone ? p.axial_max * std::tan(p.half_angle) : p.radius;
+}
+
 bool swap_result(bool ok, AnalyticContact& out) {
   if (ok) {
     std::swap(out.point_a, out.point_b);
@@ -483,6 +494,22 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   return false;  // only edges crossing, or apart in the plane: the meshes decide
 }
 
+// A point of cylinder a's end circle about `centre` (eight tried, from direction `first`), within
+// a's bounds, whose foot on b's plane lies inside b's outline: where that end stands over the
+// face's material. False when none does.
+bool end_point_over_face(const AnalyticPatch& a, const Vector3& centre, const Vector3& first, const AnalyticPatch& b,
+                         Vector3& point) {
+  const Vector3 x = perpendicular(a.axis, first), y = a.axis.cross(x);
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * kTwoPi / 8;
+    const Vector3 p = centre + a.radius * (std::cos(angle) * x + std::sin(angle) * y);
+    if (!within_patch(a, p, 1e-3) || !within_patch(b, p - (p - b.location).dot(b.axis) * b.axis)) continue;
+    point = p;
+    return true;
+  }
+  return false;
+}
+
 // A cylinder (a shaft, or a bore's rim: either side) standing on a plane (b),
 // its axis along the plane's normal: every point of its nearer end circle is
 // at one height above the plane and the rest of it higher, so the gap is that
@@ -494,18 +521,13 @@ bool end_on_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContac
   const Vector3 centre = on_axis(a, a.axis.dot(n) > 0 ? a.axial_min : a.axial_max);
   const double height = (centre - b.location).dot(n);
   if (height > tol.reach) return out_of_reach(height, n, centre, out);  // the whole cylinder is that high
-  const Vector3 x = perpendicular(a.axis, a.ref_dir), y = a.axis.cross(x);
-  for (int k = 0; k < 8; ++k) {
-    const double angle = k * kTwoPi / 8;
-    const Vector3 p = centre + a.radius * (std::cos(angle) * x + std::sin(angle) * y);
-    if (!within_patch(a, p, 1e-3) || !within_patch(b, p - height * n)) continue;
-    out.gap = height;
-    out.normal = n;
-    out.point_a = p;
-    out.point_b = p - height * n;
-    return true;
-  }
-  return false;
+  Vector3 p;
+  if (!end_point_over_face(a, centre, a.ref_dir, b, p)) return false;
+  out.gap = height;
+  out.normal = n;
+  out.point_a = p;
+  out.point_b = p - height * n;
+  return true;
 }
 
 // A convex cylinder or sphere (a) against a plane (b).
@@ -613,13 +635,8 @@ bool shaft_through_plane(const AnalyticPatch& a, const AnalyticPatch& b, Analyti
     // Only where the end circle lies over the face's material (eight points tried, from the side
     // of the nearest rim): a wide cylinder around a small face (a housing around a shaft's
     // shoulder) stands on nothing.
-    const Vector3 end = on_axis(a, min_nearer ? a.axial_min : a.axial_max);
-    const Vector3 x = perpendicular(a.axis, u), y = a.axis.cross(x);
-    for (int k = 0; k < 8; ++k) {
-      const double angle = k * kTwoPi / 8;
-      const Vector3 p = end + a.radius * (std::cos(angle) * x + std::sin(angle) * y);
-      const Vector3 under = p - ((p - b.location).dot(n)) * n;
-      if (!within_patch(a, p, 1e-3) || !within_patch(b, under)) continue;
+    Vector3 p;
+    if (end_point_over_face(a, on_axis(a, min_nearer ? a.axial_min : a.axial_max), u, b, p)) {
       out.gap = stand_off;
       out.normal = body_side * n;  // a leaves towards its body's side
       out.point_a = p;
@@ -651,7 +668,7 @@ bool shaft_through_chamfer(const AnalyticPatch& a, const AnalyticPatch& b, Analy
   const double sin_tilt = std::sqrt(std::max(0.0, 1 - c * c)), tan_half = std::tan(b.half_angle);
   if (tan_half * cos_tilt <= sin_tilt) return false;  // a cone as steep as the tilt: its far rim may be nearer
   const Vector3 centre = on_axis(b, b.axial_min);
-  const double rim = b.axial_min * tan_half;
+  const double rim = least_radius(b);
   const double s_rim = (centre - a.location).dot(b.axis) / c;  // where the rim's plane crosses the shaft's axis
   constexpr double kEndSlack = 1e-6;  // mm: a rim at the shaft's end meets its edge (the meshes)
   if (s_rim <= a.axial_min + kEndSlack || s_rim >= a.axial_max - kEndSlack) return false;
@@ -685,7 +702,7 @@ bool chamfer_in_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticCon
   const double sin_tilt = std::sqrt(std::max(0.0, 1 - c * c)), tan_half = std::tan(a.half_angle);
   if (tan_half <= sin_tilt) return false;
   const Vector3 centre = on_axis(a, a.axial_max);
-  const double rim = a.axial_max * tan_half;
+  const double rim = widest_radius(a);
   const double s = (centre - b.location).dot(b.axis);
   constexpr double kEndSlack = 1e-6;  // mm
   if (s <= b.axial_min + kEndSlack || s >= b.axial_max - kEndSlack) return false;
@@ -817,8 +834,7 @@ bool axially_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticConta
   } else {
     const double c = a.axis.dot(b.axis);
     if (std::abs(c) < std::cos(tol.parallel)) return false;
-    const double widest = a.kind == SurfaceKind::Cone ? a.axial_max * std::tan(a.half_angle) : a.radius;
-    const double spread = widest * std::sqrt(std::max(0.0, 1 - c * c));
+    const double spread = widest_radius(a) * std::sqrt(std::max(0.0, 1 - c * c));
     const double s1 = (on_axis(a, a.axial_min) - b.location).dot(b.axis);
     const double s2 = (on_axis(a, a.axial_max) - b.location).dot(b.axis);
     lo = std::min(s1, s2) - spread, hi = std::max(s1, s2) + spread;
@@ -827,17 +843,6 @@ bool axially_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticConta
   const double apart = std::max(below, above);
   if (apart <= tol.reach) return false;
   return out_of_reach(apart, above > below ? b.axis : Vector3(-b.axis), on_axis(a, a.axial_min), out);
-}
-
-// Radii of a revolution patch about its axis over its extent: a cylinder's
-// one, a cone's at its ends (a sphere: 0 to its radius about any line through
-// its centre).
-double least_radius(const AnalyticPatch& p) {
-  return p.kind == SurfaceKind::Cone ? p.axial_min * std::tan(p.half_angle)
-                                     : p.kind == SurfaceKind::Sphere ? 0.0 : p.radius;
-}
-double widest_radius(const AnalyticPatch& p) {
-  return p.kind == SurfaceKind::Cone ? p.axial_max * std::tan(p.half_angle) : p.radius;
 }
 
 // Two revolution patches, one nested inside the other (a shaft inside a
