@@ -792,3 +792,65 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
   AnalyticContact c;
   EXPECT_FALSE(analytic_contact(analytic_patch(bottom), analytic_patch(top), c, far));
 }
+
+// Pairs whose kinds have no closed form (a wall across a face or across a cylinder's axis, a cone
+// beside a bore), out of reach: answered by a bound at most OCCT's distance, none without a reach.
+// A wall behind a face's plane (where the face's body is) by less than any contact's depth is not
+// answered: it may be sunk into that body, an overlap the meshes must see.
+TEST(AnalyticDistance, PairsWithoutAClosedFormAreBoundedOutOfReach) {
+  AnalyticTolerances near;
+  near.reach = 0.2;
+  const Partitioned low = partitioned(BRepPrimAPI_MakeBox(gp_Pnt(0, 0, -1), 10, 10, 1).Shape());
+  const Partition& top = plane_facing(low.parts, gp_Dir(0, 0, 1));
+  // A block's side (x = 4, y 2..4, 1 high) over the face, or behind it: the circle holding its
+  // outline is centred at the wall's middle height with radius hypot(1, 0.5), which bounds its
+  // lowest and highest points.
+  const double circle = std::hypot(1.0, 0.5);
+  struct Case {
+    const char* name;
+    double up;          // the wall's bottom over the face's plane
+    bool answered;
+    double bound, occt;  // OCCT by hand: the wall's bottom edge over the face, or under it
+  };
+  const Case walls[] = {{"over the face", 5, true, 5.5 - circle, 5.0},
+                        {"deep behind it", -11, true, 10.5 - circle, 10.0},
+                        {"just behind it", -1.3, false, 0, 0.3}};
+  for (const Case& k : walls) {
+    const Partitioned block = partitioned(BRepPrimAPI_MakeBox(gp_Pnt(2, 2, k.up), 2, 2, 1).Shape());
+    const Partition& wall = plane_facing(block.parts, gp_Dir(1, 0, 0));
+    const Measured m = measure(block, wall, gp_Trsf(), low, top);
+    EXPECT_FALSE(m.handled) << k.name;
+    EXPECT_NEAR(m.occt, k.occt, 1e-6) << k.name;
+    AnalyticContact c;
+    EXPECT_EQ(analytic_contact(analytic_patch(wall), analytic_patch(top), c, near), k.answered) << k.name;
+    if (!k.answered) continue;
+    EXPECT_NEAR(c.gap, k.bound, 1e-8) << k.name;  // the outline's arcs' swing allows 1e-9
+    EXPECT_LE(c.gap, m.occt + 1e-9) << k.name;
+  }
+  // The wall x = 0 (y -1..1, z 5..6) above a ring's outer surface (radius 8, z -10..0): across its
+  // axis, so neither side of the wall's plane; its extent along the axis misses the ring's by
+  // 5.5 - hypot(1, 0.5). OCCT: the wall's corner (0, 1, 5) to the ring's top rim.
+  const Partitioned ring = partitioned(tube(4.5, 8, -10, 0));
+  const Partitioned crossing = partitioned(BRepPrimAPI_MakeBox(gp_Pnt(-1, -1, 5), 1, 2, 1).Shape());
+  const Partition& crossing_wall = plane_facing(crossing.parts, gp_Dir(1, 0, 0));
+  const Partition& outer = find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Convex);
+  const Measured above = measure(crossing, crossing_wall, gp_Trsf(), ring, outer);
+  EXPECT_FALSE(above.handled);
+  EXPECT_NEAR(above.occt, std::hypot(7.0, 5.0), 1e-6);
+  AnalyticContact c;
+  ASSERT_TRUE(analytic_contact(analytic_patch(crossing_wall), analytic_patch(outer), c, near));
+  EXPECT_NEAR(c.gap, 5.5 - circle, 1e-8);
+  EXPECT_NEAR(c.normal.z(), 1.0, 1e-12);
+  // A frustum (radii 2 to 6 over z -10..-6, axis at x = 20) beside the ring's bore (4.5): their
+  // cores 20 apart, at least 20 - 6 - 4.5 (exact: the frustum's wide rim faces the bore's wall).
+  const Partitioned frustum =
+      partitioned(BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(20, 0, -10), gp_Dir(0, 0, 1)), 2, 6, 4).Shape());
+  const Partition& cone = find(frustum.parts, SurfaceKind::Cone, MaterialSide::Convex);
+  const Partition& bore = find(ring.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
+  const Measured beside = measure(frustum, cone, gp_Trsf(), ring, bore);
+  EXPECT_FALSE(beside.handled);
+  EXPECT_NEAR(beside.occt, 20 - 6 - 4.5, 1e-6);
+  ASSERT_TRUE(analytic_contact(analytic_patch(cone), analytic_patch(bore), c, near));
+  EXPECT_NEAR(c.gap, 20 - 6 - 4.5, 1e-9);
+  EXPECT_NEAR(c.normal.x(), 1.0, 1e-12);
+}

@@ -315,7 +315,13 @@ TEST(AnalyticDistance, CoplanarFacesOffTheOutlineReportNoContact) {
   ASSERT_EQ(scene->collision().contacts(on_face, -1, reach, contacts, haptics::kMaxContacts), 1);
   EXPECT_NEAR(contacts[0].gap, 0.001, 1e-12);
   EXPECT_NEAR((contacts[0].normal - Vector3d(0, 0, 1)).norm(), 0.0, 1e-12);
-  EXPECT_EQ(scene->collision().last_closed_form_pairs(), 1);
+  // The partition pairs whose bounding spheres come within the reach, by hand: the block's six
+  // faces against the plate's top, bottom and side x = 30 (18), and its faces x = 16 and y = +-4
+  // against the plate's sides y = +-30 (4). The bottom pair in closed form and 17 by their bounds
+  // (faces above the plate's top, behind its bottom or sides); the block's four sides, standing
+  // 0.001 over the plate's top, have neither and are left to the meshes.
+  EXPECT_EQ(scene->collision().last_closed_form_pairs(), 18);
+  EXPECT_EQ(scene->collision().last_mesh_fallback_pairs(), 4);
 }
 
 // The motor's Axis pulled 15 mm straight up along its bores with the closed

@@ -128,29 +128,16 @@ void bounding_sphere(const Partition& p, Vec3& centre, double& radius) {
   radius = 0.5 * Vec3(x1 - x0, y1 - y0, z1 - z0).norm();
 }
 
-// Kinds analytic_contact() has a closed form for (it still says no where the
-// closest pair leaves the bounds).
+// Kinds analytic_contact() answers: a closed form for most pairs of planes, cylinders, cones and
+// spheres (it still says no where the closest pair leaves the bounds), and for any of them a lower
+// bound of the gap once it is beyond the query's reach (AnalyticTolerances::reach: a hex socket's
+// walls above a cover, a shank beside the cover's central chamfers). A torus or another surface:
+// the meshes.
 bool closed_form_kinds(const AnalyticPatch& a, const AnalyticPatch& b) {
-  using K = SurfaceKind;
-  if (a.kind == K::Other || b.kind == K::Other) return false;
-  if (a.kind == K::Plane || b.kind == K::Plane) {
-    const AnalyticPatch& other = a.kind == K::Plane ? b : a;
-    // A bore's rim under a plane (end_on_plane) too: cylinders of either side.
-    return other.kind == K::Plane || other.kind == K::Cylinder ||
-           (other.kind == K::Sphere && other.side == MaterialSide::Convex);
-  }
-  if (a.kind == K::Cone || b.kind == K::Cone) {
-    // A plug on its seat; a shaft through a chamfer at a bore's mouth, a chamfered end in a bore;
-    // and any cone with a cylinder or cone out of reach (axially apart, or nested), whatever sides.
-    const K other = a.kind == K::Cone ? b.kind : a.kind;
-    return other == K::Cone || other == K::Cylinder;
-  }
-  if (a.side == MaterialSide::Convex && b.side == MaterialSide::Convex) return true;
-  if (!convex_against_concave(a.side, b.side)) return false;
-  const AnalyticPatch& inner = a.side == MaterialSide::Convex ? a : b;
-  const AnalyticPatch& outer = a.side == MaterialSide::Convex ? b : a;
-  // A shaft in a bore, or beside one (a shaft past a rotor's small holes).
-  return inner.kind == K::Sphere || (inner.kind == K::Cylinder && outer.kind == K::Cylinder);
+  auto analytic = [](SurfaceKind k) {
+    return k == SurfaceKind::Plane || k == SurfaceKind::Cylinder || k == SurfaceKind::Cone || k == SurfaceKind::Sphere;
+  };
+  return analytic(a.kind) && analytic(b.kind);
 }
 }  // namespace
 

@@ -426,6 +426,11 @@ bool out_of_reach(double gap, const Vector3& normal, const Vector3& at, Analytic
   return true;
 }
 
+// cos and sin of the eight multiples of 45 degrees.
+constexpr double kHalfRoot2 = 0.70710678118654752440;
+constexpr double kEighthTurns[8][2] = {{1, 0},           {kHalfRoot2, kHalfRoot2},   {0, 1},  {-kHalfRoot2, kHalfRoot2},
+                                       {-1, 0},          {-kHalfRoot2, -kHalfRoot2}, {0, -1}, {kHalfRoot2, -kHalfRoot2}};
+
 bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
   if (a.axis.dot(b.axis) > -std::cos(tol.angle)) return false;  // not facing, or tilted: an edge is closest
   if (a.loops.empty() || b.loops.empty()) return false;
@@ -476,6 +481,16 @@ bool plane_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
     out.point_b = out.point_a - out.gap * n;
     return true;
   }
+  // An annulus' outer rim first (a screw head's underside around the cover's hole: its inner rim,
+  // scanned first below, lies along the hole's edge, no vertex of it inside), at eight points.
+  for (const AnalyticPatch::Annulus& k : a.annuli)
+    for (int i = 0; i < 8; ++i) {
+      const double u = k.cx + k.outer * kEighthTurns[i][0], v = k.cy + k.outer * kEighthTurns[i][1];
+      if (!inside_outline(b, ox + m00 * u + m01 * v, oy + m10 * u + m11 * v)) continue;
+      out.point_a = a.location + u * ax + v * ay;
+      out.point_b = out.point_a - out.gap * n;
+      return true;
+    }
   // A point of one outline inside the other: the faces overlap there.
   for (const auto& loop : a.loops)
     for (const Point2& v : loop) {
@@ -501,8 +516,7 @@ bool end_point_over_face(const AnalyticPatch& a, const Vector3& centre, const Ve
                          Vector3& point) {
   const Vector3 x = perpendicular(a.axis, first), y = a.axis.cross(x);
   for (int k = 0; k < 8; ++k) {
-    const double angle = k * kTwoPi / 8;
-    const Vector3 p = centre + a.radius * (std::cos(angle) * x + std::sin(angle) * y);
+    const Vector3 p = centre + a.radius * (kEighthTurns[k][0] * x + kEighthTurns[k][1] * y);
     if (!within_patch(a, p, 1e-3) || !within_patch(b, p - (p - b.location).dot(b.axis) * b.axis)) continue;
     point = p;
     return true;
@@ -964,6 +978,142 @@ bool cone_seat(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& 
 bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
                  const AnalyticTolerances& tol) noexcept;
 
+// ---- bounds for any two patches out of reach (their kinds with or without a closed form)
+
+// A plane's outline scanned chord by chord for a bound only up to this many chords: a cover's face
+// with nine holes has thousands, and a pair a bound cannot decide from the circle holding them is
+// rarely decided by them (it costs what the meshes save).
+constexpr std::size_t kMostChordsScanned = 256;
+
+// Heights (q - origin).d (d a unit vector) over the patch's points q: [lo, hi] holds them all. A
+// plane by the circle holding its outline, or (`chords`) by its outline's vertices, each chord
+// widened by its arc's swing; a cylinder or cone by its end circles (the height is linear along
+// it); a sphere by its centre and radius. False for a torus, another surface, or a plane without
+// an outline.
+bool height_range(const AnalyticPatch& p, const Vector3& origin, const Vector3& d, bool chords, double& lo,
+                  double& hi) {
+  const double h0 = (p.location - origin).dot(d);
+  switch (p.kind) {
+    case SurfaceKind::Plane: {
+      if (p.outline_radius < 0) return false;
+      const Vector3 ax = p.ref_dir, ay = p.axis.cross(p.ref_dir);
+      const double gx = ax.dot(d), gy = ay.dot(d), slope = std::hypot(gx, gy);
+      if (!chords || slope < 1e-12) {
+        const double centre = h0 + p.outline_cx * gx + p.outline_cy * gy;
+        lo = centre - p.outline_radius * slope, hi = centre + p.outline_radius * slope;
+        return true;
+      }
+      lo = 1e300, hi = -1e300;
+      for (const AnalyticPatch::Chord& c : p.chords) {
+        const double h = h0 + c.x * gx + c.y * gy, swing = std::sqrt(c.reach2) * slope;
+        lo = std::min(lo, h - swing), hi = std::max(hi, h + swing);
+      }
+      return true;
+    }
+    case SurfaceKind::Cylinder:
+    case SurfaceKind::Cone: {
+      const double c = p.axis.dot(d), across = std::sqrt(std::max(0.0, 1 - c * c));
+      const double r0 = std::abs(least_radius(p)) * across, r1 = std::abs(widest_radius(p)) * across;
+      const double h_min = h0 + p.axial_min * c, h_max = h0 + p.axial_max * c;
+      lo = std::min(h_min - r0, h_max - r1), hi = std::max(h_min + r0, h_max + r1);
+      return true;
+    }
+    case SurfaceKind::Sphere:
+      lo = h0 - p.radius, hi = h0 + p.radius;
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Patch a wholly on one side of plane b's plane: every point of b lies in that plane, so the pair
+// is at least that far apart. In front of it, farther than the reach; behind it (where b's
+// material is), deeper than any contact (AnalyticTolerances::max_depth: a patch behind it by less
+// may be sunk into b's body, an overlap the meshes must see). The circle holding a plane's outline
+// first, its chords only when the circle leaves it undecided.
+bool off_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
+  if (b.kind != SurfaceKind::Plane) return false;
+  const double behind = std::max(tol.reach, tol.max_depth);
+  double lo, hi;
+  for (bool chords : {false, true}) {
+    if (!height_range(a, b.location, b.axis, chords, lo, hi)) return false;
+    if (lo > tol.reach) return out_of_reach(lo, b.axis, a.location, out);
+    if (hi < -behind) return out_of_reach(-hi, -b.axis, a.location, out);
+    if (a.kind != SurfaceKind::Plane || a.chords.size() > kMostChordsScanned) return false;
+  }
+  return false;
+}
+
+// Patch a's extent along revolution patch b's axis (any tilt) missing b's axial range by more than
+// the reach (axially_apart for any patch and tilt: a hex socket's walls above a cover's rim).
+bool beside_axial_range(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                        const AnalyticTolerances& tol) {
+  if (b.kind != SurfaceKind::Cylinder && b.kind != SurfaceKind::Cone) return false;
+  double lo, hi;
+  for (bool chords : {false, true}) {
+    if (!height_range(a, b.location, b.axis, chords, lo, hi)) return false;
+    const double below = b.axial_min - hi, above = lo - b.axial_max;
+    const double apart = std::max(below, above);
+    if (apart > tol.reach) return out_of_reach(apart, above > below ? b.axis : Vector3(-b.axis), a.location, out);
+    if (a.kind != SurfaceKind::Plane || a.chords.size() > kMostChordsScanned) return false;
+  }
+  return false;
+}
+
+// Closest points of segments p0 + s d0 (s in [0, l0]) and p1 + t d1 (t in [0, l1]), d0 and d1 unit,
+// either of length 0 (a point) (Ericson, Real-Time Collision Detection, 5.1.9).
+void closest_on_segments(const Vector3& p0, const Vector3& d0, double l0, const Vector3& p1, const Vector3& d1,
+                         double l1, Vector3& c0, Vector3& c1) {
+  const Vector3 e0 = l0 * d0, e1 = l1 * d1, r = p0 - p1;
+  const double a = e0.squaredNorm(), e = e1.squaredNorm(), f = e1.dot(r);
+  constexpr double kTiny = 1e-18;
+  double s = 0, t = 0;
+  if (a > kTiny && e <= kTiny) {
+    s = std::clamp(-e0.dot(r) / a, 0.0, 1.0);
+  } else if (a <= kTiny && e > kTiny) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else if (a > kTiny) {
+    const double c = e0.dot(r), b = e0.dot(e1), denom = a * e - b * b;
+    s = denom > 1e-12 * a * e ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+    t = (b * s + f) / e;
+    if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
+    else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
+  }
+  c0 = p0 + s * e0;
+  c1 = p1 + t * e1;
+}
+
+// Two revolution patches side by side, any sides: every point of each lies within its widest
+// radius of its core (its axis between its ends; a sphere's centre), so they are at least the
+// cores' distance less both radii apart (a screw's shank beside a cover's central chamfers).
+bool cores_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
+  if (!revolution(a.kind) || !revolution(b.kind)) return false;
+  auto core = [](const AnalyticPatch& p, Vector3& start, double& length) {
+    const bool point = p.kind == SurfaceKind::Sphere;
+    start = point ? p.location : on_axis(p, p.axial_min);
+    length = point ? 0.0 : p.axial_max - p.axial_min;
+  };
+  auto widest = [](const AnalyticPatch& p) { return std::max(std::abs(least_radius(p)), std::abs(widest_radius(p))); };
+  Vector3 sa, sb, ca, cb;
+  double la, lb;
+  core(a, sa, la);
+  core(b, sb, lb);
+  closest_on_segments(sa, a.axis, la, sb, b.axis, lb, ca, cb);
+  const double apart = (ca - cb).norm() - widest(a) - widest(b);
+  if (apart <= tol.reach) return false;
+  return out_of_reach(apart, (ca - cb).normalized(), ca, out);
+}
+
+// Any pair of analytic patches known farther apart than the reach by one of the bounds above (none
+// without a reach).
+bool beyond_reach(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
+                  const AnalyticTolerances& tol) {
+  if (!std::isfinite(tol.reach)) return false;
+  return off_plane(a, b, out, tol) || swap_result(off_plane(b, a, out, tol), out) ||
+         beside_axial_range(a, b, out, tol) || swap_result(beside_axial_range(b, a, out, tol), out) ||
+         cores_apart(a, b, out, tol);
+}
+
 }  // namespace
 
 AnalyticPatch analytic_patch(const Partition& partition) {
@@ -1109,6 +1259,10 @@ bool within_patch(const AnalyticPatch& patch, const Eigen::Vector3d& p, double s
 
 bool analytic_contact(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
                       const AnalyticTolerances& tol) noexcept {
+  // Pairs known to be out of reach first, whatever their kinds (cheap, and most pairs near a part
+  // are); then the closed form of the kinds. The bounds answer nothing a closed form would take as
+  // a contact: their gaps exceed the reach, or lie behind a plane deeper than max_depth.
+  if (beyond_reach(a, b, out, tol)) return true;
   if (!closed_form(a, b, out, tol)) return false;
   return out.gap >= -tol.max_depth;
 }

@@ -685,9 +685,16 @@ void CollisionPair::query(const RigidTransform& place_a, const RigidTransform& p
       best.distance = s.distance_limit;
       best_pa = best_pb = -1;
     }
-    std::sort(s.candidates.begin(), s.candidates.end(),
+    // The loop stops at the first pair whose boxes lie beyond the best distance, which only shrinks:
+    // the pairs beyond it from the start are never measured, so only the others are sorted (a query
+    // limited to a closed form's gap keeps a few of a few hundred).
+    const double start_bound = best.distance + bvh::kTieSlack;
+    const auto near_end = std::partition(s.candidates.begin(), s.candidates.end(),
+                                         [start_bound](const State::Candidate& c) { return c.lower_bound <= start_bound; });
+    std::sort(s.candidates.begin(), near_end,
               [](const State::Candidate& x, const State::Candidate& y) { return x.lower_bound < y.lower_bound; });
-    for (const State::Candidate& c : s.candidates) {
+    for (auto it = s.candidates.begin(); it != near_end; ++it) {
+      const State::Candidate& c = *it;
       if (c.lower_bound > best.distance + bvh::kTieSlack) break;
       // Ties between partition pairs go to the lower (partition A, partition B).
       using Held = bvh::Traversal::Held;

@@ -124,6 +124,11 @@ struct AnalyticTolerances {
   // separation, a cylinder's end height over a plane) is answered with that
   // bound, its points not checked against the partitions' bounds: the caller
   // only needs to know it is out of reach, and the outline tests are the cost.
+  // With a reach, any two planes, cylinders, cones or spheres are first tried
+  // for such a bound, whether or not their kinds have a closed form: one patch
+  // in front of the other's plane by more than the reach (behind it, by more
+  // than max_depth), apart along a cylinder's or cone's axis, or two
+  // revolution patches' cores farther apart than their radii.
   double reach = std::numeric_limits<double>::infinity();
 };
 
