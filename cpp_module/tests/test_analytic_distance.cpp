@@ -794,9 +794,10 @@ TEST(AnalyticDistance, OutOfReachPairsAreAnsweredByABound) {
 }
 
 // Pairs whose kinds have no closed form (a wall across a face or across a cylinder's axis, a cone
-// beside a bore), out of reach: answered by a bound at most OCCT's distance, none without a reach.
-// A wall behind a face's plane (where the face's body is) by less than any contact's depth is not
-// answered: it may be sunk into that body, an overlap the meshes must see.
+// beside a bore, two bores), out of reach: answered by a bound at most OCCT's distance, none
+// without a reach. A wall behind a face's plane (where the face's body is), or a bore beside
+// another bore, by less than any contact's depth is not answered: it may be sunk into that
+// body, an overlap the meshes must see.
 TEST(AnalyticDistance, PairsWithoutAClosedFormAreBoundedOutOfReach) {
   AnalyticTolerances near;
   near.reach = 0.2;
@@ -853,4 +854,16 @@ TEST(AnalyticDistance, PairsWithoutAClosedFormAreBoundedOutOfReach) {
   ASSERT_TRUE(analytic_contact(analytic_patch(cone), analytic_patch(bore), c, near));
   EXPECT_NEAR(c.gap, 20 - 6 - 4.5, 1e-9);
   EXPECT_NEAR(c.normal.x(), 1.0, 1e-12);
+  // Two bores side by side (no closed form for two concave surfaces): 20 - 4.5 - 4.5 apart, a
+  // bound; 0.3 apart, their bodies may overlap between them (each lies outside its bore): none.
+  for (double x : {20.0, 9.3}) {
+    const Partitioned other_ring = partitioned(tube(4.5, 8, -10, 0, x));
+    const Partition& other_bore = find(other_ring.parts, SurfaceKind::Cylinder, MaterialSide::Concave);
+    const Measured bores = measure(other_ring, other_bore, gp_Trsf(), ring, bore);
+    EXPECT_FALSE(bores.handled) << x;
+    EXPECT_NEAR(bores.occt, x - 9, 1e-6) << x;
+    const bool bounded = analytic_contact(analytic_patch(other_bore), analytic_patch(bore), c, near);
+    EXPECT_EQ(bounded, x > 10) << x;
+    if (bounded) EXPECT_NEAR(c.gap, x - 9, 1e-9);
+  }
 }

@@ -1086,6 +1086,8 @@ void closest_on_segments(const Vector3& p0, const Vector3& d0, double l0, const 
 // Two revolution patches side by side, any sides: every point of each lies within its widest
 // radius of its core (its axis between its ends; a sphere's centre), so they are at least the
 // cores' distance less both radii apart (a screw's shank beside a cover's central chamfers).
+// Beside a concave one (a bore, whose body lies outside its radius) the other lies on that body's
+// side: as behind a plane (off_plane), only beyond max_depth.
 bool cores_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
   if (!revolution(a.kind) || !revolution(b.kind)) return false;
   auto core = [](const AnalyticPatch& p, Vector3& start, double& length) {
@@ -1100,7 +1102,8 @@ bool cores_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   core(b, sb, lb);
   closest_on_segments(sa, a.axis, la, sb, b.axis, lb, ca, cb);
   const double apart = (ca - cb).norm() - widest(a) - widest(b);
-  if (apart <= tol.reach) return false;
+  const bool beside_a_bore = a.side == MaterialSide::Concave || b.side == MaterialSide::Concave;
+  if (apart <= (beside_a_bore ? std::max(tol.reach, tol.max_depth) : tol.reach)) return false;
   return out_of_reach(apart, (ca - cb).normalized(), ca, out);
 }
 
@@ -1261,7 +1264,7 @@ bool analytic_contact(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticCo
                       const AnalyticTolerances& tol) noexcept {
   // Pairs known to be out of reach first, whatever their kinds (cheap, and most pairs near a part
   // are); then the closed form of the kinds. The bounds answer nothing a closed form would take as
-  // a contact: their gaps exceed the reach, or lie behind a plane deeper than max_depth.
+  // a contact: their gaps exceed the reach, and on a face's or a bore's body side max_depth.
   if (beyond_reach(a, b, out, tol)) return true;
   if (!closed_form(a, b, out, tol)) return false;
   return out.gap >= -tol.max_depth;
