@@ -1,8 +1,9 @@
 """The haptic panel's hand handle (contactwb/gui/panels/hand_handle.py)
 without a GUI: its pose read as the trial's offset convention (translate,
 then Rz Ry Rx about the centre: pose_math.h rotation_xyz), its box, its
-place first in the scene graph, and that only a drag (the dragger active)
-moves the hand. The drag with the mouse in FreeCAD's 3D view is
+place first in the scene graph, that it is picked where a body hides it
+(the rest of the scene unpickable while it is shown, Coin's ray pick), and
+that only a drag (the dragger active) moves the hand. The drag with the mouse in FreeCAD's 3D view is
 tests/gui/test_haptic_hand.py."""
 import math
 
@@ -57,9 +58,63 @@ def test_the_handle_is_the_parts_box_plus_a_margin_first_in_the_scene():
     assert list(handle.half_size) == pytest.approx([5.0, 6.0, 43.0])
     assert view.graph.findChild(handle.root) == 0  # before any legend camera (see hand_handle)
     assert handle.root.getName().getString() == hand_handle.NODE_NAME
+    # Right after it, the rest of the scene made unpickable while it is shown.
+    assert view.graph.findChild(handle.others) == 1
+    assert handle.others.getName().getString() == hand_handle.OTHERS_NODE_NAME
+    assert not handle.others_pickable()
+    handle.show(False)
+    assert handle.others_pickable()
+    handle.show(True)
+    assert not handle.others_pickable()
     handle.remove()
     assert view.graph.findChild(handle.root) == -1
+    assert view.graph.findChild(handle.others) == -1
     assert view.graph.getNumChildren() == 1
+
+
+def picked_under_the_centre(root):
+    """The nodes on the path of the nearest surface under the middle of a 100 x 100 view (Coin's
+    ray pick, as a dragger's press is picked)."""
+    pick = coin.SoRayPickAction(coin.SbViewportRegion(100, 100))
+    pick.setPoint(coin.SbVec2s(50, 50))
+    pick.apply(root)
+    point = pick.getPickedPoint()
+    if point is None:
+        return []
+    path = point.getPath()
+    return [path.getNode(i) for i in range(path.getLength())]
+
+
+def test_the_handle_is_picked_where_a_body_hides_it():
+    # A camera looking down -z at the handle (the shaft's box, z 2..72) with a plate over it: a
+    # body in front, as the motor's Body is in front of its Axis.
+    view, handle = make_handle()
+    plate = coin.SoSeparator()
+    place = coin.SoTranslation()
+    place.translation.setValue(0.0, 0.0, 100.0)
+    cube = coin.SoCube()
+    cube.width.setValue(50.0)
+    cube.height.setValue(50.0)
+    cube.depth.setValue(2.0)
+    plate.addChild(place)
+    plate.addChild(cube)
+    view.graph.addChild(plate)
+    root = coin.SoSeparator()
+    camera = coin.SoOrthographicCamera()
+    camera.position.setValue(0.0, 0.0, 200.0)
+    camera.height.setValue(120.0)
+    camera.nearDistance.setValue(1.0)
+    camera.farDistance.setValue(400.0)
+    root.addChild(camera)
+    root.addChild(view.graph)
+    # Shown: the handle (its dragger), not the plate in front of it.
+    assert handle.dragger in picked_under_the_centre(root)
+    # Hidden (a hardware device drives the hand): the plate again, as without the handle.
+    handle.show(False)
+    path = picked_under_the_centre(root)
+    assert cube in path and handle.dragger not in path
+    handle.remove()
+    assert cube in picked_under_the_centre(root)
 
 
 def test_only_a_drag_moves_the_hand():

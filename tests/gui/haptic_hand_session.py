@@ -101,6 +101,47 @@ def drag_the_handle(panel, axis, original, pixels_up=100, steps=20):
     report["dragged_png"] = grab_window_with_view("haptic_hand_dragged.png")
 
 
+def grab_behind_a_body(panel):
+    """The designer presses on the handle's front face at the part's middle height, where the
+    motor's Body lies in front of it (the Axis is inside it): what the view picks there with the
+    handle hidden (a body) and shown (nothing but the handle is pickable), whether the press
+    grabbed the handle, and the hand after the release (a press without a move moves nothing)."""
+    from PySide2 import QtCore
+    view = FreeCADGui.activeDocument().activeView()
+    viewport = view_viewport()
+    ratio = viewport.devicePixelRatioF()
+    height = round(viewport.height() * ratio)
+    centre, half = panel.scene.centre, panel.handle.half_size
+    at = FreeCAD.Vector(*centre) + FreeCAD.Vector(*panel.handle.dragger.translation.getValue().getValue())
+    pixel = view.getPointOnScreen(at + FreeCAD.Vector(0, -half[1], 0))
+    pixel = (int(pixel[0]), int(pixel[1]))
+
+    def picked():
+        info = view.getObjectInfo(pixel)
+        return info["Object"] if info else None
+    panel.handle.show(False)
+    FreeCADGui.updateGui()
+    hidden = picked()
+    report["behind_body"] = FreeCAD.ActiveDocument.getObject(hidden).Label if hidden else None
+    panel.handle.show(True)
+    FreeCADGui.updateGui()
+    report["behind_picked_while_shown"] = picked()
+    report["behind_pixel"] = list(pixel)
+    hand_before = list(panel.handle.dragger.translation.getValue().getValue())
+    press = QtCore.QPointF(pixel[0] / ratio, (height - 1 - pixel[1]) / ratio)
+    send_mouse(viewport, QtCore.QEvent.MouseMove, press, QtCore.Qt.NoButton)
+    wait(0.2)
+    send_mouse(viewport, QtCore.QEvent.MouseButtonPress, press, QtCore.Qt.LeftButton)
+    wait(0.2)
+    report["behind_grabbed"] = panel.handle.dragging()
+    report["behind_png"] = grab_window_with_view("haptic_hand_grabbed_behind_body.png")
+    send_mouse(viewport, QtCore.QEvent.MouseButtonRelease, press, QtCore.Qt.NoButton)
+    wait(0.3)
+    report["behind_released"] = not panel.handle.dragging()
+    report["behind_hand_moved"] = [b - a for a, b in zip(hand_before,
+                                                         panel.handle.dragger.translation.getValue().getValue())]
+
+
 def still_readouts(panel, seconds=3.0):
     """The part and the hand still: how often the panel updated and how often
     the loop-rate and jitter readouts (which change every tick) were shown
@@ -243,6 +284,8 @@ def run():
     drag_the_handle(panel, axis, original)
     progress("handle dragged")
     still_readouts(panel)
+    grab_behind_a_body(panel)
+    progress("handle grabbed behind the Body")
 
     builds_at_ok = len(builds)
     undo_before = list(doc.UndoNames)
@@ -260,6 +303,9 @@ def run():
     search.setName(hand_handle.NODE_NAME)
     search.apply(FreeCADGui.activeDocument().activeView().getSceneGraph())
     report["handle_left_in_view"] = search.getPath() is not None
+    # The panel closed: the bodies can be picked again where the handle was grabbed behind the Body.
+    info = FreeCADGui.activeDocument().activeView().getObjectInfo(tuple(report["behind_pixel"]))
+    report["behind_picked_after_ok"] = doc.getObject(info["Object"]).Label if info else None
 
 
 session_helpers.run_and_report(run, report)

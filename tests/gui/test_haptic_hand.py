@@ -104,6 +104,20 @@ def test_dragging_the_handle_in_the_3d_view_drives_the_hand(hand_report):
     assert hand_report["undo_while_dragging"] == []
 
 
+def test_the_handle_is_grabbed_where_a_body_hides_it(hand_report):
+    # Pressed on the handle's front face at the Axis's middle height: another body (the front
+    # bearing, the Axis being pulled 9 mm up by then) is what the view shows and picks there with the
+    # handle hidden; with it shown nothing else is pickable, and the press grabs the handle (before,
+    # Coin's dragger saw that body's face and did not start).
+    assert hand_report["behind_body"] not in (None, "Axis")
+    assert hand_report["behind_picked_while_shown"] is None
+    assert hand_report["behind_grabbed"]
+    assert hand_report["behind_released"]
+    assert hand_report["behind_hand_moved"] == pytest.approx([0, 0, 0], abs=1e-6)  # pressed, not moved
+    # Once the panel is closed that body is picked there again.
+    assert hand_report["behind_picked_after_ok"] == hand_report["behind_body"]
+
+
 def test_still_part_readouts_refresh_at_2_hz(hand_report):
     # The loop's rate and jitter change every tick; shown every READOUT_PERIOD_S (0.5 s) while the
     # part is still, not at each of the panel's updates (each label repaint composes the whole
@@ -129,6 +143,6 @@ def test_ok_commits_the_trial(hand_report):
 
 def test_screenshots_were_taken(hand_report):
     from PIL import Image
-    for key in ("sliders_png", "replay_png", "dragged_png", "ok_png"):
+    for key in ("sliders_png", "replay_png", "dragged_png", "behind_png", "ok_png"):
         image = Image.open(hand_report[key]).convert("RGB")
         assert image.width > 300 and len(set(image.getdata())) > 20

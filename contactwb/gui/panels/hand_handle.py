@@ -7,6 +7,13 @@ timer polls the dragger's fields each frame instead. The handle is a node of
 the view's scene graph only (no document object: nothing in the undo
 stack), removed when the panel closes.
 
+While it is shown the rest of the scene is unpickable (an SoPickStyle right
+after it in the scene graph): Coin's draggers start only on the nearest
+picked surface, so a handle around a part inside others (the motor's Axis
+in its Body) could otherwise be grabbed only where nothing hides it. The
+bodies cannot be selected in the view meanwhile; the style is switched back
+when the handle is hidden and removed with it.
+
 Its pose is the hand's offset in the trial's convention (contactwb.core.trial,
 pose_math.h offset_pose): translate in mm, then turned by R = Rz Ry Rx about
 global axes through the scene's centre; the dragger sits at that centre, so
@@ -15,6 +22,7 @@ import FreeCAD
 from pivy import coin
 
 NODE_NAME = "ContactsHandHandle"
+OTHERS_NODE_NAME = "ContactsHandHandleOthersUnpickable"
 MARGIN_MM = 1.0  # the handle's box clears the part's box by this much on each side
 
 
@@ -58,11 +66,20 @@ class HandHandle:
         # contacts' legend has its own) leaves the pick with that camera's
         # ray, and the press would land on the wrong face of the handle.
         self.scene.insertChild(self.root, 0)
+        self.others = coin.SoPickStyle()  # the rest of the scene, while the handle is shown
+        self.others.setName(OTHERS_NODE_NAME)
+        self.others.style.setValue(coin.SoPickStyle.UNPICKABLE)
+        self.scene.insertChild(self.others, 1)
         self.seen = self._fields()
         self.was_dragging = False
 
     def show(self, on):
         self.switch.whichChild.setValue(coin.SO_SWITCH_ALL if on else coin.SO_SWITCH_NONE)
+        self.others.style.setValue(coin.SoPickStyle.UNPICKABLE if on else coin.SoPickStyle.SHAPE)
+
+    def others_pickable(self):
+        """Whether the rest of the scene can be picked (the handle hidden)."""
+        return self.others.style.getValue() == coin.SoPickStyle.SHAPE
 
     def _fields(self):
         translation = tuple(self.dragger.translation.getValue().getValue())
@@ -100,4 +117,5 @@ class HandHandle:
         self.seen = self._fields()
 
     def remove(self):
+        self.scene.removeChild(self.others)
         self.scene.removeChild(self.root)

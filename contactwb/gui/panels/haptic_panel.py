@@ -231,6 +231,9 @@ class HapticTrialPanel:
             grid.addWidget(value, row, 2)
             self.hand_sliders[key] = slider
             self.hand_values[key] = value
+        hand_box.setToolTip("Drive the simulated hand with these sliders, or drag its handle (the box around "
+                            "the part) in the 3D view. While the handle is shown, only it can be picked in the "
+                            "view, also where other bodies hide it.")
         self.hand_box = hand_box
         layout.addWidget(hand_box)
 
