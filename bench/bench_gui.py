@@ -20,7 +20,9 @@ section (docs/benchmarks.md). --baseline-sources DIR (another checkout, e.g.
 main's) times that workbench too, with the same extension and harness, in
 sessions alternating with this tree's, and adds the ratios: before and after
 in the same conditions on a shared machine. --profile prints each repeat's
-cProfile (cumulative and own time)."""
+cProfile (cumulative and own time). --window WxH resizes FreeCAD's main
+window before the empty view's and the haptic panel's steps (a smaller 3D
+view: what the software renderer's fill rate costs the render rates)."""
 import argparse
 import json
 import os
@@ -49,10 +51,7 @@ RATE_TITLES = {"empty_view_forced_rate_hz": "Empty document, its 3D view rendere
                "motor_panel_view_rate_hz": "Haptic panel on the motor's Axis, analysis present: 3D view renders/s"}
 
 
-DEFAULT_SCREEN = "1400x1050x24"
-
-
-def run_session(build_dir, repeat, profile, panel_seconds=5.0, sources=REPO, screen=DEFAULT_SCREEN):
+def run_session(build_dir, repeat, profile, panel_seconds=5.0, sources=REPO, window=""):
     """One FreeCAD session of gui_bench_session.py with the workbench of
     `sources` (a checkout: its tools/install_workbench.py, contactwb and
     Resources) and the extension of `build_dir` installed: its report."""
@@ -65,9 +64,10 @@ def run_session(build_dir, repeat, profile, panel_seconds=5.0, sources=REPO, scr
         result = os.path.join(home, "bench_gui.json")
         env = dict(os.environ, HOME=home, QTWEBENGINE_DISABLE_SANDBOX="1", CONTACTS_GUI_RESULT=result,
                    CONTACTS_SHARED_STEP=SHARED_STEP, CONTACTS_BENCH_REPEAT=str(repeat),
-                   CONTACTS_BENCH_PROFILE="1" if profile else "0", CONTACTS_BENCH_PANEL_SECONDS=str(panel_seconds))
+                   CONTACTS_BENCH_PROFILE="1" if profile else "0", CONTACTS_BENCH_PANEL_SECONDS=str(panel_seconds),
+                   CONTACTS_BENCH_WINDOW=window)
         env.pop("CONTACTS_PYTHON_DIR", None)  # the installed extension
-        proc = subprocess.run(["xvfb-run", "-a", "-s", f"-screen 0 {screen}", "freecad",
+        proc = subprocess.run(["xvfb-run", "-a", "-s", "-screen 0 1400x1050x24", "freecad",
                                os.path.join(REPO, "bench", "gui_bench_session.py")],
                               env=env, capture_output=True, text=True, timeout=1800)
         if not os.path.exists(result):
@@ -183,9 +183,9 @@ def main():
                              "before and after in the same conditions")
     parser.add_argument("--rounds", type=int, default=2, help="sessions of each workbench with --baseline-sources")
     parser.add_argument("--baseline-label", default="baseline", help="what the baseline is (e.g. 'main c8fa765')")
-    parser.add_argument("--screen", default=DEFAULT_SCREEN,
-                        help="Xvfb's screen, WxHxDEPTH (the 3D view's size follows FreeCAD's window on it): a "
-                             "smaller view to see what the software renderer's fill rate costs the render rates")
+    parser.add_argument("--window", default="", metavar="WxH",
+                        help="FreeCAD's main window resized to this (logical pixels) before the steps: a smaller "
+                             "3D view, to see what the software renderer's fill rate costs the render rates")
     args = parser.parse_args()
     load = os.getloadavg()
     build_dir = os.path.abspath(args.build_dir)
@@ -194,8 +194,8 @@ def main():
         baseline, ours = [], []
         for _ in range(args.rounds):
             baseline.append(run_session(build_dir, args.repeat, False, args.panel_seconds,
-                                        os.path.abspath(args.baseline_sources), args.screen))
-            ours.append(run_session(build_dir, args.repeat, args.profile, args.panel_seconds, screen=args.screen))
+                                        os.path.abspath(args.baseline_sources), args.window))
+            ours.append(run_session(build_dir, args.repeat, args.profile, args.panel_seconds, window=args.window))
         end_load = os.getloadavg()
         baseline, report = merged(baseline), merged(ours)
         before = (f"### Before and after, in the same conditions\n\nThe baseline's workbench ({args.baseline_label}, "
@@ -207,7 +207,7 @@ def main():
                   + table(baseline, load) + "\n\n### This tree\n\n")
         print(before)
     else:
-        report = run_session(build_dir, args.repeat, args.profile, args.panel_seconds, screen=args.screen)
+        report = run_session(build_dir, args.repeat, args.profile, args.panel_seconds, window=args.window)
     text = table(report, load)
     print(text)
     if args.profile:

@@ -48,6 +48,19 @@ PROFILE = os.environ.get("CONTACTS_BENCH_PROFILE") == "1"
 SHARED_STEP = os.environ.get("CONTACTS_SHARED_STEP", "")
 REPEAT = int(os.environ.get("CONTACTS_BENCH_REPEAT", "3"))
 PANEL_SECONDS = float(os.environ.get("CONTACTS_BENCH_PANEL_SECONDS", "5"))
+# The main window's size (WxH, logical pixels; unset: FreeCAD's own, about 1300 x 1000): a smaller
+# 3D view for the render rates (bench_gui.py --window).
+WINDOW = os.environ.get("CONTACTS_BENCH_WINDOW", "")
+
+
+def size_the_window():
+    if not WINDOW:
+        return
+    width, height = (int(v) for v in WINDOW.lower().split("x"))
+    main = FreeCADGui.getMainWindow()
+    main.showNormal()
+    main.resize(width, height)
+    QtWidgets.QApplication.processEvents()
 
 
 def analyses(doc):
@@ -163,6 +176,7 @@ def haptic_panel_rate():
     import math
     from contactwb.gui.panels import haptic_panel
     doc = FreeCAD.getDocument(report["motor_document"])
+    size_the_window()  # again: opening the motor set FreeCAD's window to 1400 x 1000
     FreeCADGui.getDocument(doc.Name)  # its view active
     FreeCAD.setActiveDocument(doc.Name)
     FreeCADGui.activeDocument().activeView().viewIsometric()
@@ -248,7 +262,7 @@ def bearings():
     report["bearing_contacts"] = sum(1 for c in group.Group if hasattr(c, "ContactType"))
 
 
-for step in (empty_view_rate, motor, haptic_panel_rate, bearings):
+for step in (size_the_window, empty_view_rate, motor, haptic_panel_rate, bearings):
     try:
         step()
     except Exception:
