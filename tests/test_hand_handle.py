@@ -107,14 +107,37 @@ def test_the_handle_is_picked_where_a_body_hides_it():
     camera.farDistance.setValue(400.0)
     root.addChild(camera)
     root.addChild(view.graph)
-    # Shown: the handle (its dragger), not the plate in front of it.
-    assert handle.dragger in picked_under_the_centre(root)
+    # Shown: the handle (its dragger), not the plate in front of it, nor its outline drawn over all.
+    path = picked_under_the_centre(root)
+    assert handle.dragger in path and handle.outline not in path
     # Hidden (a hardware device drives the hand): the plate again, as without the handle.
     handle.show(False)
     path = picked_under_the_centre(root)
     assert cube in path and handle.dragger not in path
     handle.remove()
     assert cube in picked_under_the_centre(root)
+
+
+def test_the_outline_follows_the_handle():
+    # Its box as lines over the whole scene: an annotation in the handle's switch, scaled to the
+    # handle's box, moved and turned with the dragger by field connections.
+    view, handle = make_handle()
+    assert handle.outline.isOfType(coin.SoAnnotation.getClassTypeId())
+    assert handle.switch.findChild(handle.outline) >= 0
+    search = coin.SoSearchAction()
+    search.setType(coin.SoScale.getClassTypeId())
+    search.apply(handle.outline)
+    assert list(search.getPath().getTail().scaleFactor.getValue().getValue()) == pytest.approx([5.0, 6.0, 43.0])
+    handle.dragger.translation.setValue(1.0, 2.0, 3.0)
+    handle.dragger.rotation.setValue(*hand_handle.rotation_of([0.0, 0.0, 30.0]).Q)
+    assert list(handle.follow.translation.getValue().getValue()) == pytest.approx([1.0, 2.0, 3.0])
+    assert list(handle.follow.rotation.getValue().getValue()) == pytest.approx(
+        list(hand_handle.rotation_of([0.0, 0.0, 30.0]).Q), abs=1e-6)
+    handle.set([4.0, 5.0, 6.0], [10.0, 0.0, 0.0])  # a slider: the outline follows too
+    assert list(handle.follow.translation.getValue().getValue()) == pytest.approx([4.0, 5.0, 6.0])
+    handle.show(False)  # hidden with the handle (the same switch)
+    assert handle.switch.whichChild.getValue() == coin.SO_SWITCH_NONE
+    handle.remove()
 
 
 def test_only_a_drag_moves_the_hand():

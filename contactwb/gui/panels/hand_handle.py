@@ -7,7 +7,9 @@ timer polls the dragger's fields each frame instead. The handle is a node of
 the view's scene graph only (no document object: nothing in the undo
 stack), removed when the panel closes.
 
-While it is shown the rest of the scene is unpickable (an SoPickStyle right
+Its box is also drawn as dashed lines over the whole scene (an
+annotation), so it is seen where bodies hide it. While it is shown the rest
+of the scene is unpickable (an SoPickStyle right
 after it in the scene graph): Coin's draggers start only on the nearest
 picked surface, so a handle around a part inside others (the motor's Axis
 in its Body) could otherwise be grabbed only where nothing hides it. The
@@ -23,6 +25,7 @@ from pivy import coin
 
 NODE_NAME = "ContactsHandHandle"
 OTHERS_NODE_NAME = "ContactsHandHandleOthersUnpickable"
+OUTLINE_NODE_NAME = "ContactsHandHandleOutline"
 MARGIN_MM = 1.0  # the handle's box clears the part's box by this much on each side
 
 
@@ -61,6 +64,7 @@ class HandHandle:
         self.switch.whichChild.setValue(coin.SO_SWITCH_ALL)
         self.switch.addChild(place)
         self.switch.addChild(self.dragger)
+        self.switch.addChild(self._outline())
         self.root.addChild(self.switch)
         # First in the graph: a camera met before it by Coin's ray pick (the
         # contacts' legend has its own) leaves the pick with that camera's
@@ -72,6 +76,33 @@ class HandHandle:
         self.scene.insertChild(self.others, 1)
         self.seen = self._fields()
         self.was_dragging = False
+
+    def _outline(self):
+        """The handle's box as dashed lines drawn over the whole scene (an
+        annotation: after it, without the depth test), so that it is seen
+        where bodies hide it. It follows the dragger through field
+        connections (Coin's own: no Python callback) and is not pickable
+        (the dragger takes the presses)."""
+        self.outline = coin.SoAnnotation()
+        self.outline.setName(OUTLINE_NODE_NAME)
+        unpickable = coin.SoPickStyle()
+        unpickable.style.setValue(coin.SoPickStyle.UNPICKABLE)
+        self.follow = coin.SoTransform()
+        self.follow.translation.connectFrom(self.dragger.translation)
+        self.follow.rotation.connectFrom(self.dragger.rotation)
+        size = coin.SoScale()
+        size.scaleFactor.setValue(*self.half_size)
+        flat = coin.SoLightModel()
+        flat.model.setValue(coin.SoLightModel.BASE_COLOR)
+        colour = coin.SoBaseColor()
+        colour.rgb.setValue(1.0, 0.75, 0.0)
+        lines = coin.SoDrawStyle()
+        lines.style.setValue(coin.SoDrawStyle.LINES)
+        lines.linePattern.setValue(0xF0F0)
+        lines.lineWidth.setValue(1.0)
+        for node in (unpickable, self.follow, size, flat, colour, lines, coin.SoCube()):  # the cube spans -1..1
+            self.outline.addChild(node)
+        return self.outline
 
     def show(self, on):
         self.switch.whichChild.setValue(coin.SO_SWITCH_ALL if on else coin.SO_SWITCH_NONE)
