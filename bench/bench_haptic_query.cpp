@@ -98,6 +98,14 @@ Motor& motor() {
 // longest, not the 2nd of 200 (27 Nov: with 200, two interrupts in a run moved it from 11 to 57 us).
 constexpr int kQuerySamples = 2000;
 
+// The p50 and p99 of the timed samples (seconds) as counters in us: wall time and the thread's CPU.
+void set_percentile_counters(benchmark::State& state, const std::vector<double>& wall, const std::vector<double>& cpu) {
+  state.counters["p50_us"] = percentile(wall, 50) * 1e6;
+  state.counters["p99_us"] = percentile(wall, 99) * 1e6;
+  state.counters["cpu_p50_us"] = percentile(cpu, 50) * 1e6;
+  state.counters["cpu_p99_us"] = percentile(cpu, 99) * 1e6;
+}
+
 constexpr double kReach = 0.2;  // mm: the contact query's reach (a fast hand's step bound and more)
 
 // Poses around the assembled one: lifted 0..9 um, pushed up to 5 um sideways
@@ -131,10 +139,7 @@ void BM_ContactQuery(benchmark::State& state, int part, int body, bool closed_fo
     closed += query.last_closed_form_pairs();
     fallback += query.last_mesh_fallback_pairs();
   }
-  state.counters["p50_us"] = percentile(wall, 50) * 1e6;
-  state.counters["p99_us"] = percentile(wall, 99) * 1e6;
-  state.counters["cpu_p50_us"] = percentile(cpu, 50) * 1e6;
-  state.counters["cpu_p99_us"] = percentile(cpu, 99) * 1e6;
+  set_percentile_counters(state, wall, cpu);
   state.counters["contacts"] = double(found) / std::max(1, i);
   state.counters["closed_pairs"] = double(closed) / std::max(1, i);
   state.counters["mesh_fallbacks"] = double(fallback) / std::max(1, i);
@@ -155,10 +160,7 @@ void BM_MachineFloor(benchmark::State& state) {
     cpu.push_back(cpu_now() - c0);
     wall.push_back(wall_now() - w0);
   }
-  state.counters["p50_us"] = percentile(wall, 50) * 1e6;
-  state.counters["p99_us"] = percentile(wall, 99) * 1e6;
-  state.counters["cpu_p50_us"] = percentile(cpu, 50) * 1e6;
-  state.counters["cpu_p99_us"] = percentile(cpu, 99) * 1e6;
+  set_percentile_counters(state, wall, cpu);
 }
 
 // The hand held at the assembled pose, pushing 0.2 mm into the seat and
@@ -199,10 +201,7 @@ void BM_ServoTick(benchmark::State& state, int part, bool closed_form, bool body
   }
   scene.collision().set_analytic(true);
   scene.collision().set_body_trees(false);
-  state.counters["p50_us"] = percentile(wall, 50) * 1e6;
-  state.counters["p99_us"] = percentile(wall, 99) * 1e6;
-  state.counters["cpu_p50_us"] = percentile(cpu, 50) * 1e6;
-  state.counters["cpu_p99_us"] = percentile(cpu, 99) * 1e6;
+  set_percentile_counters(state, wall, cpu);
   state.counters["contacts"] = contacts / std::max<std::size_t>(1, wall.size());
 }
 

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 
+#include <fcl/narrowphase/detail/primitive_shape_algorithm/triangle_distance.h>
+
 namespace contactcore {
 
 namespace {
@@ -829,36 +831,6 @@ bool shaft_beside_bore(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticC
   return convex_cores(a, b, out) && out.gap >= 0;
 }
 
-// Two revolution patches (b a cylinder or a cone; a any, its axis near b's)
-// whose extents along b's axis miss each other: every pair of their points is
-// at least that far apart (the distance of their projections on b's axis). a
-// projects within its axis' ends' projections widened by its largest radius
-// times the tilt's sine (a sphere: its radius). Beyond the reach that bound
-// answers (AnalyticTolerances::reach): a shaft's end above a bearing's bore,
-// chamfers and recesses at other heights.
-bool axially_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
-                   const AnalyticTolerances& tol) {
-  if (!std::isfinite(tol.reach) || (b.kind != SurfaceKind::Cylinder && b.kind != SurfaceKind::Cone) ||
-      !revolution(a.kind))
-    return false;
-  double lo, hi;
-  if (a.kind == SurfaceKind::Sphere) {
-    const double centre = (a.location - b.location).dot(b.axis);
-    lo = centre - a.radius, hi = centre + a.radius;
-  } else {
-    const double c = a.axis.dot(b.axis);
-    if (std::abs(c) < std::cos(tol.parallel)) return false;
-    const double spread = widest_radius(a) * std::sqrt(std::max(0.0, 1 - c * c));
-    const double s1 = (on_axis(a, a.axial_min) - b.location).dot(b.axis);
-    const double s2 = (on_axis(a, a.axial_max) - b.location).dot(b.axis);
-    lo = std::min(s1, s2) - spread, hi = std::max(s1, s2) + spread;
-  }
-  const double below = b.axial_min - hi, above = lo - b.axial_max;
-  const double apart = std::max(below, above);
-  if (apart <= tol.reach) return false;
-  return out_of_reach(apart, above > below ? b.axis : Vector3(-b.axis), on_axis(a, a.axial_min), out);
-}
-
 // Two revolution patches, one nested inside the other (a shaft inside a
 // ring's outer surface, a bore inside a wider recess, a chamfer inside a
 // bearing's outer ring), of any sides: a point of the inner one is at most its
@@ -1026,6 +998,19 @@ bool height_range(const AnalyticPatch& p, const Vector3& origin, const Vector3& 
   }
 }
 
+// height_range by the circle holding a plane's outline first, then (a plane of at most
+// kMostChordsScanned chords) by its chords, until `decided(lo, hi)`: whether a range decided it.
+template <class Decided>
+bool height_range_deciding(const AnalyticPatch& p, const Vector3& origin, const Vector3& d, Decided decided, double& lo,
+                           double& hi) {
+  for (bool chords : {false, true}) {
+    if (!height_range(p, origin, d, chords, lo, hi)) return false;
+    if (decided(lo, hi)) return true;
+    if (p.kind != SurfaceKind::Plane || p.chords.size() > kMostChordsScanned) return false;
+  }
+  return false;
+}
+
 // Patch a wholly on one side of plane b's plane: every point of b lies in that plane, so the pair
 // is at least that far apart. In front of it, farther than the reach; behind it (where b's
 // material is), deeper than any contact (AnalyticTolerances::max_depth: a patch behind it by less
@@ -1035,72 +1020,40 @@ bool off_plane(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& 
   if (b.kind != SurfaceKind::Plane) return false;
   const double behind = std::max(tol.reach, tol.max_depth);
   double lo, hi;
-  for (bool chords : {false, true}) {
-    if (!height_range(a, b.location, b.axis, chords, lo, hi)) return false;
-    if (lo > tol.reach) return out_of_reach(lo, b.axis, a.location, out);
-    if (hi < -behind) return out_of_reach(-hi, -b.axis, a.location, out);
-    if (a.kind != SurfaceKind::Plane || a.chords.size() > kMostChordsScanned) return false;
-  }
-  return false;
+  auto apart = [&](double l, double h) { return l > tol.reach || h < -behind; };
+  if (!height_range_deciding(a, b.location, b.axis, apart, lo, hi)) return false;
+  return lo > tol.reach ? out_of_reach(lo, b.axis, a.location, out) : out_of_reach(-hi, -b.axis, a.location, out);
 }
 
 // Patch a's extent along revolution patch b's axis (any tilt) missing b's axial range by more than
-// the reach (axially_apart for any patch and tilt: a hex socket's walls above a cover's rim).
+// the reach: a shaft's end above a bearing's bore, chamfers and recesses at other heights, a hex
+// socket's walls above a cover's rim.
 bool beside_axial_range(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out,
                         const AnalyticTolerances& tol) {
   if (b.kind != SurfaceKind::Cylinder && b.kind != SurfaceKind::Cone) return false;
   double lo, hi;
-  for (bool chords : {false, true}) {
-    if (!height_range(a, b.location, b.axis, chords, lo, hi)) return false;
-    const double below = b.axial_min - hi, above = lo - b.axial_max;
-    const double apart = std::max(below, above);
-    if (apart > tol.reach) return out_of_reach(apart, above > below ? b.axis : Vector3(-b.axis), a.location, out);
-    if (a.kind != SurfaceKind::Plane || a.chords.size() > kMostChordsScanned) return false;
-  }
-  return false;
-}
-
-// Closest points of segments p0 + s d0 (s in [0, l0]) and p1 + t d1 (t in [0, l1]), d0 and d1 unit,
-// either of length 0 (a point) (Ericson, Real-Time Collision Detection, 5.1.9).
-void closest_on_segments(const Vector3& p0, const Vector3& d0, double l0, const Vector3& p1, const Vector3& d1,
-                         double l1, Vector3& c0, Vector3& c1) {
-  const Vector3 e0 = l0 * d0, e1 = l1 * d1, r = p0 - p1;
-  const double a = e0.squaredNorm(), e = e1.squaredNorm(), f = e1.dot(r);
-  constexpr double kTiny = 1e-18;
-  double s = 0, t = 0;
-  if (a > kTiny && e <= kTiny) {
-    s = std::clamp(-e0.dot(r) / a, 0.0, 1.0);
-  } else if (a <= kTiny && e > kTiny) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else if (a > kTiny) {
-    const double c = e0.dot(r), b = e0.dot(e1), denom = a * e - b * b;
-    s = denom > 1e-12 * a * e ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-    t = (b * s + f) / e;
-    if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
-    else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
-  }
-  c0 = p0 + s * e0;
-  c1 = p1 + t * e1;
+  auto apart = [&](double l, double h) { return std::max(b.axial_min - h, l - b.axial_max) > tol.reach; };
+  if (!height_range_deciding(a, b.location, b.axis, apart, lo, hi)) return false;
+  const double below = b.axial_min - hi, above = lo - b.axial_max;
+  return out_of_reach(std::max(below, above), above > below ? b.axis : Vector3(-b.axis), a.location, out);
 }
 
 // Two revolution patches side by side, any sides: every point of each lies within its widest
 // radius of its core (its axis between its ends; a sphere's centre), so they are at least the
-// cores' distance less both radii apart (a screw's shank beside a cover's central chamfers).
+// cores' distance less both radii apart (a screw's shank beside a cover's central chamfers; the
+// cores' closest points by FCL's segment pair, degenerate segments and parallel ones included).
 // Beside a concave one (a bore, whose body lies outside its radius) the other lies on that body's
 // side: as behind a plane (off_plane), only beyond max_depth.
 bool cores_apart(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact& out, const AnalyticTolerances& tol) {
   if (!revolution(a.kind) || !revolution(b.kind)) return false;
-  auto core = [](const AnalyticPatch& p, Vector3& start, double& length) {
-    const bool point = p.kind == SurfaceKind::Sphere;
-    start = point ? p.location : on_axis(p, p.axial_min);
-    length = point ? 0.0 : p.axial_max - p.axial_min;
+  // A core as FCL's segments take it: its start and its extent (zero for a sphere's centre).
+  auto start = [](const AnalyticPatch& p) { return p.kind == SurfaceKind::Sphere ? p.location : on_axis(p, p.axial_min); };
+  auto extent = [](const AnalyticPatch& p) {
+    return p.kind == SurfaceKind::Sphere ? Vector3::Zero().eval() : Vector3((p.axial_max - p.axial_min) * p.axis);
   };
   auto widest = [](const AnalyticPatch& p) { return std::max(std::abs(least_radius(p)), std::abs(widest_radius(p))); };
-  Vector3 sa, sb, ca, cb;
-  double la, lb;
-  core(a, sa, la);
-  core(b, sb, lb);
-  closest_on_segments(sa, a.axis, la, sb, b.axis, lb, ca, cb);
+  Vector3 ca, cb, direction;
+  fcl::detail::TriangleDistance<double>::segPoints(start(a), extent(a), start(b), extent(b), direction, ca, cb);
   const double apart = (ca - cb).norm() - widest(a) - widest(b);
   const bool beside_a_bore = a.side == MaterialSide::Concave || b.side == MaterialSide::Concave;
   if (apart <= (beside_a_bore ? std::max(tol.reach, tol.max_depth) : tol.reach)) return false;
@@ -1283,7 +1236,6 @@ bool closed_form(const AnalyticPatch& a, const AnalyticPatch& b, AnalyticContact
   if (ka == K::Plane && (kb == K::Cylinder || kb == K::Sphere))
     return face_inside_revolution(a, b, out, tol) ||
            swap_result(shaft_through_plane(b, a, out, tol) || convex_on_plane(b, a, out, tol), out);
-  if (axially_apart(a, b, out, tol) || swap_result(axially_apart(b, a, out, tol), out)) return true;
   if (widest_radius(a) <= widest_radius(b) ? nested_out_of_reach(a, b, out, tol)
                                            : swap_result(nested_out_of_reach(b, a, out, tol), out))
     return true;
